@@ -1,0 +1,21 @@
+// The meshreuse subcommands. Each parses its own options (Boost.Program_options, --help on each)
+// and calls the libraries; none does any computing of its own. The table in main.cc maps names
+// to these functions.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace meshreuse::cli {
+
+using Args = std::vector<std::string>;  // the arguments after the subcommand's name
+
+int MeshInfo(const Args& args);
+int MeshGenerate(const Args& args);
+int MeshConvert(const Args& args);
+int SmoothCommand(const Args& args);
+
+// The full command line, for run.json.
+const std::vector<std::string>& FullCommandLine();
+
+}  // namespace meshreuse::cli

@@ -1,0 +1,95 @@
+// meshreuse: the command-line front end. One table maps subcommand names to functions; errors are
+// reported here and only here: bad input (InputError, a bad option) exits 2, a failed external
+// tool or any other failure exits 1.
+#include <boost/program_options/errors.hpp>
+#include <cstdio>
+#include <cstring>
+#include <string>
+#include <vector>
+
+#include "cli/commands.h"
+#include "core/error.h"
+#include "core/triangle_runner.h"
+
+namespace meshreuse::cli {
+
+namespace {
+
+struct Command {
+  const char* name;  // words, e.g. "mesh info"
+  const char* summary;
+  int (*run)(const Args&);
+};
+
+const Command kCommands[] = {
+    {"mesh info", "vertices, triangles, boundary and quality of a mesh", MeshInfo},
+    {"mesh generate", "mesh one of the nine shapes (or a .poly) with Triangle", MeshGenerate},
+    {"mesh convert", "read any supported mesh, write .node/.ele or .vtk", MeshConvert},
+    {"smooth", "Laplacian smoothing, per-sweep quality and time", SmoothCommand},
+};
+
+std::vector<std::string> g_argv;
+
+void Usage(std::FILE* out) {
+  std::fprintf(out,
+               "meshreuse: locality research on unstructured meshes\n\n"
+               "usage: meshreuse <command> [options]   (meshreuse <command> --help)\n\ncommands:\n");
+  for (const Command& c : kCommands) std::fprintf(out, "  %-16s %s\n", c.name, c.summary);
+}
+
+// Number of words of `name` that match args from `first`, or 0.
+size_t Matches(const char* name, const std::vector<std::string>& args) {
+  size_t i = 0;
+  const char* p = name;
+  while (*p) {
+    const char* sp = std::strchr(p, ' ');
+    const size_t len = sp ? static_cast<size_t>(sp - p) : std::strlen(p);
+    if (i >= args.size() || args[i] != std::string(p, len)) return 0;
+    ++i;
+    p += len + (sp ? 1 : 0);
+  }
+  return i;
+}
+
+}  // namespace
+
+const std::vector<std::string>& FullCommandLine() { return g_argv; }
+
+int Main(int argc, char** argv) {
+  g_argv.assign(argv, argv + argc);
+  const std::vector<std::string> args(argv + 1, argv + argc);
+  if (args.empty() || args[0] == "--help" || args[0] == "-h" || args[0] == "help") {
+    Usage(args.empty() ? stderr : stdout);
+    return args.empty() ? 2 : 0;
+  }
+  const Command* cmd = nullptr;
+  size_t used = 0;
+  for (const Command& c : kCommands) {
+    const size_t n = Matches(c.name, args);
+    if (n > used) cmd = &c, used = n;
+  }
+  if (!cmd) {
+    std::fprintf(stderr, "meshreuse: unknown command '%s'\n\n", args[0].c_str());
+    Usage(stderr);
+    return 2;
+  }
+  try {
+    return cmd->run(Args(args.begin() + used, args.end()));
+  } catch (const InputError& e) {
+    std::fprintf(stderr, "meshreuse: error: %s\n", e.what());
+    return 2;
+  } catch (const boost::program_options::error& e) {
+    std::fprintf(stderr, "meshreuse %s: %s (see --help)\n", cmd->name, e.what());
+    return 2;
+  } catch (const ToolError& e) {
+    std::fprintf(stderr, "meshreuse: error: %s\n", e.what());
+    return 1;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "meshreuse: error: %s\n", e.what());
+    return 1;
+  }
+}
+
+}  // namespace meshreuse::cli
+
+int main(int argc, char** argv) { return meshreuse::cli::Main(argc, argv); }

@@ -1,0 +1,231 @@
+// Gmsh .msh ASCII, versions 2.2 and 4.1 (https://gmsh.info/doc/texinfo/gmsh.html, "MSH file
+// format"). Only $MeshFormat, $Nodes and $Elements are read; other sections are skipped to their
+// $End line. Triangles are element type 2 (3 nodes) and 9 (6 nodes: the corners come first); other
+// element types (points, lines, quads, volumes) are skipped and counted in a warning. Node tags
+// are arbitrary positive integers and are mapped to 0-based ids in file order; z is ignored.
+#include <string>
+#include <unordered_map>
+
+#include "core/error.h"
+#include "core/mesh_io.h"
+#include "core/text_file.h"
+
+namespace meshreuse {
+
+namespace {
+
+constexpr int kMaxCols = 64;
+
+class GmshReader {
+ public:
+  explicit GmshReader(const std::string& path) : f_(path, '\0') {
+    raw_.vertex_file = raw_.triangle_file = path;
+  }
+
+  RawMesh Read() {
+    std::string_view line;
+    bool have_format = false, have_nodes = false, have_elements = false;
+    while (f_.NextDataLine(&line)) {
+      if (line.empty() || line[0] != '$') f_.Fail("expected a section such as $Nodes, found '" +
+                                                  std::string(line.substr(0, 40)) + "'");
+      const std::string name(line.substr(1));
+      if (name == "MeshFormat") {
+        ReadFormat();
+        have_format = true;
+      } else if (name == "Nodes" || name == "Elements") {
+        if (!have_format) f_.Fail("$" + name + " before $MeshFormat");
+        if (name == "Nodes") {
+          if (have_nodes) f_.Fail("a second $Nodes section");
+          v4_ ? ReadNodes4() : ReadNodes2();
+          have_nodes = true;
+        } else {
+          if (!have_nodes) f_.Fail("$Elements before $Nodes");
+          if (have_elements) f_.Fail("a second $Elements section");
+          v4_ ? ReadElements4() : ReadElements2();
+          have_elements = true;
+        }
+        ExpectEnd(name);
+      } else {
+        SkipSection(name);
+      }
+    }
+    if (!have_format) f_.Fail("not a Gmsh file: no $MeshFormat section");
+    if (!have_nodes) f_.Fail("no $Nodes section");
+    if (!have_elements) f_.Fail("no $Elements section");
+    if (skipped_ > 0)
+      raw_.warnings.push_back(f_.path() + ": skipped " + std::to_string(skipped_) +
+                              " elements that are not triangles");
+    return std::move(raw_);
+  }
+
+ private:
+  std::string_view Line(const char* what) {
+    std::string_view line;
+    if (!f_.NextDataLine(&line))
+      f_.Fail(std::string("file ends inside ") + what + " (truncated file or wrong count)");
+    return line;
+  }
+  int Split(std::string_view line, std::string_view* tok) { return Tokens(line).Split(tok, kMaxCols); }
+
+  void ReadFormat() {
+    std::string_view tok[kMaxCols];
+    const int n = Split(Line("$MeshFormat"), tok);
+    if (n < 3) f_.Fail("$MeshFormat should read 'version file-type data-size'");
+    const std::string version(tok[0]);
+    if (version == "4.1") {
+      v4_ = true;
+    } else if (version == "2.2" || version == "2.1" || version == "2") {
+      v4_ = false;
+    } else {
+      f_.Fail("unsupported .msh version " + version + " (supported: 2.2 and 4.1 ASCII)");
+    }
+    if (f_.ParseInt(tok[1], "the file type") != 0)
+      f_.Fail("binary .msh files are not supported; save the mesh as ASCII");
+    ExpectEnd("MeshFormat");
+  }
+
+  void ExpectEnd(const std::string& name) {
+    const std::string_view line = Line(("$" + name).c_str());
+    if (line != "$End" + name)
+      f_.Fail("expected $End" + name + ", found '" + std::string(line.substr(0, 40)) +
+              "' (more entries than the section's count?)");
+  }
+
+  void SkipSection(const std::string& name) {
+    std::string_view line;
+    while (f_.NextDataLine(&line))
+      if (line == "$End" + name) return;
+    f_.Fail("section $" + name + " has no $End" + name + " (truncated file)");
+  }
+
+  int64_t Count(std::string_view tok, const char* what) {
+    const int64_t n = f_.ParseInt(tok, what);
+    if (n < 0) f_.Fail(std::string(what) + " is negative");
+    return n;
+  }
+
+  void AddNode(int64_t tag, std::string_view x, std::string_view y) {
+    if (!tag_to_id_.emplace(tag, static_cast<int32_t>(raw_.vertex_tag.size())).second)
+      f_.Fail("node " + std::to_string(tag) + " is defined twice");
+    if (raw_.vertex_tag.size() >= static_cast<size_t>(INT32_MAX)) f_.Fail("too many nodes");
+    raw_.xy.push_back(f_.ParseDouble(x, "the x coordinate"));
+    raw_.xy.push_back(f_.ParseDouble(y, "the y coordinate"));
+    raw_.vertex_tag.push_back(tag);
+    raw_.vertex_line.push_back(f_.line());
+  }
+
+  void ReadNodes2() {
+    std::string_view tok[kMaxCols];
+    if (Split(Line("$Nodes"), tok) != 1) f_.Fail("expected the number of nodes");
+    const int64_t n = Count(tok[0], "the number of nodes");
+    tag_to_id_.reserve(n);
+    for (int64_t i = 0; i < n; ++i) {
+      if (Split(Line("$Nodes"), tok) != 4) f_.Fail("a node line should read 'tag x y z'");
+      AddNode(f_.ParseInt(tok[0], "the node tag"), tok[1], tok[2]);
+    }
+  }
+
+  void ReadNodes4() {
+    std::string_view tok[kMaxCols];
+    if (Split(Line("$Nodes"), tok) != 4)
+      f_.Fail("expected 'numEntityBlocks numNodes minNodeTag maxNodeTag'");
+    const int64_t blocks = Count(tok[0], "the number of entity blocks");
+    const int64_t total = Count(tok[1], "the number of nodes");
+    tag_to_id_.reserve(total);
+    std::vector<int64_t> tags;
+    for (int64_t b = 0; b < blocks; ++b) {
+      if (Split(Line("$Nodes"), tok) != 4)
+        f_.Fail("expected 'entityDim entityTag parametric numNodesInBlock'");
+      const bool parametric = f_.ParseInt(tok[2], "the parametric flag") != 0;
+      const int64_t n = Count(tok[3], "the number of nodes in the block");
+      tags.resize(n);
+      for (int64_t i = 0; i < n; ++i) {
+        if (Split(Line("$Nodes"), tok) != 1) f_.Fail("expected one node tag per line");
+        tags[i] = f_.ParseInt(tok[0], "the node tag");
+      }
+      for (int64_t i = 0; i < n; ++i) {
+        const int cols = Split(Line("$Nodes"), tok);
+        if (cols < 3 || (!parametric && cols != 3))
+          f_.Fail("a node coordinate line should read 'x y z'" +
+                  std::string(parametric ? " followed by parameters" : ""));
+        AddNode(tags[i], tok[0], tok[1]);
+      }
+    }
+    if (static_cast<int64_t>(raw_.vertex_tag.size()) != total)
+      f_.Fail("the blocks hold " + std::to_string(raw_.vertex_tag.size()) +
+              " nodes, the section header says " + std::to_string(total));
+  }
+
+  // `nodes` are the element's node tags; corners of a triangle are the first three.
+  void AddElement(int64_t type, const std::string_view* nodes, int n_nodes) {
+    if (type != 2 && type != 9) {
+      ++skipped_;
+      return;
+    }
+    const int need = type == 2 ? 3 : 6;
+    if (n_nodes != need)
+      f_.Fail("a triangle of type " + std::to_string(type) + " needs " + std::to_string(need) +
+              " nodes, found " + std::to_string(n_nodes));
+    for (int k = 0; k < 3; ++k) {
+      const int64_t tag = f_.ParseInt(nodes[k], "a node tag");
+      const auto it = tag_to_id_.find(tag);
+      if (it == tag_to_id_.end())
+        f_.Fail("triangle refers to node " + std::to_string(tag) + ", which does not exist");
+      raw_.tri.push_back(it->second);
+    }
+    if (raw_.tri.size() / 3 > static_cast<size_t>(INT32_MAX)) f_.Fail("too many triangles");
+    raw_.triangle_line.push_back(f_.line());
+  }
+
+  void ReadElements2() {
+    std::string_view tok[kMaxCols];
+    if (Split(Line("$Elements"), tok) != 1) f_.Fail("expected the number of elements");
+    const int64_t n = Count(tok[0], "the number of elements");
+    for (int64_t i = 0; i < n; ++i) {
+      const int cols = Split(Line("$Elements"), tok);
+      if (cols > kMaxCols) f_.Fail("element line too long");
+      if (cols < 3) f_.Fail("an element line should read 'tag type ntags tags... nodes...'");
+      const int64_t type = f_.ParseInt(tok[1], "the element type");
+      const int64_t ntags = Count(tok[2], "the number of tags");
+      if (3 + ntags > cols) f_.Fail("the element line is shorter than its tags");
+      AddElement(type, tok + 3 + ntags, static_cast<int>(cols - 3 - ntags));
+    }
+  }
+
+  void ReadElements4() {
+    std::string_view tok[kMaxCols];
+    if (Split(Line("$Elements"), tok) != 4)
+      f_.Fail("expected 'numEntityBlocks numElements minElementTag maxElementTag'");
+    const int64_t blocks = Count(tok[0], "the number of entity blocks");
+    const int64_t total = Count(tok[1], "the number of elements");
+    int64_t seen = 0;
+    for (int64_t b = 0; b < blocks; ++b) {
+      if (Split(Line("$Elements"), tok) != 4)
+        f_.Fail("expected 'entityDim entityTag elementType numElementsInBlock'");
+      const int64_t type = f_.ParseInt(tok[2], "the element type");
+      const int64_t n = Count(tok[3], "the number of elements in the block");
+      for (int64_t i = 0; i < n; ++i) {
+        const int cols = Split(Line("$Elements"), tok);
+        if (cols > kMaxCols) f_.Fail("element line too long");
+        if (cols < 2) f_.Fail("an element line should read 'tag node...'");
+        AddElement(type, tok + 1, cols - 1);
+      }
+      seen += n;
+    }
+    if (seen != total)
+      f_.Fail("the blocks hold " + std::to_string(seen) + " elements, the section header says " +
+              std::to_string(total));
+  }
+
+  TextFile f_;
+  RawMesh raw_;
+  bool v4_ = false;
+  int64_t skipped_ = 0;
+  std::unordered_map<int64_t, int32_t> tag_to_id_;
+};
+
+}  // namespace
+
+RawMesh ReadGmsh(const std::string& path) { return GmshReader(path).Read(); }
+
+}  // namespace meshreuse

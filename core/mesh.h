@@ -1,0 +1,71 @@
+// The mesh model: 2D coordinates, triangles, topological boundary flags and the two adjacencies the
+// smoother needs (vertex->vertex, vertex->triangle) in CSR form.
+// Invariants after BuildMesh: every vertex is used by a triangle; no triangle is degenerate
+// (zero area) or repeated; every edge has one or two triangles; a vertex is a boundary vertex iff it
+// lies on an edge with exactly one triangle; v2v rows hold distinct neighbours in increasing id
+// order and v2t rows incident triangles in increasing id order; `interior` lists the non-boundary
+// vertices in storage order (the smoother's iteration space, DESIGN.md "Smoothing sweep").
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace meshreuse {
+
+// Compressed rows: row r is idx[off[r] .. off[r+1]). Offsets are 64-bit, entries 32-bit ids.
+struct Csr {
+  std::vector<int64_t> off;
+  std::vector<int32_t> idx;
+
+  int64_t RowSize(int32_t r) const { return off[r + 1] - off[r]; }
+  const int32_t* RowBegin(int32_t r) const { return idx.data() + off[r]; }
+  const int32_t* RowEnd(int32_t r) const { return idx.data() + off[r + 1]; }
+};
+
+// What a reader hands to BuildMesh: raw arrays plus where each item came from, so topology errors
+// can name a file and a line. Lines and tags may be empty (generated meshes).
+struct RawMesh {
+  std::vector<double> xy;    // 2 per vertex, interleaved x, y
+  std::vector<int32_t> tri;  // 3 per triangle, 0-based indices into the vertices
+  std::string vertex_file;   // where vertices came from (e.g. the .node file)
+  std::string triangle_file; // where triangles came from (e.g. the .ele file)
+  std::vector<int64_t> vertex_line;    // source line per vertex
+  std::vector<int64_t> triangle_line;  // source line per triangle
+  std::vector<int64_t> vertex_tag;     // the file's own vertex number, for messages
+  std::vector<std::string> warnings;   // from the reader (e.g. skipped element types)
+};
+
+class Mesh {
+ public:
+  Mesh() = default;
+  Mesh(Mesh&&) = default;
+  Mesh& operator=(Mesh&&) = default;
+  Mesh(const Mesh&) = delete;  // big: copies must be asked for by name
+  Mesh& operator=(const Mesh&) = delete;
+  Mesh Clone() const;
+
+  int32_t NumVertices() const { return static_cast<int32_t>(xy.size() / 2); }
+  int32_t NumTriangles() const { return static_cast<int32_t>(tri.size() / 3); }
+  int32_t NumBoundary() const { return NumVertices() - static_cast<int32_t>(interior.size()); }
+
+  std::vector<double> xy;
+  std::vector<int32_t> tri;
+  std::vector<uint8_t> boundary;  // 1 on the topological boundary
+  Csr v2v;                        // distinct neighbours, increasing id
+  Csr v2t;                        // incident triangles, increasing id
+  std::vector<int32_t> interior;  // non-boundary vertices, increasing id
+};
+
+struct BuildReport {
+  std::vector<std::string> warnings;
+  std::vector<int32_t> kept;  // mesh vertex -> raw vertex (identity unless unused ones were dropped)
+};
+
+// Validates the raw input and builds the adjacency in O(V + T). Throws InputError naming the file and
+// line of the offending triangle for: a corner out of range, a repeated corner, zero area, a
+// non-finite coordinate, a duplicate triangle, an edge with more than two triangles. Vertices no
+// triangle uses are dropped (keeping the relative order of the rest) and reported in `report`.
+Mesh BuildMesh(RawMesh raw, BuildReport* report = nullptr);
+
+}  // namespace meshreuse

@@ -1,0 +1,105 @@
+// Format dispatch, VTK output and atomic writes; see mesh_io.h.
+#include "core/mesh_io.h"
+
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+
+#include "core/error.h"
+#include "core/quality.h"
+
+namespace meshreuse {
+
+namespace {
+
+bool EndsWith(const std::string& s, const std::string& suffix) {
+  return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
+
+bool Exists(const std::string& p) { return ::access(p.c_str(), F_OK) == 0; }
+
+}  // namespace
+
+RawMesh ReadRawMesh(const std::string& path) {
+  if (EndsWith(path, ".msh")) return ReadGmsh(path);
+  if (EndsWith(path, ".node"))
+    return ReadTriangleFiles(path, path.substr(0, path.size() - 5) + ".ele");
+  if (EndsWith(path, ".ele"))
+    return ReadTriangleFiles(path.substr(0, path.size() - 4) + ".node", path);
+  if (Exists(path + ".node") || Exists(path + ".ele"))
+    return ReadTriangleFiles(path + ".node", path + ".ele");
+  if (!Exists(path)) throw InputError(path, 0, "cannot open: No such file or directory");
+  throw InputError(path, 0,
+                   "cannot tell the mesh format: expected FILE.msh, FILE.node, FILE.ele or a "
+                   "prefix P with P.node and P.ele");
+}
+
+Mesh ReadMesh(const std::string& path, std::vector<std::string>* warnings) {
+  BuildReport report;
+  Mesh m = BuildMesh(ReadRawMesh(path), &report);
+  if (warnings)
+    for (std::string& w : report.warnings) warnings->push_back(std::move(w));
+  return m;
+}
+
+void WriteAtomically(const std::string& path, const std::function<void(std::FILE*)>& body) {
+  const std::string tmp = path + ".tmp." + std::to_string(::getpid());
+  std::FILE* f = std::fopen(tmp.c_str(), "wb");
+  if (!f) throw InputError(path, 0, std::string("cannot write: ") + std::strerror(errno));
+  try {
+    body(f);
+  } catch (...) {
+    std::fclose(f);
+    std::remove(tmp.c_str());
+    throw;
+  }
+  const bool bad = std::ferror(f) != 0;
+  if (std::fclose(f) != 0 || bad) {
+    std::remove(tmp.c_str());
+    throw InputError(path, 0, "write failed (disk full?)");
+  }
+  if (std::rename(tmp.c_str(), path.c_str()) != 0) {
+    const int e = errno;
+    std::remove(tmp.c_str());
+    throw InputError(path, 0, std::string("cannot rename into place: ") + std::strerror(e));
+  }
+}
+
+void WriteVtk(const Mesh& m, const std::string& path) {
+  const int32_t nv = m.NumVertices(), nt = m.NumTriangles();
+  const std::vector<double> vq = VertexQualities(m);
+  const std::vector<double> tq = TriangleQualities(m);
+  WriteAtomically(path, [&](std::FILE* f) {
+    std::fprintf(f, "# vtk DataFile Version 3.0\nmeshreuse mesh\nASCII\nDATASET UNSTRUCTURED_GRID\n");
+    std::fprintf(f, "POINTS %d double\n", nv);
+    for (int32_t v = 0; v < nv; ++v)
+      std::fprintf(f, "%.17g %.17g 0\n", m.xy[2 * int64_t{v}], m.xy[2 * int64_t{v} + 1]);
+    std::fprintf(f, "CELLS %d %lld\n", nt, 4LL * nt);
+    for (int32_t t = 0; t < nt; ++t)
+      std::fprintf(f, "3 %d %d %d\n", m.tri[3 * int64_t{t}], m.tri[3 * int64_t{t} + 1],
+                   m.tri[3 * int64_t{t} + 2]);
+    std::fprintf(f, "CELL_TYPES %d\n", nt);
+    for (int32_t t = 0; t < nt; ++t) std::fputs("5\n", f);
+    std::fprintf(f, "CELL_DATA %d\nSCALARS triangle_quality double 1\nLOOKUP_TABLE default\n", nt);
+    for (int32_t t = 0; t < nt; ++t) std::fprintf(f, "%.9g\n", tq[t]);
+    std::fprintf(f, "POINT_DATA %d\nSCALARS vertex_quality double 1\nLOOKUP_TABLE default\n", nv);
+    for (int32_t v = 0; v < nv; ++v) std::fprintf(f, "%.9g\n", vq[v]);
+    std::fprintf(f, "SCALARS boundary int 1\nLOOKUP_TABLE default\n");
+    for (int32_t v = 0; v < nv; ++v) std::fprintf(f, "%d\n", int{m.boundary[v]});
+  });
+}
+
+std::vector<std::string> WriteMesh(const Mesh& m, const std::string& target) {
+  if (EndsWith(target, ".vtk")) {
+    WriteVtk(m, target);
+    return {target};
+  }
+  std::string prefix = target;
+  if (EndsWith(prefix, ".node")) prefix.resize(prefix.size() - 5);
+  WriteTriangleFiles(m, prefix);
+  return {prefix + ".node", prefix + ".ele"};
+}
+
+}  // namespace meshreuse

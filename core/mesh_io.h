@@ -1,0 +1,39 @@
+// Reading and writing meshes. Readers return a RawMesh (BuildMesh validates the topology); every
+// problem is an InputError naming the file and line. Writers write to a temporary name next to the
+// target and rename it when complete, so a failed write never leaves a half-written file.
+// Formats: Triangle .node/.ele (Shewchuk; any attribute and marker columns, numbering from 0 or 1,
+// linear or quadratic triangles), Gmsh .msh 2.2 and 4.1 ASCII (triangles; other element types are
+// skipped and counted), VTK legacy ASCII (write only, for ParaView).
+#pragma once
+
+#include <cstdio>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "core/mesh.h"
+
+namespace meshreuse {
+
+RawMesh ReadTriangleFiles(const std::string& node_path, const std::string& ele_path);
+RawMesh ReadGmsh(const std::string& msh_path);
+
+// Picks the reader from the path: FILE.msh; FILE.node or FILE.ele (the other one beside it); or a
+// prefix P with P.node and P.ele.
+RawMesh ReadRawMesh(const std::string& path);
+
+// Read + BuildMesh. Reader and builder warnings (skipped elements, dropped vertices) go to
+// `warnings` when given.
+Mesh ReadMesh(const std::string& path, std::vector<std::string>* warnings = nullptr);
+
+// Writes PREFIX.node and PREFIX.ele (numbered from 1, with a boundary marker column).
+void WriteTriangleFiles(const Mesh& m, const std::string& prefix);
+// Writes a VTK legacy unstructured grid with vertex quality, boundary flag and triangle quality.
+void WriteVtk(const Mesh& m, const std::string& path);
+// -o target: PATH.vtk writes VTK; anything else is a prefix for .node/.ele. Returns files written.
+std::vector<std::string> WriteMesh(const Mesh& m, const std::string& target);
+
+// Writes `path` through `body` into PATH.tmp.PID, then renames it. Throws InputError on failure.
+void WriteAtomically(const std::string& path, const std::function<void(std::FILE*)>& body);
+
+}  // namespace meshreuse

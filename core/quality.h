@@ -1,0 +1,50 @@
+// Mesh quality as DESIGN.md defines it (paper section "Laplacian Mesh smoothing", Knupp 2001):
+// triangle quality = shortest edge / longest edge in [0, 1] (equilateral = 1, degenerate = 0);
+// vertex quality = mean quality of its incident triangles; global quality = mean vertex quality.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <vector>
+
+#include "core/mesh.h"
+
+namespace meshreuse {
+
+// One square root: min/max of the squared lengths, then sqrt of their ratio.
+inline double TriangleQuality(double ax, double ay, double bx, double by, double cx, double cy) {
+  const double ab = (bx - ax) * (bx - ax) + (by - ay) * (by - ay);
+  const double bc = (cx - bx) * (cx - bx) + (cy - by) * (cy - by);
+  const double ca = (ax - cx) * (ax - cx) + (ay - cy) * (ay - cy);
+  const double lo = std::min(ab, std::min(bc, ca));
+  const double hi = std::max(ab, std::max(bc, ca));
+  return hi > 0.0 ? std::sqrt(lo / hi) : 0.0;
+}
+
+inline double TriangleQuality(const double* xy, const int32_t* corners) {
+  const double* a = xy + 2 * static_cast<int64_t>(corners[0]);
+  const double* b = xy + 2 * static_cast<int64_t>(corners[1]);
+  const double* c = xy + 2 * static_cast<int64_t>(corners[2]);
+  return TriangleQuality(a[0], a[1], b[0], b[1], c[0], c[1]);
+}
+
+std::vector<double> TriangleQualities(const Mesh& m);
+std::vector<double> VertexQualities(const Mesh& m);
+// The direct definition (mean over vertices of the mean over incident triangles); the smoother's
+// incremental value is tested against it.
+double GlobalQuality(const Mesh& m);
+
+// Weight of each triangle in the global quality: sum over its corners of 1 / (V * triangles at the
+// corner). Global quality = sum_t weight[t] * q[t], which lets a sweep update it from the moved
+// vertex's triangles alone.
+std::vector<double> GlobalQualityWeights(const Mesh& m);
+
+struct QualitySummary {
+  double min = 0, mean = 0, max = 0;  // over vertices
+  double global = 0;                  // == mean
+  std::vector<int64_t> histogram;     // vertex qualities in equal bins over [0, 1]
+};
+QualitySummary SummarizeVertexQuality(const Mesh& m, int bins = 10);
+
+}  // namespace meshreuse

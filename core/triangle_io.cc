@@ -1,0 +1,165 @@
+// Triangle's .node and .ele files (https://www.cs.cmu.edu/~quake/triangle.node.html and
+// triangle.ele.html). '#' starts a comment. .node: "<#vertices> <dim=2> <#attributes> <#markers>"
+// then "<id> <x> <y> [attributes] [marker]"; .ele: "<#triangles> <3 or 6> <#attributes>" then
+// "<id> <n1> <n2> <n3> [<n4> <n5> <n6>] [attributes]". Ids are consecutive from 0 or 1; the .ele
+// refers to the .node's ids. We check every count, column and id, so a wrong file fails at its
+// line rather than producing a wrong mesh.
+#include <cstdio>
+#include <string>
+
+#include "core/error.h"
+#include "core/mesh_io.h"
+#include "core/text_file.h"
+
+namespace meshreuse {
+
+namespace {
+
+constexpr int kMaxCols = 64;
+
+struct Header {
+  int64_t v[4];
+  int n;
+};
+
+Header ReadHeader(TextFile& f, int min_fields, int max_fields, const char* what) {
+  std::string_view line;
+  if (!f.NextDataLine(&line)) f.Fail(std::string("empty file: expected the ") + what + " header");
+  std::string_view tok[kMaxCols];
+  const int n = Tokens(line).Split(tok, kMaxCols);
+  if (n < min_fields || n > max_fields)
+    f.Fail(std::string("the ") + what + " header should have " + std::to_string(min_fields) +
+           (min_fields == max_fields ? "" : " to " + std::to_string(max_fields)) + " fields, found " +
+           std::to_string(n));
+  Header h{{0, 0, 0, 0}, n};
+  static const char* const kNames[] = {"the count", "the second header field",
+                                       "the third header field", "the fourth header field"};
+  for (int i = 0; i < n; ++i) {
+    h.v[i] = f.ParseInt(tok[i], kNames[i]);
+    if (h.v[i] < 0) f.Fail(std::string(kNames[i]) + " is negative");
+  }
+  return h;
+}
+
+void ExpectEnd(TextFile& f, int64_t count, const char* items) {
+  std::string_view line;
+  if (f.NextDataLine(&line))
+    f.Fail(std::string("more ") + items + " lines than the header's count of " +
+           std::to_string(count));
+}
+
+}  // namespace
+
+RawMesh ReadTriangleFiles(const std::string& node_path, const std::string& ele_path) {
+  RawMesh raw;
+  raw.vertex_file = node_path;
+  raw.triangle_file = ele_path;
+
+  // --- .node
+  TextFile node(node_path);
+  const Header nh = ReadHeader(node, 1, 4, ".node");
+  const int64_t nv = nh.v[0];
+  if (nv == 0) node.Fail("the header says the file has no vertices");
+  if (nv > INT32_MAX) node.Fail("too many vertices for 32-bit ids");
+  if (nh.n >= 2 && nh.v[1] != 2)
+    node.Fail("dimension is " + std::to_string(nh.v[1]) + ", only 2D meshes are supported");
+  const int64_t nattr = nh.n >= 3 ? nh.v[2] : 0;
+  const int64_t nmark = nh.n >= 4 ? nh.v[3] : 0;
+  if (nmark > 1) node.Fail("the number of boundary markers must be 0 or 1");
+  const int64_t cols = 3 + nattr + nmark;
+  if (cols > kMaxCols) node.Fail("too many attribute columns");
+  raw.xy.resize(2 * nv);
+  raw.vertex_line.resize(nv);
+  raw.vertex_tag.resize(nv);
+  int64_t base = 0;
+  std::string_view line, tok[kMaxCols];
+  for (int64_t i = 0; i < nv; ++i) {
+    if (!node.NextDataLine(&line))
+      node.Fail("file ends after " + std::to_string(i) + " of the " + std::to_string(nv) +
+                " vertices the header announces (truncated file or wrong count)");
+    const int n = Tokens(line).Split(tok, kMaxCols);
+    if (n != cols)
+      node.Fail("expected " + std::to_string(cols) + " columns (id, x, y, " +
+                std::to_string(nattr) + " attributes, " + std::to_string(nmark) +
+                " markers), found " + std::to_string(n));
+    const int64_t id = node.ParseInt(tok[0], "the vertex number");
+    if (i == 0) {
+      if (id != 0 && id != 1)
+        node.Fail("vertex numbers must start at 0 or 1, found " + std::string(tok[0]));
+      base = id;
+    } else if (id != base + i) {
+      node.Fail("vertex number " + std::string(tok[0]) + " is out of sequence (expected " +
+                std::to_string(base + i) + ")");
+    }
+    raw.xy[2 * i] = node.ParseDouble(tok[1], "the x coordinate");
+    raw.xy[2 * i + 1] = node.ParseDouble(tok[2], "the y coordinate");
+    raw.vertex_line[i] = node.line();
+    raw.vertex_tag[i] = id;
+  }
+  ExpectEnd(node, nv, "vertex");
+
+  // --- .ele
+  TextFile ele(ele_path);
+  const Header eh = ReadHeader(ele, 1, 3, ".ele");
+  const int64_t nt = eh.v[0];
+  if (nt == 0) ele.Fail("the header says the file has no triangles");
+  if (nt > INT32_MAX) ele.Fail("too many triangles for 32-bit ids");
+  const int64_t per = eh.n >= 2 ? eh.v[1] : 3;
+  if (per != 3 && per != 6)
+    ele.Fail("nodes per triangle must be 3 or 6, found " + std::to_string(per));
+  const int64_t eattr = eh.n >= 3 ? eh.v[2] : 0;
+  const int64_t ecols = 1 + per + eattr;
+  if (ecols > kMaxCols) ele.Fail("too many attribute columns");
+  raw.tri.resize(3 * nt);
+  raw.triangle_line.resize(nt);
+  int64_t tbase = 0;
+  for (int64_t t = 0; t < nt; ++t) {
+    if (!ele.NextDataLine(&line))
+      ele.Fail("file ends after " + std::to_string(t) + " of the " + std::to_string(nt) +
+               " triangles the header announces (truncated file or wrong count)");
+    const int n = Tokens(line).Split(tok, kMaxCols);
+    if (n != ecols)
+      ele.Fail("expected " + std::to_string(ecols) + " columns (id, " + std::to_string(per) +
+               " vertices, " + std::to_string(eattr) + " attributes), found " + std::to_string(n));
+    const int64_t id = ele.ParseInt(tok[0], "the triangle number");
+    if (t == 0) {
+      if (id != 0 && id != 1)
+        ele.Fail("triangle numbers must start at 0 or 1, found " + std::string(tok[0]));
+      tbase = id;
+    } else if (id != tbase + t) {
+      ele.Fail("triangle number " + std::string(tok[0]) + " is out of sequence (expected " +
+               std::to_string(tbase + t) + ")");
+    }
+    for (int k = 0; k < 3; ++k) {  // quadratic triangles: the corners are the first three
+      const int64_t c = ele.ParseInt(tok[1 + k], "a triangle corner");
+      if (c < base || c >= base + nv)
+        ele.Fail("triangle " + std::string(tok[0]) + " refers to vertex " + std::string(tok[1 + k]) +
+                 ", which does not exist (" + node_path + " has vertices " +
+                 std::to_string(base) + ".." + std::to_string(base + nv - 1) + ")");
+      raw.tri[3 * t + k] = static_cast<int32_t>(c - base);
+    }
+    raw.triangle_line[t] = ele.line();
+  }
+  ExpectEnd(ele, nt, "triangle");
+  return raw;
+}
+
+void WriteTriangleFiles(const Mesh& m, const std::string& prefix) {
+  const int32_t nv = m.NumVertices(), nt = m.NumTriangles();
+  WriteAtomically(prefix + ".node", [&](std::FILE* f) {
+    std::fprintf(f, "%d 2 0 1\n", nv);
+    for (int32_t v = 0; v < nv; ++v)
+      std::fprintf(f, "%d %.17g %.17g %d\n", v + 1, m.xy[2 * int64_t{v}],
+                   m.xy[2 * int64_t{v} + 1], int{m.boundary[v]});
+    std::fprintf(f, "# written by meshreuse\n");
+  });
+  WriteAtomically(prefix + ".ele", [&](std::FILE* f) {
+    std::fprintf(f, "%d 3 0\n", nt);
+    for (int32_t t = 0; t < nt; ++t)
+      std::fprintf(f, "%d %d %d %d\n", t + 1, m.tri[3 * int64_t{t}] + 1,
+                   m.tri[3 * int64_t{t} + 1] + 1, m.tri[3 * int64_t{t} + 2] + 1);
+    std::fprintf(f, "# written by meshreuse\n");
+  });
+}
+
+}  // namespace meshreuse

@@ -1,0 +1,86 @@
+// run.json helpers; see run_info.h.
+#include "reports/run_info.h"
+
+#include <sys/utsname.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdio>
+#include <ctime>
+#include <fstream>
+#include <thread>
+
+namespace meshreuse {
+
+std::string JsonString(const std::string& s) {
+  std::string o = "\"";
+  for (unsigned char c : s) {
+    switch (c) {
+      case '"': o += "\\\""; break;
+      case '\\': o += "\\\\"; break;
+      case '\n': o += "\\n"; break;
+      case '\t': o += "\\t"; break;
+      case '\r': o += "\\r"; break;
+      default:
+        if (c < 0x20) {
+          char b[8];
+          std::snprintf(b, sizeof b, "\\u%04x", c);
+          o += b;
+        } else {
+          o += static_cast<char>(c);
+        }
+    }
+  }
+  return o + "\"";
+}
+
+std::string JsonNumber(double v) {
+  if (!std::isfinite(v)) return "null";
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.17g", v);
+  double back = 0;
+  for (int p = 6; p <= 17; ++p) {  // the shortest that reads back exactly
+    char b[32];
+    std::snprintf(b, sizeof b, "%.*g", p, v);
+    if (std::sscanf(b, "%lf", &back) == 1 && back == v) return b;
+  }
+  return buf;
+}
+
+std::string MachineJson() {
+  char host[256] = "unknown";
+  ::gethostname(host, sizeof host - 1);
+  std::string cpu = "unknown";
+  std::ifstream in("/proc/cpuinfo");
+  for (std::string line; std::getline(in, line);)
+    if (line.rfind("model name", 0) == 0) {
+      const size_t c = line.find(':');
+      if (c != std::string::npos) cpu = line.substr(c + 2);
+      break;
+    }
+  struct utsname u{};
+  std::string os = "unknown";
+  if (::uname(&u) == 0) os = std::string(u.sysname) + " " + u.release + " " + u.machine;
+  return "{\"hostname\": " + JsonString(host) + ", \"cpu\": " + JsonString(cpu) +
+         ", \"cores\": " + std::to_string(std::thread::hardware_concurrency()) +
+         ", \"os\": " + JsonString(os) + ", \"compiler\": " + JsonString(__VERSION__) + "}";
+}
+
+std::string GitRevision() { return MESHREUSE_GIT_REV; }
+
+std::string UtcTimestamp() {
+  std::time_t t = std::time(nullptr);
+  std::tm tm{};
+  gmtime_r(&t, &tm);
+  char buf[32];
+  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", &tm);
+  return buf;
+}
+
+std::string CommandLineJson(const std::vector<std::string>& argv) {
+  std::string s = "[";
+  for (size_t i = 0; i < argv.size(); ++i) s += (i ? ", " : "") + JsonString(argv[i]);
+  return s + "]";
+}
+
+}  // namespace meshreuse

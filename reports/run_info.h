@@ -1,0 +1,20 @@
+// What every result folder records about how it was made (run.json): the command line, the
+// machine, the git revision the binary was built from, and a timestamp. A tiny JSON writer keeps
+// the output valid without a JSON library.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace meshreuse {
+
+std::string JsonString(const std::string& s);  // quoted and escaped
+std::string JsonNumber(double v);              // shortest round-trip form; null for NaN/inf
+
+// {"hostname":..., "cpu":..., "cores":..., "os":..., "compiler":...}
+std::string MachineJson();
+std::string GitRevision();  // as configured by CMake ("unknown" outside a git checkout)
+std::string UtcTimestamp();  // 2026-11-22T10:00:00Z
+std::string CommandLineJson(const std::vector<std::string>& argv);
+
+}  // namespace meshreuse

@@ -1,0 +1,47 @@
+#!/usr/bin/env bash
+# Installs what meshreuse needs on a Debian machine, only what is missing, with apt-get (as root).
+# Triangle (Shewchuk's mesh generator) is Debian's triangle-bin, in the non-free component: a
+# sources entry for non-free is added when no configured source offers it yet.
+# Usage: scripts/setup.sh [--with-plots]   (sourced or run; idempotent)
+set -euo pipefail
+
+want_plots=0
+for a in "$@"; do [[ $a == --with-plots ]] && want_plots=1; done
+
+pkgs=(build-essential cmake libgtest-dev libbenchmark-dev libboost-program-options-dev triangle-bin)
+((want_plots)) && pkgs+=(python3-matplotlib python3-numpy)
+
+missing=()
+for p in "${pkgs[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q 'install ok installed' || missing+=("$p")
+done
+if ((${#missing[@]} == 0)); then
+  exit 0
+fi
+
+if [[ $(id -u) -ne 0 ]]; then
+  echo "setup: missing Debian packages: ${missing[*]}" >&2
+  echo "setup: run as root, or: sudo apt-get install ${missing[*]}" >&2
+  exit 1
+fi
+
+export DEBIAN_FRONTEND=noninteractive
+# triangle-bin lives in non-free; add a deb822 entry for it unless one exists already.
+if [[ " ${missing[*]} " == *" triangle-bin "* ]] &&
+   ! grep -rqsE '^\s*Components:.*\bnon-free\b|^\s*deb\s.*\bnon-free\b' /etc/apt/sources.list /etc/apt/sources.list.d/; then
+  suite=bookworm
+  if [[ -r /etc/os-release ]]; then
+    suite=$(. /etc/os-release && echo "${VERSION_CODENAME:-bookworm}")
+  fi
+  echo "setup: adding Debian non-free component (for triangle-bin) to /etc/apt/sources.list.d/meshreuse-non-free.sources" >&2
+  cat > /etc/apt/sources.list.d/meshreuse-non-free.sources <<SRC
+Types: deb
+URIs: http://deb.debian.org/debian
+Suites: ${suite}
+Components: non-free
+Signed-By: /usr/share/keyrings/debian-archive-keyring.gpg
+SRC
+fi
+echo "setup: installing ${missing[*]}" >&2
+apt-get update -qq
+apt-get install -y -qq --no-install-recommends "${missing[@]}" >&2
