@@ -33,7 +33,8 @@ int MeshInfo(const Args& args) {
   po::options_description desc("options");
   std::string file;
   int bins = 10;
-  desc.add_options()("mesh", po::value(&file)->required(), "mesh file (.node, .ele, .msh or prefix)")(
+  desc.add_options()("mesh", po::value(&file)->required(),
+                     "mesh file (.node, .ele, .msh or prefix)")(
       "bins", po::value(&bins)->default_value(10), "quality histogram bins")(
       "json", "print JSON instead of text")("quiet,q", "no progress on stderr");
   po::positional_options_description pos;
@@ -50,7 +51,8 @@ int MeshInfo(const Args& args) {
   const QualitySummary q = SummarizeVertexQuality(m, bins);
   if (vm.count("json")) {
     std::string h;
-    for (size_t i = 0; i < q.histogram.size(); ++i) h += (i ? ", " : "") + std::to_string(q.histogram[i]);
+    for (size_t i = 0; i < q.histogram.size(); ++i)
+      h += (i ? ", " : "") + std::to_string(q.histogram[i]);
     std::printf(
         "{\"mesh\": %s, \"vertices\": %d, \"triangles\": %d, \"boundary_vertices\": %d, "
         "\"interior_vertices\": %zu, \"quality\": {\"min\": %s, \"mean\": %s, \"max\": %s, "
@@ -64,7 +66,8 @@ int MeshInfo(const Args& args) {
   std::printf("vertices           %s\n", Grouped(m.NumVertices()).c_str());
   std::printf("triangles          %s\n", Grouped(m.NumTriangles()).c_str());
   std::printf("boundary vertices  %s\n", Grouped(m.NumBoundary()).c_str());
-  std::printf("interior vertices  %s\n", Grouped(static_cast<long long>(m.interior.size())).c_str());
+  std::printf("interior vertices  %s\n",
+              Grouped(static_cast<long long>(m.interior.size())).c_str());
   std::printf("vertex quality     min %.6f  mean %.6f  max %.6f\n", q.min, q.mean, q.max);
   std::printf("quality histogram (vertices):\n");
   int64_t peak = 1;
@@ -88,7 +91,8 @@ int MeshGenerate(const Args& args) {
       "vertices,n", po::value(&vertices),
       "target vertex count (default: the paper's count for --shape); reached within 5%")(
       "min-angle", po::value(&angle)->default_value(20.0), "Triangle's quality bound -q, degrees")(
-      "output,o", po::value(&out), "output prefix: writes PREFIX.node and PREFIX.ele (default out/SHAPE)")(
+      "output,o", po::value(&out),
+      "output prefix: writes PREFIX.node and PREFIX.ele (default out/SHAPE)")(
       "quiet,q", "no progress on stderr");
   po::positional_options_description pos;
   po::variables_map vm;
@@ -112,7 +116,8 @@ int MeshGenerate(const Args& args) {
   }
   if (vertices < 100) throw po::error("--vertices must be at least 100");
   if (!(angle >= 0 && angle <= 34))
-    throw po::error("--min-angle must be between 0 and 34 degrees (Triangle may not terminate above)");
+    throw po::error(
+        "--min-angle must be between 0 and 34 degrees (Triangle may not terminate above)");
   if (out.empty()) out = "out/" + (info ? shape : std::string("mesh"));
   const Progress progress(vm.count("quiet") > 0);
   TriangulateOptions opt;
@@ -142,10 +147,11 @@ int MeshConvert(const Args& args) {
   po::positional_options_description pos;
   pos.add("mesh", 1);
   po::variables_map vm;
-  if (!ParseOptions(args, "mesh convert MESH -o OUT",
-                    "Reads any supported mesh (Triangle .node/.ele, Gmsh .msh 2.2/4.1) and writes "
-                    "Triangle files or VTK legacy (with vertex and triangle quality, for ParaView).",
-                    desc, pos, vm))
+  if (!ParseOptions(
+          args, "mesh convert MESH -o OUT",
+          "Reads any supported mesh (Triangle .node/.ele, Gmsh .msh 2.2/4.1) and writes "
+          "Triangle files or VTK legacy (with vertex and triangle quality, for ParaView).",
+          desc, pos, vm))
     return 0;
   const Progress progress(vm.count("quiet") > 0);
   const Mesh m = Load(in, progress);

@@ -1,8 +1,9 @@
-// meshreuse smooth: Laplacian smoothing of one or more meshes, per-sweep quality and time on stdout,
-// a summary table at the end, and with --out DIR the tables as CSV/Markdown plus run.json.
+// meshreuse smooth: Laplacian smoothing of one or more meshes, per-sweep quality and time on
+// stdout, a summary table at the end, and with --out DIR the tables as CSV/Markdown plus run.json.
 #include <omp.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <string>
@@ -43,7 +44,8 @@ int SmoothCommand(const Args& args) {
       "stop after a sweep that improves the global quality by less than this")(
       "max-iters", po::value(&opt.max_iters)->default_value(100), "at most this many sweeps")(
       "mode", po::value(&mode_name)->default_value("gauss-seidel"), "gauss-seidel or jacobi")(
-      "output,o", po::value(&out_mesh), "write the smoothed mesh (PATH.vtk or a .node/.ele prefix)")(
+      "output,o", po::value(&out_mesh),
+      "write the smoothed mesh (PATH.vtk or a .node/.ele prefix)")(
       "out", po::value(&out_dir), "write summary.csv, summary.md, sweeps.csv and run.json here")(
       "quiet,q", "no progress on stderr");
   po::positional_options_description pos;
@@ -55,10 +57,15 @@ int SmoothCommand(const Args& args) {
                     "Prints the global quality and time of each sweep, then a summary.",
                     desc, pos, vm))
     return 0;
-  opt.mode = ParseUpdateMode(mode_name);
-  if (opt.threads < 1 || opt.threads > 1024) throw po::error("--threads must be between 1 and 1024");
+  try {
+    opt.mode = ParseUpdateMode(mode_name);
+  } catch (const std::invalid_argument& e) {
+    throw po::error(e.what());
+  }
+  if (opt.threads < 1 || opt.threads > 1024)
+    throw po::error("--threads must be between 1 and 1024");
   if (opt.max_iters < 1) throw po::error("--max-iters must be at least 1");
-  if (!(opt.tol >= 0)) throw po::error("--tol must be a non-negative number");
+  if (std::isnan(opt.tol)) throw po::error("--tol must be a number (negative: never stop early)");
   if (!out_mesh.empty() && meshes.size() != 1) throw po::error("-o takes a single input mesh");
   const Progress progress(vm.count("quiet") > 0);
 
@@ -70,7 +77,8 @@ int SmoothCommand(const Args& args) {
     progress.Say("reading " + path);
     std::vector<std::string> warnings;
     Mesh m = ReadMesh(path, &warnings);
-    for (const std::string& w : warnings) std::fprintf(stderr, "meshreuse: warning: %s\n", w.c_str());
+    for (const std::string& w : warnings)
+      std::fprintf(stderr, "meshreuse: warning: %s\n", w.c_str());
     std::printf("== %s: %s vertices, %s triangles, %d thread%s, %s\n", path.c_str(),
                 Grouped(m.NumVertices()).c_str(), Grouped(m.NumTriangles()).c_str(), opt.threads,
                 opt.threads == 1 ? "" : "s", UpdateModeName(opt.mode));
@@ -79,7 +87,8 @@ int SmoothCommand(const Args& args) {
     progress.Say("smoothing " + path);
     NullSink untraced;
     const SmoothResult r = Smooth(m, opt, untraced, [&](const SweepRecord& s) {
-      std::printf("%6d  %10.6f  %+12.3e  %10.3f\n", s.sweep, s.quality, s.improvement, 1e3 * s.seconds);
+      std::printf("%6d  %10.6f  %+12.3e  %10.3f\n", s.sweep, s.quality, s.improvement,
+                  1e3 * s.seconds);
       std::fflush(stdout);
     });
     std::vector<double> times;
@@ -97,8 +106,9 @@ int SmoothCommand(const Args& args) {
                     std::to_string(r.sweeps.size()), r.converged ? "yes" : "no",
                     Fixed(r.quality_before, 6), Fixed(r.quality_after, 6), Fixed(1e3 * med, 3),
                     Fixed(r.seconds, 3)});
-    results_json += std::string(results_json.empty() ? "" : ",\n") + "    {\"mesh\": " +
-                    JsonString(path) + ", \"vertices\": " + std::to_string(m.NumVertices()) +
+    results_json += std::string(results_json.empty() ? "" : ",\n") +
+                    "    {\"mesh\": " + JsonString(path) +
+                    ", \"vertices\": " + std::to_string(m.NumVertices()) +
                     ", \"triangles\": " + std::to_string(m.NumTriangles()) +
                     ", \"sweeps\": " + std::to_string(r.sweeps.size()) +
                     ", \"converged\": " + (r.converged ? "true" : "false") +
@@ -120,9 +130,8 @@ int SmoothCommand(const Args& args) {
                   CommandLineJson(FullCommandLine()) + ",\n  \"git_revision\": " +
                   JsonString(GitRevision()) + ",\n  \"time_utc\": " + JsonString(UtcTimestamp()) +
                   ",\n  \"machine\": " + MachineJson() +
-                  ",\n  \"config\": {\"threads\": " + std::to_string(opt.threads) +
-                  ", \"mode\": " + JsonString(UpdateModeName(opt.mode)) +
-                  ", \"tol\": " + JsonNumber(opt.tol) +
+                  ",\n  \"config\": {\"threads\": " + std::to_string(opt.threads) + ", \"mode\": " +
+                  JsonString(UpdateModeName(opt.mode)) + ", \"tol\": " + JsonNumber(opt.tol) +
                   ", \"max_iters\": " + std::to_string(opt.max_iters) +
                   ", \"omp_max_threads\": " + std::to_string(omp_get_max_threads()) +
                   "},\n  \"results\": [\n" + results_json + "\n  ]\n}\n");

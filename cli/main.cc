@@ -31,9 +31,10 @@ const Command kCommands[] = {
 std::vector<std::string> g_argv;
 
 void Usage(std::FILE* out) {
-  std::fprintf(out,
-               "meshreuse: locality research on unstructured meshes\n\n"
-               "usage: meshreuse <command> [options]   (meshreuse <command> --help)\n\ncommands:\n");
+  std::fprintf(
+      out,
+      "meshreuse: locality research on unstructured meshes\n\n"
+      "usage: meshreuse <command> [options]   (meshreuse <command> --help)\n\ncommands:\n");
   for (const Command& c : kCommands) std::fprintf(out, "  %-16s %s\n", c.name, c.summary);
 }
 

@@ -26,8 +26,9 @@ class GmshReader {
     std::string_view line;
     bool have_format = false, have_nodes = false, have_elements = false;
     while (f_.NextDataLine(&line)) {
-      if (line.empty() || line[0] != '$') f_.Fail("expected a section such as $Nodes, found '" +
-                                                  std::string(line.substr(0, 40)) + "'");
+      if (line.empty() || line[0] != '$')
+        f_.Fail("expected a section such as $Nodes, found '" + std::string(line.substr(0, 40)) +
+                "'");
       const std::string name(line.substr(1));
       if (name == "MeshFormat") {
         ReadFormat();
@@ -65,7 +66,9 @@ class GmshReader {
       f_.Fail(std::string("file ends inside ") + what + " (truncated file or wrong count)");
     return line;
   }
-  int Split(std::string_view line, std::string_view* tok) { return Tokens(line).Split(tok, kMaxCols); }
+  int Split(std::string_view line, std::string_view* tok) {
+    return Tokens(line).Split(tok, kMaxCols);
+  }
 
   void ReadFormat() {
     std::string_view tok[kMaxCols];

@@ -80,19 +80,19 @@ Mesh BuildMesh(RawMesh raw, BuildReport* report) {
     const int32_t* c = &raw.tri[3 * t];
     for (int k = 0; k < 3; ++k)
       if (c[k] < 0 || c[k] >= nv_raw)
-        where.TriError(t, "triangle corner refers to vertex " +
-                              std::to_string(c[k]) + " (0-based)" +
-                              " which does not exist (the mesh has " + std::to_string(nv_raw) +
-                              " vertices)");
+        where.TriError(t, "triangle corner refers to vertex " + std::to_string(c[k]) +
+                              " (0-based)" + " which does not exist (the mesh has " +
+                              std::to_string(nv_raw) + " vertices)");
     if (c[0] == c[1] || c[1] == c[2] || c[0] == c[2])
       where.TriError(t, "degenerate triangle: vertex " + where.Tag(c[c[0] == c[1] ? 0 : 2]) +
                             " is used twice");
     const double ax = raw.xy[2 * c[0]], ay = raw.xy[2 * c[0] + 1];
     const double cross = (raw.xy[2 * c[1]] - ax) * (raw.xy[2 * c[2] + 1] - ay) -
-                          (raw.xy[2 * c[1] + 1] - ay) * (raw.xy[2 * c[2]] - ax);
+                         (raw.xy[2 * c[1] + 1] - ay) * (raw.xy[2 * c[2]] - ax);
     if (cross == 0.0)
       where.TriError(t, "degenerate triangle: vertices " + where.Tag(c[0]) + ", " +
-                            where.Tag(c[1]) + ", " + where.Tag(c[2]) + " are collinear (zero area)");
+                            where.Tag(c[1]) + ", " + where.Tag(c[2]) +
+                            " are collinear (zero area)");
     for (int k = 0; k < 3; ++k) used[c[k]] = 1;
   }
 

@@ -1,8 +1,8 @@
 // The mesh model: 2D coordinates, triangles, topological boundary flags and the two adjacencies the
 // smoother needs (vertex->vertex, vertex->triangle) in CSR form.
 // Invariants after BuildMesh: every vertex is used by a triangle; no triangle is degenerate
-// (zero area) or repeated; every edge has one or two triangles; a vertex is a boundary vertex iff it
-// lies on an edge with exactly one triangle; v2v rows hold distinct neighbours in increasing id
+// (zero area) or repeated; every edge has one or two triangles; a vertex is a boundary vertex iff
+// it lies on an edge with exactly one triangle; v2v rows hold distinct neighbours in increasing id
 // order and v2t rows incident triangles in increasing id order; `interior` lists the non-boundary
 // vertices in storage order (the smoother's iteration space, DESIGN.md "Smoothing sweep").
 #pragma once
@@ -26,10 +26,10 @@ struct Csr {
 // What a reader hands to BuildMesh: raw arrays plus where each item came from, so topology errors
 // can name a file and a line. Lines and tags may be empty (generated meshes).
 struct RawMesh {
-  std::vector<double> xy;    // 2 per vertex, interleaved x, y
-  std::vector<int32_t> tri;  // 3 per triangle, 0-based indices into the vertices
-  std::string vertex_file;   // where vertices came from (e.g. the .node file)
-  std::string triangle_file; // where triangles came from (e.g. the .ele file)
+  std::vector<double> xy;              // 2 per vertex, interleaved x, y
+  std::vector<int32_t> tri;            // 3 per triangle, 0-based indices into the vertices
+  std::string vertex_file;             // where vertices came from (e.g. the .node file)
+  std::string triangle_file;           // where triangles came from (e.g. the .ele file)
   std::vector<int64_t> vertex_line;    // source line per vertex
   std::vector<int64_t> triangle_line;  // source line per triangle
   std::vector<int64_t> vertex_tag;     // the file's own vertex number, for messages
@@ -59,11 +59,12 @@ class Mesh {
 
 struct BuildReport {
   std::vector<std::string> warnings;
-  std::vector<int32_t> kept;  // mesh vertex -> raw vertex (identity unless unused ones were dropped)
+  std::vector<int32_t>
+      kept;  // mesh vertex -> raw vertex (identity unless unused ones were dropped)
 };
 
-// Validates the raw input and builds the adjacency in O(V + T). Throws InputError naming the file and
-// line of the offending triangle for: a corner out of range, a repeated corner, zero area, a
+// Validates the raw input and builds the adjacency in O(V + T). Throws InputError naming the file
+// and line of the offending triangle for: a corner out of range, a repeated corner, zero area, a
 // non-finite coordinate, a duplicate triangle, an edge with more than two triangles. Vertices no
 // triangle uses are dropped (keeping the relative order of the rest) and reported in `report`.
 Mesh BuildMesh(RawMesh raw, BuildReport* report = nullptr);

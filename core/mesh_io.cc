@@ -15,7 +15,8 @@ namespace meshreuse {
 namespace {
 
 bool EndsWith(const std::string& s, const std::string& suffix) {
-  return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
+  return s.size() >= suffix.size() &&
+         s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
 }
 
 bool Exists(const std::string& p) { return ::access(p.c_str(), F_OK) == 0; }
@@ -72,7 +73,8 @@ void WriteVtk(const Mesh& m, const std::string& path) {
   const std::vector<double> vq = VertexQualities(m);
   const std::vector<double> tq = TriangleQualities(m);
   WriteAtomically(path, [&](std::FILE* f) {
-    std::fprintf(f, "# vtk DataFile Version 3.0\nmeshreuse mesh\nASCII\nDATASET UNSTRUCTURED_GRID\n");
+    std::fprintf(f,
+                 "# vtk DataFile Version 3.0\nmeshreuse mesh\nASCII\nDATASET UNSTRUCTURED_GRID\n");
     std::fprintf(f, "POINTS %d double\n", nv);
     for (int32_t v = 0; v < nv; ++v)
       std::fprintf(f, "%.17g %.17g 0\n", m.xy[2 * int64_t{v}], m.xy[2 * int64_t{v} + 1]);

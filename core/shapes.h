@@ -18,7 +18,7 @@ struct ShapeInfo {
 
 const std::vector<ShapeInfo>& Shapes();
 const ShapeInfo* FindShape(const std::string& name);  // nullptr when unknown
-std::string ShapeNames();                              // "carabiner, crake, ..."
+std::string ShapeNames();                             // "carabiner, crake, ..."
 // Folder holding NAME.poly: $MESHREUSE_SHAPES if set, else the source tree's core/shapes.
 std::string ShapesDir();
 

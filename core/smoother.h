@@ -39,10 +39,10 @@ struct SmoothOptions {
 };
 
 struct SweepRecord {
-  int sweep = 0;             // 1-based
-  double quality = 0;        // global quality after the sweep (incremental value)
-  double improvement = 0;    // quality - previous quality
-  double seconds = 0;        // wall time of the sweep alone
+  int sweep = 0;           // 1-based
+  double quality = 0;      // global quality after the sweep (incremental value)
+  double improvement = 0;  // quality - previous quality
+  double seconds = 0;      // wall time of the sweep alone
 };
 
 struct SmoothResult {
@@ -117,7 +117,7 @@ double GaussSeidelSweep(const Arrays& a, const std::vector<int32_t>& interior, d
 template <class Sink>
 double JacobiSweep(Mesh& m, std::vector<double>& next, double* tq, const double* w, int threads,
                    Sink& sink) {
-  const Arrays a{m.xy.data(), m.v2v.off.data(), m.v2v.idx.data(),
+  const Arrays a{m.xy.data(),      m.v2v.off.data(), m.v2v.idx.data(),
                  m.v2t.off.data(), m.v2t.idx.data(), m.tri.data()};
   const int64_t ni = static_cast<int64_t>(m.interior.size());
   const int32_t* order = m.interior.data();
@@ -160,7 +160,7 @@ SmoothResult Smooth(Mesh& mesh, const SmoothOptions& opt, Sink& sink,
     const auto t0 = Clock::now();
     double q_new;
     if (opt.mode == UpdateMode::kGaussSeidel) {
-      const smoother_detail::Arrays a{mesh.xy.data(),   mesh.v2v.off.data(), mesh.v2v.idx.data(),
+      const smoother_detail::Arrays a{mesh.xy.data(),      mesh.v2v.off.data(), mesh.v2v.idx.data(),
                                       mesh.v2t.off.data(), mesh.v2t.idx.data(), mesh.tri.data()};
       q_new = q + smoother_detail::GaussSeidelSweep(a, mesh.interior, tq.data(), w.data(), threads,
                                                     sink);

@@ -17,7 +17,9 @@ RawMesh MakeSyntheticMesh(const SyntheticOptions& opt) {
   for (int j = 0; j < ny; ++j) Y[j + 1] = Y[j] + h[j];
 
   // Holes: cells whose centre lies in a circle are removed.
-  struct Circle { double x, y, r; };
+  struct Circle {
+    double x, y, r;
+  };
   std::vector<Circle> holes;
   for (int k = 0; k < opt.holes; ++k)
     holes.push_back({X[nx] * (0.2 + 0.6 * rng.Uniform()), Y[ny] * (0.2 + 0.6 * rng.Uniform()),
@@ -35,8 +37,10 @@ RawMesh MakeSyntheticMesh(const SyntheticOptions& opt) {
       const bool diag = rng.Below(2) == 0;
       if (in_hole(0.5 * (X[i] + X[i + 1]), 0.5 * (Y[j] + Y[j + 1]))) continue;
       const int32_t a = pid(i, j), b = pid(i + 1, j), c = pid(i + 1, j + 1), d = pid(i, j + 1);
-      if (diag) tri.insert(tri.end(), {a, b, c, a, c, d});
-      else tri.insert(tri.end(), {a, b, d, b, c, d});
+      if (diag)
+        tri.insert(tri.end(), {a, b, c, a, c, d});
+      else
+        tri.insert(tri.end(), {a, b, d, b, c, d});
     }
 
   // Jittered points; only the ones a triangle uses are kept, in grid order.

@@ -15,11 +15,11 @@
 namespace meshreuse {
 
 struct SyntheticOptions {
-  int nx = 16;           // cells across
-  int ny = 12;           // cells down
-  double jitter = 0.2;   // fraction of the local cell size, capped at 0.24
-  int holes = 1;         // circular holes
-  bool graded = true;    // random column widths and row heights in [0.15, 1]
+  int nx = 16;          // cells across
+  int ny = 12;          // cells down
+  double jitter = 0.2;  // fraction of the local cell size, capped at 0.24
+  int holes = 1;        // circular holes
+  bool graded = true;   // random column widths and row heights in [0.15, 1]
   uint64_t seed = 1;
 };
 

@@ -29,8 +29,8 @@ Header ReadHeader(TextFile& f, int min_fields, int max_fields, const char* what)
   const int n = Tokens(line).Split(tok, kMaxCols);
   if (n < min_fields || n > max_fields)
     f.Fail(std::string("the ") + what + " header should have " + std::to_string(min_fields) +
-           (min_fields == max_fields ? "" : " to " + std::to_string(max_fields)) + " fields, found " +
-           std::to_string(n));
+           (min_fields == max_fields ? "" : " to " + std::to_string(max_fields)) +
+           " fields, found " + std::to_string(n));
   Header h{{0, 0, 0, 0}, n};
   static const char* const kNames[] = {"the count", "the second header field",
                                        "the third header field", "the fourth header field"};
@@ -133,9 +133,10 @@ RawMesh ReadTriangleFiles(const std::string& node_path, const std::string& ele_p
     for (int k = 0; k < 3; ++k) {  // quadratic triangles: the corners are the first three
       const int64_t c = ele.ParseInt(tok[1 + k], "a triangle corner");
       if (c < base || c >= base + nv)
-        ele.Fail("triangle " + std::string(tok[0]) + " refers to vertex " + std::string(tok[1 + k]) +
-                 ", which does not exist (" + node_path + " has vertices " +
-                 std::to_string(base) + ".." + std::to_string(base + nv - 1) + ")");
+        ele.Fail("triangle " + std::string(tok[0]) + " refers to vertex " +
+                 std::string(tok[1 + k]) + ", which does not exist (" + node_path +
+                 " has vertices " + std::to_string(base) + ".." + std::to_string(base + nv - 1) +
+                 ")");
       raw.tri[3 * t + k] = static_cast<int32_t>(c - base);
     }
     raw.triangle_line[t] = ele.line();
@@ -149,8 +150,8 @@ void WriteTriangleFiles(const Mesh& m, const std::string& prefix) {
   WriteAtomically(prefix + ".node", [&](std::FILE* f) {
     std::fprintf(f, "%d 2 0 1\n", nv);
     for (int32_t v = 0; v < nv; ++v)
-      std::fprintf(f, "%d %.17g %.17g %d\n", v + 1, m.xy[2 * int64_t{v}],
-                   m.xy[2 * int64_t{v} + 1], int{m.boundary[v]});
+      std::fprintf(f, "%d %.17g %.17g %d\n", v + 1, m.xy[2 * int64_t{v}], m.xy[2 * int64_t{v} + 1],
+                   int{m.boundary[v]});
     std::fprintf(f, "# written by meshreuse\n");
   });
   WriteAtomically(prefix + ".ele", [&](std::FILE* f) {

@@ -93,7 +93,8 @@ double PolyBoxArea(const std::string& poly) {
   if (!f.NextDataLine(&line)) f.Fail("empty .poly file");
   if (Tokens(line).Split(tok, 4) < 1) f.Fail("bad .poly header");
   const int64_t n = f.ParseInt(tok[0], "the number of vertices");
-  if (n < 3) f.Fail("a .poly outline needs its vertices in the file (found " + std::to_string(n) + ")");
+  if (n < 3)
+    f.Fail("a .poly outline needs its vertices in the file (found " + std::to_string(n) + ")");
   double x0 = 1e300, x1 = -1e300, y0 = 1e300, y1 = -1e300;
   for (int64_t i = 0; i < n; ++i) {
     if (!f.NextDataLine(&line)) f.Fail("file ends inside the vertex list");
@@ -133,7 +134,8 @@ TriangulateResult TriangulatePoly(const std::string& poly_path, const std::strin
   const fs::path out_dir = fs::absolute(fs::path(prefix)).parent_path();
   fs::create_directories(out_dir);
   std::string tmpl = (out_dir / ".meshreuse-triangle-XXXXXX").string();
-  if (!::mkdtemp(tmpl.data())) throw ToolError("cannot create a scratch folder in " + out_dir.string());
+  if (!::mkdtemp(tmpl.data()))
+    throw ToolError("cannot create a scratch folder in " + out_dir.string());
   ScratchDir scratch{tmpl};
   fs::copy_file(poly_path, scratch.path / "shape.poly");
 
@@ -189,15 +191,16 @@ TriangulateResult TriangulatePoly(const std::string& poly_path, const std::strin
       if (q.first != p.first) slope = (q.second - p.second) / (q.first - p.first);
       slope = std::clamp(slope, -1.5, -0.3);
     }
-    area *= std::exp((std::log(static_cast<double>(goal)) - std::log(static_cast<double>(v))) / slope);
+    area *=
+        std::exp((std::log(static_cast<double>(goal)) - std::log(static_cast<double>(v))) / slope);
   }
   if (!(best_err <= opt.accept))
-    throw std::runtime_error(
-        "could not mesh " + poly_path + " to " + std::to_string(opt.target_vertices) +
-        " vertices within " + std::to_string(static_cast<int>(opt.accept * 100)) + "% in " +
-        std::to_string(r.runs) + " Triangle runs (closest: " +
-        (best.vertices ? std::to_string(best.vertices) : std::string("none")) +
-        "); the outline may need more vertices than that");
+    throw std::runtime_error("could not mesh " + poly_path + " to " +
+                             std::to_string(opt.target_vertices) + " vertices within " +
+                             std::to_string(static_cast<int>(opt.accept * 100)) + "% in " +
+                             std::to_string(r.runs) + " Triangle runs (closest: " +
+                             (best.vertices ? std::to_string(best.vertices) : std::string("none")) +
+                             "); the outline may need more vertices than that");
   best.runs = r.runs;
   best.node_file = prefix + ".node";
   best.ele_file = prefix + ".ele";

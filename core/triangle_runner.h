@@ -21,9 +21,9 @@ class ToolError : public std::runtime_error {
 
 struct TriangulateOptions {
   int64_t target_vertices = 0;
-  double tolerance = 0.01;   // stop searching once within this relative error
-  double accept = 0.03;      // fail unless the best run is within this relative error
-  double min_angle = 20.0;   // Triangle's -q (its default is 20 degrees)
+  double tolerance = 0.01;  // stop searching once within this relative error
+  double accept = 0.03;     // fail unless the best run is within this relative error
+  double min_angle = 20.0;  // Triangle's -q (its default is 20 degrees)
   int max_runs = 12;
   std::string program = "triangle";
   std::function<void(const std::string&)> progress;  // one line per Triangle run

@@ -16,11 +16,21 @@ std::string JsonString(const std::string& s) {
   std::string o = "\"";
   for (unsigned char c : s) {
     switch (c) {
-      case '"': o += "\\\""; break;
-      case '\\': o += "\\\\"; break;
-      case '\n': o += "\\n"; break;
-      case '\t': o += "\\t"; break;
-      case '\r': o += "\\r"; break;
+      case '"':
+        o += "\\\"";
+        break;
+      case '\\':
+        o += "\\\\";
+        break;
+      case '\n':
+        o += "\\n";
+        break;
+      case '\t':
+        o += "\\t";
+        break;
+      case '\r':
+        o += "\\r";
+        break;
       default:
         if (c < 0x20) {
           char b[8];
@@ -58,7 +68,7 @@ std::string MachineJson() {
       if (c != std::string::npos) cpu = line.substr(c + 2);
       break;
     }
-  struct utsname u{};
+  struct utsname u {};
   std::string os = "unknown";
   if (::uname(&u) == 0) os = std::string(u.sysname) + " " + u.release + " " + u.machine;
   return "{\"hostname\": " + JsonString(host) + ", \"cpu\": " + JsonString(cpu) +

@@ -13,7 +13,7 @@ std::string JsonNumber(double v);              // shortest round-trip form; null
 
 // {"hostname":..., "cpu":..., "cores":..., "os":..., "compiler":...}
 std::string MachineJson();
-std::string GitRevision();  // as configured by CMake ("unknown" outside a git checkout)
+std::string GitRevision();   // as configured by CMake ("unknown" outside a git checkout)
 std::string UtcTimestamp();  // 2026-11-22T10:00:00Z
 std::string CommandLineJson(const std::vector<std::string>& argv);
 

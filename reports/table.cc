@@ -9,7 +9,8 @@
 namespace meshreuse {
 
 void Table::AddRow(std::vector<std::string> row) {
-  if (row.size() != header_.size()) throw std::logic_error("table row has the wrong number of cells");
+  if (row.size() != header_.size())
+    throw std::logic_error("table row has the wrong number of cells");
   rows_.push_back(std::move(row));
 }
 
@@ -38,7 +39,8 @@ std::string Table::Aligned() const {
     std::string s;
     for (size_t c = 0; c < cells.size(); ++c) {
       const std::string pad(w[c] - cells[c].size(), ' ');
-      s += (c ? "  " : "") + (right[c] ? pad + cells[c] : cells[c] + (c + 1 < cells.size() ? pad : ""));
+      s += (c ? "  " : "") +
+           (right[c] ? pad + cells[c] : cells[c] + (c + 1 < cells.size() ? pad : ""));
     }
     return s + "\n";
   };

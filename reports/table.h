@@ -13,8 +13,8 @@ class Table {
   void AddRow(std::vector<std::string> row);
   size_t Rows() const { return rows_.size(); }
 
-  std::string Aligned() const;   // numbers right-aligned, text left-aligned
-  std::string Csv() const;       // RFC 4180 quoting
+  std::string Aligned() const;  // numbers right-aligned, text left-aligned
+  std::string Csv() const;      // RFC 4180 quoting
   std::string Markdown() const;
 
  private:
@@ -22,7 +22,7 @@ class Table {
   std::vector<std::vector<std::string>> rows_;
 };
 
-std::string Fixed(double v, int decimals);      // "%.*f"
-std::string Grouped(long long v);               // 1234567 -> "1,234,567"
+std::string Fixed(double v, int decimals);  // "%.*f"
+std::string Grouped(long long v);           // 1234567 -> "1,234,567"
 
 }  // namespace meshreuse

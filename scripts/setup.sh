@@ -28,7 +28,7 @@ fi
 export DEBIAN_FRONTEND=noninteractive
 # triangle-bin lives in non-free; add a deb822 entry for it unless one exists already.
 if [[ " ${missing[*]} " == *" triangle-bin "* ]] &&
-   ! grep -rqsE '^\s*Components:.*\bnon-free\b|^\s*deb\s.*\bnon-free\b' /etc/apt/sources.list /etc/apt/sources.list.d/; then
+   ! grep -rqsE '^\s*(Components:|deb\s).*\snon-free(\s|$)' /etc/apt/sources.list /etc/apt/sources.list.d/; then
   suite=bookworm
   if [[ -r /etc/os-release ]]; then
     suite=$(. /etc/os-release && echo "${VERSION_CODENAME:-bookworm}")
@@ -42,6 +42,10 @@ Components: non-free
 Signed-By: /usr/share/keyrings/debian-archive-keyring.gpg
 SRC
 fi
-echo "setup: installing ${missing[*]}" >&2
-apt-get update -qq
-apt-get install -y -qq --no-install-recommends "${missing[@]}" >&2
+echo "setup: installing ${missing[*]} (log: /tmp/meshreuse-apt.log)" >&2
+if ! { apt-get update -q && apt-get install -y -q --no-install-recommends "${missing[@]}"; } \
+    >/tmp/meshreuse-apt.log 2>&1; then
+  tail -n 30 /tmp/meshreuse-apt.log >&2
+  echo "setup: apt-get failed; see /tmp/meshreuse-apt.log" >&2
+  exit 1
+fi

@@ -1,0 +1,36 @@
+#!/usr/bin/env bash
+# The README's test command: installs what is missing (apt-get, as root), builds a Release and an
+# ASan+UBSan build with warnings as errors, and runs every test (GoogleTest suites and CLI checks)
+# in both. Exit 0 only when everything passed.
+# Usage: scripts/test.sh [--quick]   (--quick: Release build only, no sanitizers)
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+quick=0
+[[ ${1:-} == --quick ]] && quick=1
+bash scripts/setup.sh
+
+jobs=$(nproc 2>/dev/null || echo 2)
+build() {  # build DIR [cmake args...]
+  local dir=$1
+  shift
+  echo "== configure $dir" >&2
+  cmake -S . -B "$dir" -DMESHREUSE_WERROR=ON "$@" >"$dir.configure.log" 2>&1 || { cat "$dir.configure.log"; return 1; }
+  echo "== build $dir" >&2
+  cmake --build "$dir" -j"$jobs"
+}
+run_tests() {
+  echo "== test $1" >&2
+  (cd "$1" && ctest -j"$jobs" --output-on-failure --timeout 600)
+}
+
+mkdir -p build
+build build/release -DCMAKE_BUILD_TYPE=Release
+run_tests build/release
+if ((quick == 0)); then
+  build build/asan -DCMAKE_BUILD_TYPE=Debug -DMESHREUSE_SANITIZE=ON
+  ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
+    run_tests build/asan
+fi
+ln -sf build/release/compile_commands.json compile_commands.json
+echo "== all tests passed" >&2

@@ -1,0 +1,175 @@
+// Readers on small files (each format and numbering gives the same mesh), every broken input in
+// tests/data/broken/EXPECTED (file, line, message), round trips, and atomic writes.
+#include "core/mesh_io.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "core/error.h"
+#include "core/synthetic.h"
+#include "tests/test_util.h"
+
+namespace meshreuse {
+namespace {
+
+namespace fs = std::filesystem;
+using testing::DataPath;
+
+void ExpectSameMesh(const Mesh& a, const Mesh& b) {
+  EXPECT_EQ(a.xy, b.xy);
+  EXPECT_EQ(a.tri, b.tri);
+  EXPECT_EQ(a.boundary, b.boundary);
+  EXPECT_EQ(a.v2v.idx, b.v2v.idx);
+}
+
+TEST(Readers, AllFormatsGiveTheSameMesh) {
+  const Mesh ref = testing::TwoInterior();
+  EXPECT_DOUBLE_EQ(ref.xy[2 * 7], 3.25);
+  EXPECT_EQ((std::vector<int32_t>(ref.tri.begin(), ref.tri.begin() + 6)),
+            (std::vector<int32_t>{0, 1, 6, 1, 7, 6}));
+  ExpectSameMesh(ref, ReadMesh(DataPath("two_interior0.node")));  // 0-based, attributes
+  ExpectSameMesh(ref, ReadMesh(DataPath("two_interior.ele")));    // by the .ele name
+  ExpectSameMesh(ref, ReadMesh(DataPath("two_interior")));        // by prefix
+  ExpectSameMesh(ref, ReadMesh(DataPath("two_interior41.msh")));
+  std::vector<std::string> warnings;
+  ExpectSameMesh(ref, ReadMesh(DataPath("two_interior22.msh"), &warnings));
+  ASSERT_EQ(warnings.size(), 2u);
+  EXPECT_NE(warnings[0].find("skipped 3 elements that are not triangles"), std::string::npos);
+  EXPECT_NE(warnings[1].find("dropped 1 vertices that no triangle uses (first: vertex 99"),
+            std::string::npos)
+      << warnings[1];
+}
+
+TEST(Readers, Gmsh41SkipsLinesAndKeepsTags) {
+  std::vector<std::string> warnings;
+  const RawMesh raw = ReadGmsh(DataPath("two_interior41.msh"));
+  EXPECT_EQ(raw.vertex_tag, (std::vector<int64_t>{1, 2, 3, 4, 5, 6, 7, 8}));
+  EXPECT_EQ(raw.tri.size(), 24u);
+  ASSERT_EQ(raw.warnings.size(), 1u);
+  EXPECT_NE(raw.warnings[0].find("skipped 2 elements"), std::string::npos);
+}
+
+struct BrokenCase {
+  std::string file;
+  int64_t line;
+  std::string message;
+};
+
+void PrintTo(const BrokenCase& c, std::ostream* os) { *os << c.file << ":" << c.line; }
+
+std::vector<BrokenCase> BrokenCases() {
+  std::ifstream in(DataPath("broken/EXPECTED"));
+  std::vector<BrokenCase> cases;
+  for (std::string l; std::getline(in, l);) {
+    if (l.empty() || l[0] == '#') continue;
+    std::stringstream ss(l);
+    BrokenCase c;
+    std::getline(ss, c.file, '\t');
+    std::string line;
+    std::getline(ss, line, '\t');
+    c.line = std::stoll(line);
+    std::getline(ss, c.message);
+    cases.push_back(c);
+  }
+  return cases;
+}
+
+class BrokenInput : public ::testing::TestWithParam<BrokenCase> {};
+
+TEST_P(BrokenInput, FailsWithFileLineAndProblem) {
+  const BrokenCase& c = GetParam();
+  const std::string path = DataPath("broken/" + c.file);
+  try {
+    ReadMesh(path);
+    FAIL() << c.file << " was accepted";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.file(), path) << e.what();
+    EXPECT_EQ(e.line(), c.line) << e.what();
+    EXPECT_NE(e.problem().find(c.message), std::string::npos)
+        << "message: " << e.what() << "\nexpected to contain: " << c.message;
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Data, BrokenInput, ::testing::ValuesIn(BrokenCases()),
+                         [](const ::testing::TestParamInfo<BrokenCase>& i) {
+                           std::string n = i.param.file;
+                           for (char& ch : n)
+                             if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
+                           return n;
+                         });
+
+TEST(BrokenInput, ManifestIsComplete) {
+  // Every broken file is named in EXPECTED (a .node/.ele pair counts once).
+  std::set<std::string> listed;
+  for (const BrokenCase& c : BrokenCases()) listed.insert(fs::path(c.file).stem().string());
+  for (const auto& e : fs::directory_iterator(DataPath("broken"))) {
+    if (e.path().filename() == "EXPECTED") continue;
+    EXPECT_TRUE(listed.count(e.path().stem().string())) << e.path() << " is not in EXPECTED";
+  }
+  EXPECT_GE(listed.size(), 20u);
+}
+
+class TempDir {
+ public:
+  TempDir() {
+    std::string t = (fs::temp_directory_path() / "meshreuse-test-XXXXXX").string();
+    path_ = ::mkdtemp(t.data());
+  }
+  ~TempDir() { fs::remove_all(path_); }
+  std::string operator/(const std::string& n) const { return (path_ / n).string(); }
+  const fs::path& path() const { return path_; }
+
+ private:
+  fs::path path_;
+};
+
+TEST(Writers, TriangleRoundTripIsExact) {
+  SyntheticOptions o;
+  o.nx = 13, o.ny = 9, o.holes = 2, o.seed = 7;
+  const Mesh m = BuildMesh(MakeSyntheticMesh(o));
+  TempDir dir;
+  const std::vector<std::string> files = WriteMesh(m, dir / "round");
+  EXPECT_EQ(files, (std::vector<std::string>{dir / "round.node", dir / "round.ele"}));
+  ExpectSameMesh(m, ReadMesh(dir / "round"));
+}
+
+TEST(Writers, VtkHasPointsCellsAndQuality) {
+  const Mesh m = testing::TwoInterior();
+  TempDir dir;
+  WriteMesh(m, dir / "m.vtk");
+  std::ifstream in(dir / "m.vtk");
+  std::string all((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_EQ(all.rfind("# vtk DataFile Version 3.0\n", 0), 0u);
+  EXPECT_NE(all.find("POINTS 8 double\n0 0 0\n2 0 0\n"), std::string::npos);
+  EXPECT_NE(all.find("CELLS 8 32\n3 0 1 6\n"), std::string::npos);
+  EXPECT_NE(all.find("CELL_TYPES 8\n5\n"), std::string::npos);
+  EXPECT_NE(all.find("SCALARS vertex_quality double 1"), std::string::npos);
+  EXPECT_NE(all.find("SCALARS boundary int 1"), std::string::npos);
+}
+
+TEST(Writers, AtomicWriteLeavesNothingOnFailure) {
+  TempDir dir;
+  EXPECT_THROW(WriteAtomically(dir / "x.txt",
+                               [](std::FILE* f) {
+                                 std::fputs("half", f);
+                                 throw std::runtime_error("interrupted");
+                               }),
+               std::runtime_error);
+  EXPECT_TRUE(fs::is_empty(dir.path()));
+  WriteAtomically(dir / "x.txt", [](std::FILE* f) { std::fputs("whole", f); });
+  std::ifstream in(dir / "x.txt");
+  std::string s;
+  in >> s;
+  EXPECT_EQ(s, "whole");
+  EXPECT_EQ(std::distance(fs::directory_iterator(dir.path()), fs::directory_iterator()), 1);
+}
+
+TEST(Writers, UnwritableTargetIsAnInputError) {
+  EXPECT_THROW(WriteMesh(testing::TwoInterior(), "/nonexistent-dir/m.vtk"), InputError);
+}
+
+}  // namespace
+}  // namespace meshreuse
