@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "cli/common.h"
 #include "cli/options.h"
 #include "cli/progress.h"
 #include "core/mesh_io.h"
@@ -14,20 +15,6 @@
 #include "reports/table.h"
 
 namespace meshreuse::cli {
-
-namespace {
-
-Mesh Load(const std::string& path, const Progress& progress) {
-  progress.Say("reading " + path);
-  std::vector<std::string> warnings;
-  Mesh m = ReadMesh(path, &warnings);
-  for (const std::string& w : warnings) std::fprintf(stderr, "meshreuse: warning: %s\n", w.c_str());
-  progress.Say("read " + Grouped(m.NumVertices()) + " vertices, " + Grouped(m.NumTriangles()) +
-               " triangles");
-  return m;
-}
-
-}  // namespace
 
 int MeshInfo(const Args& args) {
   po::options_description desc("options");
@@ -47,7 +34,7 @@ int MeshInfo(const Args& args) {
     return 0;
   if (bins < 1 || bins > 1000) throw po::error("--bins must be between 1 and 1000");
   const Progress progress(vm.count("quiet") > 0);
-  const Mesh m = Load(file, progress);
+  const Mesh m = LoadMesh(file, progress);
   const QualitySummary q = SummarizeVertexQuality(m, bins);
   if (vm.count("json")) {
     std::string h;
@@ -154,7 +141,7 @@ int MeshConvert(const Args& args) {
           desc, pos, vm))
     return 0;
   const Progress progress(vm.count("quiet") > 0);
-  const Mesh m = Load(in, progress);
+  const Mesh m = LoadMesh(in, progress);
   for (const std::string& f : WriteMesh(m, out)) std::printf("wrote %s\n", f.c_str());
   return 0;
 }

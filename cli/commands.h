@@ -14,6 +14,9 @@ int MeshInfo(const Args& args);
 int MeshGenerate(const Args& args);
 int MeshConvert(const Args& args);
 int SmoothCommand(const Args& args);
+int OrderingsCommand(const Args& args);
+int ReorderCommand(const Args& args);
+int CompareCommand(const Args& args);
 
 // The full command line, for run.json.
 const std::vector<std::string>& FullCommandLine();

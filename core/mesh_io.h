@@ -33,6 +33,11 @@ void WriteVtk(const Mesh& m, const std::string& path);
 // -o target: PATH.vtk writes VTK; anything else is a prefix for .node/.ele. Returns files written.
 std::vector<std::string> WriteMesh(const Mesh& m, const std::string& target);
 
+// Writes a permutation in the file: ordering's format (one 0-based old id per line, new order),
+// after a '#' comment line.
+void WritePermutation(const std::vector<int32_t>& new_to_old, const std::string& path,
+                      const std::string& comment);
+
 // Writes `path` through `body` into PATH.tmp.PID, then renames it. Throws InputError on failure.
 void WriteAtomically(const std::string& path, const std::function<void(std::FILE*)>& body);
 

@@ -1,20 +1,25 @@
 #!/usr/bin/env bash
 # The README's main job: installs what is missing, builds Release, meshes the nine shipped shapes
-# with Triangle to the paper's vertex counts (Table 4), smooths each in ORI order (Triangle's own
-# numbering) and prints the table. Meshes are cached under out/meshes/; results go to
-# results/reproduce-<UTC time>/ (summary.csv, summary.md, sweeps.csv, run.json).
-# Usage: scripts/reproduce.sh [--vertices N] [--threads P] [--shapes a,b,...] [--quiet]
+# with Triangle to the paper's vertex counts (Table 4; cached under out/meshes/), then times the
+# smoother under the paper's orderings with `meshreuse compare` and prints the per-mesh table and
+# the paper's averaged Speedup and Gain. Results: results/reproduce-<UTC time>/ (compare.*,
+# summary.*, run.json, compare.log with the progress).
+# Usage: scripts/reproduce.sh [--orderings ori,bfs,rdr] [--threads 1,2] [--repeat 3]
+#                             [--vertices N] [--shapes a,b,...] [--quiet]
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-vertices="" threads=1 quiet="" shapes="carabiner,crake,dialog,lake,riverflow,ocean,stress,valve,wrench"
+vertices="" quiet="" orderings="ori,bfs,rdr" threads="1,2" repeat=3
+shapes="carabiner,crake,dialog,lake,riverflow,ocean,stress,valve,wrench"
 while (($#)); do
   case $1 in
     --vertices) vertices=$2; shift 2 ;;
+    --orderings) orderings=$2; shift 2 ;;
     --threads) threads=$2; shift 2 ;;
+    --repeat) repeat=$2; shift 2 ;;
     --shapes) shapes=$2; shift 2 ;;
     --quiet) quiet=--quiet; shift ;;
-    -h|--help) sed -n '2,7p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    -h|--help) sed -n '2,9p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
     *) echo "reproduce.sh: unknown argument '$1' (see --help)" >&2; exit 2 ;;
   esac
 done
@@ -45,9 +50,10 @@ for s in "${names[@]}"; do
 done
 
 out=results/reproduce-$(date -u +%Y%m%dT%H%M%SZ)
-say "smoothing ${#files[@]} meshes in ORI order with $threads thread(s); results in $out"
-"$bin" smooth "${files[@]}" --threads "$threads" --out "$out" $quiet >"$out.log" || { cat "$out.log"; exit 1; }
-mv "$out.log" "$out/smooth.log"
+mkdir -p "$out"
+say "timing the smoother on ${#files[@]} meshes: orderings $orderings, threads $threads, $repeat rounds; results in $out"
+"$bin" compare "${files[@]}" --orderings "$orderings" --threads "$threads" --repeat "$repeat" \
+  --out "$out" $quiet >"$out/compare.txt" 2> >(tee "$out/compare.log" >&2)
 echo
-echo "Laplacian smoothing in ORI order ($threads thread(s)); per-sweep log: $out/smooth.log"
-column -s, -t <"$out/summary.csv" 2>/dev/null || cat "$out/summary.csv"
+echo "Laplacian smoothing to convergence (tol 5e-6) under each ordering; results in $out"
+cat "$out/compare.txt"

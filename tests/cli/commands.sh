@@ -22,7 +22,7 @@ contains "no arguments" "usage: meshreuse <command>"
 check "--help" 0 "$bin" --help
 check "unknown command" 2 "$bin" frobnicate
 contains "unknown command" "unknown command 'frobnicate'"
-for c in "mesh info" "mesh generate" "mesh convert" "smooth"; do
+for c in "mesh info" "mesh generate" "mesh convert" "smooth" "orderings" "reorder" "compare"; do
   check "$c --help" 0 "$bin" $c --help
   contains "$c --help" "usage: meshreuse $c"
 done
@@ -72,6 +72,49 @@ else
 fi
 PATH=/nonexistent check "generate without triangle" 1 "$bin" mesh generate --shape lake -o "$tmp/g2" --quiet
 contains "generate without triangle" "triangle-bin"
+
+# Orderings: list, reorder (mesh + permutation), read the permutation back, smooth and compare.
+check "orderings" 0 "$bin" orderings
+contains "orderings" "rdr"
+contains "orderings" "Aupy, Park, Raghavan, Algorithm 2"
+check "reorder" 0 "$bin" reorder "$data/two_interior.node" --ordering rdr -o "$tmp/r" --quiet
+for f in r.node r.ele r.perm; do
+  [[ -s $tmp/$f ]] && pass=$((pass + 1)) || { fail=$((fail + 1)); echo "FAIL reorder: no $f"; }
+done
+check "reorder from file" 0 "$bin" reorder "$data/two_interior.node" --ordering "file:$tmp/r.perm" -o "$tmp/r2" --quiet
+cmp -s "$tmp/r.node" "$tmp/r2.node" && cmp -s "$tmp/r.ele" "$tmp/r2.ele" && pass=$((pass + 1)) ||
+  { fail=$((fail + 1)); echo "FAIL reorder via file: does not reproduce the rdr mesh"; }
+check "reordered smooths" 0 "$bin" smooth "$tmp/r.node" --quiet
+check "smooth --ordering" 0 "$bin" smooth "$data/two_interior.node" --ordering random --seed 7 --quiet
+contains "smooth --ordering" "ordering random (seed 7)"
+contains "smooth --ordering" "reordering (ordering + apply):"
+check "smooth unknown ordering" 2 "$bin" smooth "$data/two_interior.node" --ordering nope
+contains "smooth unknown ordering" "unknown ordering 'nope'"
+printf '0\n1\n2\n2\n' >"$tmp/bad.perm"
+check "bad permutation file" 2 "$bin" reorder "$data/two_interior.node" --ordering "file:$tmp/bad.perm" -o "$tmp/x" --quiet
+contains "bad permutation file" "meshreuse: error: $tmp/bad.perm:4: vertex id 2 is repeated (first on line 3)"
+[[ ! -e $tmp/x.node ]] && pass=$((pass + 1)) || { fail=$((fail + 1)); echo "FAIL bad permutation: wrote output"; }
+check "compare" 0 "$bin" compare "$data/two_interior.node" "$data/two_interior41.msh" --orderings ori,bfs,rdr,random --threads 1,2 --repeat 2 --out "$tmp/cmp" --quiet
+contains "compare" "speedup_vs_ori1"
+contains "compare" "(seed 1; times are medians of 2 runs"
+for f in compare.csv compare.md compare.json run.json; do
+  [[ -s $tmp/cmp/$f ]] && pass=$((pass + 1)) || { fail=$((fail + 1)); echo "FAIL compare: no $f"; }
+done
+[[ $(wc -l <"$tmp/cmp/compare.csv") -eq 17 ]] && pass=$((pass + 1)) || { fail=$((fail + 1)); echo "FAIL compare.csv should have 2 meshes x 4 orderings x 2 threads rows"; }
+/usr/bin/python3 - "$tmp/cmp" <<'PY' && pass=$((pass + 1)) || { fail=$((fail + 1)); echo "FAIL compare JSON"; }
+import json, sys
+run = json.load(open(sys.argv[1] + "/run.json"))
+rows = json.load(open(sys.argv[1] + "/compare.json"))["rows"]
+assert run["config"]["seed"] == 1 and run["config"]["repeat"] == 2, run["config"]
+for r in rows:
+    if r["ordering"] == "ori" and r["threads"] == 1:
+        assert r["speedup_vs_ori1"] == 1.0, r
+    if r["ordering"] == "bfs":
+        assert r["gain_vs_bfs"] == 0.0, r
+    assert len(r["total_seconds"]) == 2 and r["vertices"] == 8, r
+PY
+check "compare bad threads" 2 "$bin" compare "$data/two_interior.node" --threads 1,x
+check "compare unknown ordering" 2 "$bin" compare "$data/two_interior.node" --orderings ori,zzz
 
 echo "cli commands: $pass passed, $fail failed"
 [[ $fail -eq 0 ]]

@@ -1,0 +1,43 @@
+// Shared CLI helpers; see common.h.
+#include "cli/common.h"
+
+#include <cstdio>
+#include <sstream>
+
+#include "cli/commands.h"
+#include "core/mesh_io.h"
+#include "reports/run_info.h"
+#include "reports/table.h"
+
+namespace meshreuse::cli {
+
+Mesh LoadMesh(const std::string& path, const Progress& progress) {
+  progress.Say("reading " + path);
+  std::vector<std::string> warnings;
+  Mesh m = ReadMesh(path, &warnings);
+  for (const std::string& w : warnings) std::fprintf(stderr, "meshreuse: warning: %s\n", w.c_str());
+  progress.Say("read " + Grouped(m.NumVertices()) + " vertices, " + Grouped(m.NumTriangles()) +
+               " triangles");
+  return m;
+}
+
+void WriteText(const std::string& path, const std::string& text) {
+  WriteAtomically(path, [&](std::FILE* f) { std::fputs(text.c_str(), f); });
+}
+
+std::vector<std::string> SplitList(const std::string& s) {
+  std::vector<std::string> out;
+  std::stringstream ss(s);
+  for (std::string item; std::getline(ss, item, ',');)
+    if (!item.empty()) out.push_back(item);
+  return out;
+}
+
+std::string RunJsonHeader(const std::string& tool) {
+  return "  \"tool\": " + JsonString(tool) + ",\n  \"command\": " +
+         CommandLineJson(FullCommandLine()) + ",\n  \"git_revision\": " +
+         JsonString(GitRevision()) + ",\n  \"time_utc\": " + JsonString(UtcTimestamp()) +
+         ",\n  \"machine\": " + MachineJson() + ",\n";
+}
+
+}  // namespace meshreuse::cli

@@ -1,0 +1,49 @@
+// Shared ordering helpers; see common.h.
+#include "core/orderings/common.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace meshreuse::orderings {
+
+std::vector<int32_t> StableSortByKey(const std::vector<int32_t>& ids, const std::vector<double>& key) {
+  const size_t n = ids.size();
+  if (n < 2) return ids;
+  double lo = key[ids[0]], hi = lo;
+  for (int32_t i : ids) lo = std::min(lo, key[i]), hi = std::max(hi, key[i]);
+  if (!(hi > lo)) return ids;  // all keys equal: stable means unchanged
+  // About 8 keys a bucket: the count array stays cache-resident, insertion sorts stay short.
+  const size_t nb = std::max<size_t>(1, n / 8);
+  const double scale = static_cast<double>(nb - 1) / (hi - lo);
+  std::vector<uint32_t> bucket(n), start(nb + 1, 0);
+  for (size_t i = 0; i < n; ++i) {
+    const double b = std::floor((key[ids[i]] - lo) * scale);
+    bucket[i] = static_cast<uint32_t>(std::min(b, static_cast<double>(nb - 1)));
+    ++start[bucket[i] + 1];
+  }
+  for (size_t b = 0; b < nb; ++b) start[b + 1] += start[b];
+  std::vector<int32_t> out(n);
+  {
+    std::vector<uint32_t> fill(start.begin(), start.end() - 1);
+    for (size_t i = 0; i < n; ++i) out[fill[bucket[i]]++] = ids[i];
+  }
+  auto less = [&](int32_t a, int32_t b) { return key[a] < key[b]; };
+  for (size_t b = 0; b < nb; ++b) {
+    int32_t* first = out.data() + start[b];
+    int32_t* last = out.data() + start[b + 1];
+    if (last - first < 2) continue;
+    if (last - first > 64) {
+      std::stable_sort(first, last, less);
+      continue;
+    }
+    for (int32_t* p = first + 1; p < last; ++p) {  // insertion sort: stable, tiny buckets
+      const int32_t v = *p;
+      int32_t* q = p;
+      for (; q > first && less(v, q[-1]); --q) *q = q[-1];
+      *q = v;
+    }
+  }
+  return out;
+}
+
+}  // namespace meshreuse::orderings

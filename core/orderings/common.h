@@ -1,0 +1,21 @@
+// Helpers shared by several orderings.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "core/mesh.h"
+
+namespace meshreuse::orderings {
+
+// Breadth-first visit order over all vertices: from vertex 0, neighbours in increasing id, each
+// further component from its lowest unvisited id. Used by bfs and rbfs.
+std::vector<int32_t> BfsVisitOrder(const Mesh& m);
+
+// `ids` stably sorted by key[id] (finite keys). One counting-sort pass into n/8 buckets by
+// floor((k - min) / (max - min) * (n/8 - 1)) -- monotone in k, because IEEE operations round
+// monotonically -- then an exact stable sort inside each bucket. O(n) for keys spread like
+// qualities or curve indices; a bucket holding many distinct keys falls back to std::stable_sort.
+std::vector<int32_t> StableSortByKey(const std::vector<int32_t>& ids, const std::vector<double>& key);
+
+}  // namespace meshreuse::orderings

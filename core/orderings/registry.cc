@@ -1,0 +1,52 @@
+// The registry: list.h expanded twice, once to declare the functions and once to build the table.
+#include "core/orderings/registry.h"
+
+#include <stdexcept>
+
+namespace meshreuse {
+
+#define MESHREUSE_ORDERING(fn, ...) Permutation fn(const Mesh&, const OrderingContext&);
+#include "core/orderings/list.h"
+#undef MESHREUSE_ORDERING
+
+const std::vector<OrderingInfo>& Orderings() {
+  static const std::vector<OrderingInfo> kTable = {
+#define MESHREUSE_ORDERING(fn, name, arg, desc, ref) {name, fn, arg, desc, ref},
+#include "core/orderings/list.h"
+#undef MESHREUSE_ORDERING
+  };
+  return kTable;
+}
+
+const OrderingInfo* FindOrdering(const std::string& name) {
+  for (const OrderingInfo& o : Orderings())
+    if (name == o.name) return &o;
+  return nullptr;
+}
+
+std::string OrderingNames() {
+  std::string s;
+  for (const OrderingInfo& o : Orderings())
+    s += (s.empty() ? "" : ", ") + std::string(o.name) + (o.takes_argument ? ":ARG" : "");
+  return s;
+}
+
+Permutation ComputeOrdering(const std::string& spec, const Mesh& m, uint64_t seed) {
+  const size_t colon = spec.find(':');
+  const std::string name = spec.substr(0, colon);
+  const OrderingInfo* o = FindOrdering(name);
+  if (!o) throw std::invalid_argument("unknown ordering '" + name + "' (known: " + OrderingNames() + ")");
+  OrderingContext ctx;
+  ctx.seed = seed;
+  if (colon != std::string::npos) ctx.argument = spec.substr(colon + 1);
+  if (o->takes_argument && ctx.argument.empty())
+    throw std::invalid_argument("ordering '" + name + "' needs an argument: " + name + ":ARG");
+  if (!o->takes_argument && colon != std::string::npos)
+    throw std::invalid_argument("ordering '" + name + "' takes no argument");
+  Permutation p = o->fn(m, ctx);
+  if (p.size() != m.NumVertices())
+    throw std::logic_error("ordering '" + name + "' returned a permutation of the wrong size");
+  return p;
+}
+
+}  // namespace meshreuse

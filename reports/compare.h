@@ -1,0 +1,54 @@
+// The experiment runner behind `meshreuse compare`: meshes x orderings x thread counts. Each mesh is
+// read once and reordered once per ordering (ordering and apply times measured separately); then
+// `repeat` rounds each smooth every (ordering, threads) pair once from the same start, so noise on
+// a shared machine hits all pairs alike. Times are medians over the rounds. The paper's formulas:
+//   Speedup(ord, p) = T_ori(1) / T_ord(p)          Gain(ord vs bfs, p) = (T_bfs(p) - T_ord(p)) / T_bfs(p)
+// with T the total smoothing time to convergence.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "core/permutation.h"
+#include "core/smoother.h"
+#include "reports/table.h"
+
+namespace meshreuse {
+
+struct CompareConfig {
+  std::vector<std::string> meshes;
+  std::vector<std::string> orderings = {"ori", "bfs", "rdr", "random"};
+  std::vector<int> threads = {1};
+  int repeat = 5;
+  uint64_t seed = 1;
+  SmoothOptions smooth;  // tol, max_iters, mode; threads are taken from `threads`
+};
+
+struct CompareRow {
+  std::string mesh, ordering;
+  int threads = 1;
+  int32_t vertices = 0, triangles = 0;
+  double order_seconds = 0, apply_seconds = 0;
+  EdgeSpan span;                       // locality of the ordering (permutation.h)
+  std::vector<int> sweeps;             // per round
+  std::vector<double> total_seconds;   // per round
+  std::vector<double> sweep_seconds;   // every sweep of every round
+  double final_quality = 0;            // of the first round
+  double median_total = 0, median_sweep = 0;
+  double speedup_vs_ori1 = 0;  // NaN when the run has no ori on one thread
+  double gain_vs_bfs = 0;      // NaN when the run has no bfs at this thread count
+};
+
+std::vector<CompareRow> RunCompare(const CompareConfig& cfg,
+                                   const std::function<void(const std::string&)>& progress = {});
+
+double Median(std::vector<double> v);
+Table CompareTable(const std::vector<CompareRow>& rows);
+// The paper's headline numbers, averaged (arithmetic mean) over the meshes, per ordering and thread
+// count: Speedup T_ori(1)/T_ord(p), and the ratios and gains against ori and bfs at the same p.
+Table CompareSummaryTable(const std::vector<CompareRow>& rows);
+std::string CompareJson(const std::vector<CompareRow>& rows);  // a JSON array
+
+}  // namespace meshreuse

@@ -1,0 +1,92 @@
+// Permutation: validation, inverse, and applying it to a mesh (vertices, triangles re-sorted).
+#include "core/permutation.h"
+
+#include <gtest/gtest.h>
+
+#include <map>
+#include <set>
+
+#include "core/quality.h"
+#include "core/synthetic.h"
+#include "tests/test_util.h"
+
+namespace meshreuse {
+namespace {
+
+TEST(Permutation, ValidatesBijection) {
+  EXPECT_NO_THROW(Permutation::FromNewToOld({2, 0, 1}));
+  EXPECT_THROW(Permutation::FromNewToOld({0, 0, 1}), std::invalid_argument);
+  EXPECT_THROW(Permutation::FromNewToOld({0, 3, 1}), std::invalid_argument);
+  EXPECT_THROW(Permutation::FromNewToOld({0, -1, 1}), std::invalid_argument);
+  try {
+    Permutation::FromNewToOld({1, 2, 1});
+  } catch (const std::invalid_argument& e) {
+    EXPECT_STREQ(e.what(), "id 1 appears at positions 0 and 2");
+  }
+}
+
+TEST(Permutation, BothDirectionsAndInverse) {
+  const Permutation p = Permutation::FromNewToOld({2, 0, 3, 1});
+  EXPECT_EQ(p.old_to_new(), (std::vector<int32_t>{1, 3, 0, 2}));
+  for (int32_t i = 0; i < 4; ++i) EXPECT_EQ(p.NewOf(p.OldOf(i)), i);
+  const Permutation q = p.Inverse();
+  EXPECT_EQ(q.new_to_old(), p.old_to_new());
+  EXPECT_EQ(q.old_to_new(), p.new_to_old());
+  EXPECT_EQ(Permutation::Identity(3).new_to_old(), (std::vector<int32_t>{0, 1, 2}));
+}
+
+TEST(ApplyPermutation, MovesVerticesRenumbersAndResortsTriangles) {
+  const Mesh m = testing::TwoInterior();
+  // Reverse the vertices: new i = old 7 - i.
+  const Permutation p = Permutation::FromNewToOld({7, 6, 5, 4, 3, 2, 1, 0});
+  const Mesh r = ApplyPermutation(m, p);
+  ASSERT_EQ(r.NumVertices(), 8);
+  for (int32_t i = 0; i < 8; ++i) {
+    EXPECT_EQ(r.xy[2 * i], m.xy[2 * (7 - i)]);
+    EXPECT_EQ(r.xy[2 * i + 1], m.xy[2 * (7 - i) + 1]);
+    EXPECT_EQ(r.boundary[i], m.boundary[7 - i]);
+  }
+  EXPECT_EQ(r.interior, (std::vector<int32_t>{0, 1}));
+  // Triangles, as sets of old vertices, are the same; their smallest new corners are sorted.
+  std::multiset<std::set<int32_t>> a, b;
+  int32_t prev = -1;
+  for (int32_t t = 0; t < m.NumTriangles(); ++t) {
+    a.insert({m.tri[3 * t], m.tri[3 * t + 1], m.tri[3 * t + 2]});
+    b.insert({p.OldOf(r.tri[3 * t]), p.OldOf(r.tri[3 * t + 1]), p.OldOf(r.tri[3 * t + 2])});
+    const int32_t lo = std::min({r.tri[3 * t], r.tri[3 * t + 1], r.tri[3 * t + 2]});
+    EXPECT_GE(lo, prev);
+    prev = lo;
+  }
+  EXPECT_EQ(a, b);
+  // Old triangle 0 is (0 1 6): new (7 6 1), corner order kept.
+  bool found = false;
+  for (int32_t t = 0; t < r.NumTriangles(); ++t)
+    found |= r.tri[3 * t] == 7 && r.tri[3 * t + 1] == 6 && r.tri[3 * t + 2] == 1;
+  EXPECT_TRUE(found);
+  EXPECT_NEAR(GlobalQuality(r), GlobalQuality(m), 1e-15);
+  EXPECT_THROW(ApplyPermutation(m, Permutation::Identity(3)), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace meshreuse
+
+namespace meshreuse {
+namespace {
+
+TEST(EdgeSpan, ExactOnTheTinyMesh) {
+  // Identity order; the 15 edges have spans 1 x7, 2, 3, 4, 5 x3, 6 x2 (see mesh_test's rows).
+  const Mesh m = testing::TwoInterior();
+  const EdgeSpan e = MeasureEdgeSpan(m, Permutation::Identity(8));
+  EXPECT_EQ(e.median, 2);  // the 8th of 15
+  EXPECT_EQ(e.p90, 6);     // the 14th
+  EXPECT_EQ(e.p99, 6);
+  EXPECT_EQ(e.max, 6);
+  EXPECT_DOUBLE_EQ(e.mean, 43.0 / 15);
+  // Reversing the order keeps every span.
+  const EdgeSpan r = MeasureEdgeSpan(m, Permutation::FromNewToOld({7, 6, 5, 4, 3, 2, 1, 0}));
+  EXPECT_EQ(r.median, 2);
+  EXPECT_DOUBLE_EQ(r.mean, e.mean);
+}
+
+}  // namespace
+}  // namespace meshreuse
