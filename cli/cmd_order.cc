@@ -66,17 +66,19 @@ int ReorderCommand(const Args& args) {
   const Mesh m = LoadMesh(mesh, progress);
   auto t0 = std::chrono::steady_clock::now();
   const Permutation p = ComputeOrdering(ordering, m, seed);
-  const double order_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const double order_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   t0 = std::chrono::steady_clock::now();
   const Mesh r = ApplyPermutation(m, p);
-  const double apply_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const double apply_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   for (const std::string& f : WriteMesh(r, out)) std::printf("wrote %s\n", f.c_str());
   WritePermutation(p.new_to_old(), out + ".perm",
                    "meshreuse reorder " + mesh + " --ordering " + ordering +
                        (ordering == "random" ? " --seed " + std::to_string(seed) : ""));
   std::printf("wrote %s.perm\n", out.c_str());
-  std::printf("ordering %s: %.3f ms to compute, %.3f ms to apply\n", ordering.c_str(), 1e3 * order_s,
-              1e3 * apply_s);
+  std::printf("ordering %s: %.3f ms to compute, %.3f ms to apply\n", ordering.c_str(),
+              1e3 * order_s, 1e3 * apply_s);
   return 0;
 }
 
@@ -90,21 +92,23 @@ int CompareCommand(const Args& args) {
       "repeat", po::value(&cfg.repeat)->default_value(5), "smoothing runs per (ordering, threads)")(
       "seed", po::value(&cfg.seed)->default_value(1), "seed of randomised orderings")(
       "tol", po::value(&cfg.smooth.tol)->default_value(5e-6, "5e-6"), "stop rule, as for smooth")(
-      "max-iters", po::value(&cfg.smooth.max_iters)->default_value(100), "at most this many sweeps")(
-      "mode", po::value(&mode_name)->default_value("gauss-seidel"), "gauss-seidel or jacobi")(
-      "out", po::value(&out_dir), "write compare.{csv,md,json}, summary.{csv,md} and run.json here")(
-      "quiet,q", "no progress on stderr");
+      "max-iters", po::value(&cfg.smooth.max_iters)->default_value(100),
+      "at most this many sweeps")("mode", po::value(&mode_name)->default_value("gauss-seidel"),
+                                  "gauss-seidel or jacobi")(
+      "out", po::value(&out_dir),
+      "write compare.{csv,md,json}, summary.{csv,md} and run.json here")("quiet,q",
+                                                                         "no progress on stderr");
   po::positional_options_description pos;
   pos.add("mesh", -1);
   po::variables_map vm;
-  if (!ParseOptions(args,
-                    "compare MESH... [--orderings ori,bfs,rdr,random] [--threads 1,2] [--repeat 5]",
-                    "For each mesh x ordering x thread count: reorder once, then smooth to "
-                    "convergence --repeat times from the same start (rounds interleave the "
-                    "orderings, so machine noise hits all alike). Reports median time per sweep and "
-                    "in total, sweeps, final quality, reordering time, and the paper's Speedup "
-                    "T_ori(1)/T_ord(p) and Gain (T_bfs(p)-T_ord(p))/T_bfs(p) on median totals.",
-                    desc, pos, vm))
+  if (!ParseOptions(
+          args, "compare MESH... [--orderings ori,bfs,rdr,random] [--threads 1,2] [--repeat 5]",
+          "For each mesh x ordering x thread count: reorder once, then smooth to "
+          "convergence --repeat times from the same start (rounds interleave the "
+          "orderings, so machine noise hits all alike). Reports median time per sweep and "
+          "in total, sweeps, final quality, reordering time, and the paper's Speedup "
+          "T_ori(1)/T_ord(p) and Gain (T_bfs(p)-T_ord(p))/T_bfs(p) on median totals.",
+          desc, pos, vm))
     return 0;
   cfg.orderings = SplitList(orderings);
   CheckOrderings(cfg.orderings);
@@ -132,9 +136,10 @@ int CompareCommand(const Args& args) {
   const Table t = CompareTable(rows);
   const Table summary = CompareSummaryTable(rows);
   std::printf("%s", t.Aligned().c_str());
-  std::printf("(seed %llu; times are medians of %d runs; speedup = T_ori(1)/T; gain = (T_bfs-T)/T_bfs;\n"
-              " span = |new(u) - new(v)| over the mesh edges)\n\n",
-              static_cast<unsigned long long>(cfg.seed), cfg.repeat);
+  std::printf(
+      "(seed %llu; times are medians of %d runs; speedup = T_ori(1)/T; gain = (T_bfs-T)/T_bfs;\n"
+      " span = |new(u) - new(v)| over the mesh edges)\n\n",
+      static_cast<unsigned long long>(cfg.seed), cfg.repeat);
   std::printf("mean over %zu mesh(es):\n%s", cfg.meshes.size(), summary.Aligned().c_str());
   if (!out_dir.empty()) {
     std::filesystem::create_directories(out_dir);

@@ -37,7 +37,8 @@ int SmoothCommand(const Args& args) {
       "stop after a sweep that improves the global quality by less than this")(
       "max-iters", po::value(&opt.max_iters)->default_value(100), "at most this many sweeps")(
       "mode", po::value(&mode_name)->default_value("gauss-seidel"), "gauss-seidel or jacobi")(
-      "output,o", po::value(&out_mesh), "write the smoothed mesh (PATH.vtk or a .node/.ele prefix)")(
+      "output,o", po::value(&out_mesh),
+      "write the smoothed mesh (PATH.vtk or a .node/.ele prefix)")(
       "out", po::value(&out_dir), "write summary.csv, summary.md, sweeps.csv and run.json here")(
       "quiet,q", "no progress on stderr");
   po::positional_options_description pos;
@@ -55,7 +56,8 @@ int SmoothCommand(const Args& args) {
   } catch (const std::invalid_argument& e) {
     throw po::error(e.what());
   }
-  if (opt.threads < 1 || opt.threads > 1024) throw po::error("--threads must be between 1 and 1024");
+  if (opt.threads < 1 || opt.threads > 1024)
+    throw po::error("--threads must be between 1 and 1024");
   if (opt.max_iters < 1) throw po::error("--max-iters must be at least 1");
   if (std::isnan(opt.tol)) throw po::error("--tol must be a number (negative: never stop early)");
   if (!out_mesh.empty() && meshes.size() != 1) throw po::error("-o takes a single input mesh");
@@ -79,7 +81,8 @@ int SmoothCommand(const Args& args) {
     }
     std::printf("== %s: %s vertices, %s triangles, ordering %s%s, %d thread%s, %s\n", path.c_str(),
                 Grouped(m.NumVertices()).c_str(), Grouped(m.NumTriangles()).c_str(),
-                ordering.c_str(), ordering == "random" ? (" (seed " + std::to_string(seed) + ")").c_str() : "",
+                ordering.c_str(),
+                ordering == "random" ? (" (seed " + std::to_string(seed) + ")").c_str() : "",
                 opt.threads, opt.threads == 1 ? "" : "s", UpdateModeName(opt.mode));
     if (ordering != "ori") std::printf("reordering (ordering + apply): %.3f ms\n", 1e3 * reorder_s);
     std::printf("%6s  %10s  %12s  %10s\n", "sweep", "quality", "improvement", "time_ms");
@@ -87,7 +90,8 @@ int SmoothCommand(const Args& args) {
     progress.Say("smoothing " + path);
     NullSink untraced;
     const SmoothResult r = Smooth(m, opt, untraced, [&](const SweepRecord& s) {
-      std::printf("%6d  %10.6f  %+12.3e  %10.3f\n", s.sweep, s.quality, s.improvement, 1e3 * s.seconds);
+      std::printf("%6d  %10.6f  %+12.3e  %10.3f\n", s.sweep, s.quality, s.improvement,
+                  1e3 * s.seconds);
       std::fflush(stdout);
     });
     std::vector<double> times;
@@ -100,13 +104,14 @@ int SmoothCommand(const Args& args) {
     std::printf("sweeps %zu (%s), quality %.6f -> %.6f, median %.3f ms/sweep, total %.3f s\n\n",
                 r.sweeps.size(), r.converged ? "converged" : "max-iters reached", r.quality_before,
                 r.quality_after, 1e3 * med, r.seconds);
-    summary.AddRow({path, ordering, std::to_string(m.NumVertices()), std::to_string(m.NumTriangles()),
-                    std::to_string(opt.threads), UpdateModeName(opt.mode),
-                    std::to_string(r.sweeps.size()), r.converged ? "yes" : "no",
-                    Fixed(r.quality_before, 6), Fixed(r.quality_after, 6), Fixed(1e3 * reorder_s, 3),
-                    Fixed(1e3 * med, 3), Fixed(r.seconds, 3)});
-    results_json += std::string(results_json.empty() ? "" : ",\n") + "    {\"mesh\": " +
-                    JsonString(path) + ", \"ordering\": " + JsonString(ordering) +
+    summary.AddRow(
+        {path, ordering, std::to_string(m.NumVertices()), std::to_string(m.NumTriangles()),
+         std::to_string(opt.threads), UpdateModeName(opt.mode), std::to_string(r.sweeps.size()),
+         r.converged ? "yes" : "no", Fixed(r.quality_before, 6), Fixed(r.quality_after, 6),
+         Fixed(1e3 * reorder_s, 3), Fixed(1e3 * med, 3), Fixed(r.seconds, 3)});
+    results_json += std::string(results_json.empty() ? "" : ",\n") +
+                    "    {\"mesh\": " + JsonString(path) +
+                    ", \"ordering\": " + JsonString(ordering) +
                     ", \"vertices\": " + std::to_string(m.NumVertices()) +
                     ", \"triangles\": " + std::to_string(m.NumTriangles()) +
                     ", \"sweeps\": " + std::to_string(r.sweeps.size()) +
@@ -126,12 +131,10 @@ int SmoothCommand(const Args& args) {
     WriteText(out_dir + "/summary.md", summary.Markdown());
     WriteText(out_dir + "/sweeps.csv", sweeps.Csv());
     WriteText(out_dir + "/run.json",
-              "{\n" + RunJsonHeader("meshreuse smooth") +
-                  "  \"config\": {\"ordering\": " + JsonString(ordering) +
-                  ", \"seed\": " + std::to_string(seed) +
-                  ", \"threads\": " + std::to_string(opt.threads) +
-                  ", \"mode\": " + JsonString(UpdateModeName(opt.mode)) +
-                  ", \"tol\": " + JsonNumber(opt.tol) +
+              "{\n" + RunJsonHeader("meshreuse smooth") + "  \"config\": {\"ordering\": " +
+                  JsonString(ordering) + ", \"seed\": " + std::to_string(seed) +
+                  ", \"threads\": " + std::to_string(opt.threads) + ", \"mode\": " +
+                  JsonString(UpdateModeName(opt.mode)) + ", \"tol\": " + JsonNumber(opt.tol) +
                   ", \"max_iters\": " + std::to_string(opt.max_iters) +
                   ", \"omp_max_threads\": " + std::to_string(omp_get_max_threads()) +
                   "},\n  \"results\": [\n" + results_json + "\n  ]\n}\n");

@@ -34,10 +34,11 @@ std::vector<std::string> SplitList(const std::string& s) {
 }
 
 std::string RunJsonHeader(const std::string& tool) {
-  return "  \"tool\": " + JsonString(tool) + ",\n  \"command\": " +
-         CommandLineJson(FullCommandLine()) + ",\n  \"git_revision\": " +
-         JsonString(GitRevision()) + ",\n  \"time_utc\": " + JsonString(UtcTimestamp()) +
-         ",\n  \"machine\": " + MachineJson() + ",\n";
+  return "  \"tool\": " + JsonString(tool) +
+         ",\n  \"command\": " + CommandLineJson(FullCommandLine()) +
+         ",\n  \"git_revision\": " + JsonString(GitRevision()) +
+         ",\n  \"time_utc\": " + JsonString(UtcTimestamp()) + ",\n  \"machine\": " + MachineJson() +
+         ",\n";
 }
 
 }  // namespace meshreuse::cli

@@ -96,7 +96,8 @@ void WriteVtk(const Mesh& m, const std::string& path) {
 void WritePermutation(const std::vector<int32_t>& new_to_old, const std::string& path,
                       const std::string& comment) {
   WriteAtomically(path, [&](std::FILE* f) {
-    std::fprintf(f, "# %s\n# one 0-based vertex id per line: line k is the old id of new vertex k\n",
+    std::fprintf(f,
+                 "# %s\n# one 0-based vertex id per line: line k is the old id of new vertex k\n",
                  comment.c_str());
     for (int32_t o : new_to_old) std::fprintf(f, "%d\n", o);
   });

@@ -23,12 +23,16 @@ double Median(std::vector<double> v) {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-double Since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+double Since(Clock::time_point t0) {
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
 
 std::string Duration(double s) {
   char b[32];
-  if (s < 90) std::snprintf(b, sizeof b, "%.0fs", s);
-  else std::snprintf(b, sizeof b, "%.0fm%02.0fs", std::floor(s / 60), std::fmod(s, 60));
+  if (s < 90)
+    std::snprintf(b, sizeof b, "%.0fs", s);
+  else
+    std::snprintf(b, sizeof b, "%.0fm%02.0fs", std::floor(s / 60), std::fmod(s, 60));
   return b;
 }
 
@@ -46,7 +50,8 @@ std::vector<CompareRow> RunCompare(const CompareConfig& cfg,
   const auto start = Clock::now();
   for (size_t mi = 0; mi < cfg.meshes.size(); ++mi) {
     const std::string& path = cfg.meshes[mi];
-    say("mesh " + std::to_string(mi + 1) + "/" + std::to_string(cfg.meshes.size()) + ": reading " + path);
+    say("mesh " + std::to_string(mi + 1) + "/" + std::to_string(cfg.meshes.size()) + ": reading " +
+        path);
     const Mesh base = ReadMesh(path);
     std::vector<Mesh> reordered;
     const size_t first_row = rows.size();
@@ -158,7 +163,9 @@ Table CompareSummaryTable(const std::vector<CompareRow>& rows) {
       if (auto bp = t.find({m, key("bfs", p)}); bp != t.end())
         vs_bfs += bp->second / T, g_bfs += (bp->second - T) / bp->second, ++n_bfs;
     }
-    auto mean = [](double s, int n, double scale) { return n ? OrDash(scale * s / n, 3) : std::string("-"); };
+    auto mean = [](double s, int n, double scale) {
+      return n ? OrDash(scale * s / n, 3) : std::string("-");
+    };
     out.AddRow({ord, std::to_string(p), std::to_string(meshes.size()), mean(speed, n_speed, 1),
                 mean(vs_ori, n_ori, 1), mean(vs_bfs, n_bfs, 1), mean(g_ori, n_ori, 100),
                 mean(g_bfs, n_bfs, 100)});
@@ -176,14 +183,16 @@ std::string CompareJson(const std::vector<CompareRow>& rows) {
       return o + "]";
     };
     s += std::string(i ? ",\n    " : "\n    ") + "{\"mesh\": " + JsonString(r.mesh) +
-         ", \"ordering\": " + JsonString(r.ordering) + ", \"threads\": " + std::to_string(r.threads) +
-         ", \"vertices\": " + std::to_string(r.vertices) + ", \"triangles\": " +
-         std::to_string(r.triangles) + ", \"order_seconds\": " + JsonNumber(r.order_seconds) +
+         ", \"ordering\": " + JsonString(r.ordering) +
+         ", \"threads\": " + std::to_string(r.threads) +
+         ", \"vertices\": " + std::to_string(r.vertices) +
+         ", \"triangles\": " + std::to_string(r.triangles) +
+         ", \"order_seconds\": " + JsonNumber(r.order_seconds) +
          ", \"apply_seconds\": " + JsonNumber(r.apply_seconds) +
          ", \"edge_span\": {\"median\": " + std::to_string(r.span.median) +
          ", \"p90\": " + std::to_string(r.span.p90) + ", \"p99\": " + std::to_string(r.span.p99) +
-         ", \"max\": " + std::to_string(r.span.max) + ", \"mean\": " + JsonNumber(r.span.mean) + "}" + ", \"sweeps\": " + list(r.sweeps) +
-         ", \"total_seconds\": " + list(r.total_seconds) +
+         ", \"max\": " + std::to_string(r.span.max) + ", \"mean\": " + JsonNumber(r.span.mean) +
+         "}" + ", \"sweeps\": " + list(r.sweeps) + ", \"total_seconds\": " + list(r.total_seconds) +
          ", \"median_total_seconds\": " + JsonNumber(r.median_total) +
          ", \"median_seconds_per_sweep\": " + JsonNumber(r.median_sweep) +
          ", \"final_quality\": " + JsonNumber(r.final_quality) +

@@ -1,8 +1,9 @@
-// The experiment runner behind `meshreuse compare`: meshes x orderings x thread counts. Each mesh is
-// read once and reordered once per ordering (ordering and apply times measured separately); then
+// The experiment runner behind `meshreuse compare`: meshes x orderings x thread counts. Each mesh
+// is read once and reordered once per ordering (ordering and apply times measured separately); then
 // `repeat` rounds each smooth every (ordering, threads) pair once from the same start, so noise on
 // a shared machine hits all pairs alike. Times are medians over the rounds. The paper's formulas:
-//   Speedup(ord, p) = T_ori(1) / T_ord(p)          Gain(ord vs bfs, p) = (T_bfs(p) - T_ord(p)) / T_bfs(p)
+//   Speedup(ord, p) = T_ori(1) / T_ord(p)          Gain(ord vs bfs, p) = (T_bfs(p) - T_ord(p)) /
+//   T_bfs(p)
 // with T the total smoothing time to convergence.
 #pragma once
 
@@ -31,11 +32,11 @@ struct CompareRow {
   int threads = 1;
   int32_t vertices = 0, triangles = 0;
   double order_seconds = 0, apply_seconds = 0;
-  EdgeSpan span;                       // locality of the ordering (permutation.h)
-  std::vector<int> sweeps;             // per round
-  std::vector<double> total_seconds;   // per round
-  std::vector<double> sweep_seconds;   // every sweep of every round
-  double final_quality = 0;            // of the first round
+  EdgeSpan span;                      // locality of the ordering (permutation.h)
+  std::vector<int> sweeps;            // per round
+  std::vector<double> total_seconds;  // per round
+  std::vector<double> sweep_seconds;  // every sweep of every round
+  double final_quality = 0;           // of the first round
   double median_total = 0, median_sweep = 0;
   double speedup_vs_ori1 = 0;  // NaN when the run has no ori on one thread
   double gain_vs_bfs = 0;      // NaN when the run has no bfs at this thread count

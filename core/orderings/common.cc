@@ -6,7 +6,8 @@
 
 namespace meshreuse::orderings {
 
-std::vector<int32_t> StableSortByKey(const std::vector<int32_t>& ids, const std::vector<double>& key) {
+std::vector<int32_t> StableSortByKey(const std::vector<int32_t>& ids,
+                                     const std::vector<double>& key) {
   const size_t n = ids.size();
   if (n < 2) return ids;
   double lo = key[ids[0]], hi = lo;

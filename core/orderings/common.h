@@ -16,6 +16,7 @@ std::vector<int32_t> BfsVisitOrder(const Mesh& m);
 // floor((k - min) / (max - min) * (n/8 - 1)) -- monotone in k, because IEEE operations round
 // monotonically -- then an exact stable sort inside each bucket. O(n) for keys spread like
 // qualities or curve indices; a bucket holding many distinct keys falls back to std::stable_sort.
-std::vector<int32_t> StableSortByKey(const std::vector<int32_t>& ids, const std::vector<double>& key);
+std::vector<int32_t> StableSortByKey(const std::vector<int32_t>& ids,
+                                     const std::vector<double>& key);
 
 }  // namespace meshreuse::orderings

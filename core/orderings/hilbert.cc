@@ -43,8 +43,10 @@ Permutation OrderHilbert(const Mesh& m, const OrderingContext&) {
   std::vector<double> key(n);  // d < 2^32 is exact in a double
   std::vector<int32_t> ids(n);
   for (int32_t v = 0; v < n; ++v) {
-    const auto gx = static_cast<uint32_t>(std::clamp((m.xy[2 * int64_t{v}] - x0) * sx, 0.0, 65535.0));
-    const auto gy = static_cast<uint32_t>(std::clamp((m.xy[2 * int64_t{v} + 1] - y0) * sy, 0.0, 65535.0));
+    const auto gx =
+        static_cast<uint32_t>(std::clamp((m.xy[2 * int64_t{v}] - x0) * sx, 0.0, 65535.0));
+    const auto gy =
+        static_cast<uint32_t>(std::clamp((m.xy[2 * int64_t{v} + 1] - y0) * sy, 0.0, 65535.0));
     key[v] = static_cast<double>(HilbertIndex(gx, gy));
     ids[v] = v;
   }

@@ -14,16 +14,18 @@ MESHREUSE_ORDERING(OrderBfs, "bfs", false,
                    "Strout and Hovland 2004")
 MESHREUSE_ORDERING(OrderRbfs, "rbfs", false, "the BFS visit order reversed",
                    "Munson and Hovland (reversed BFS)")
-MESHREUSE_ORDERING(OrderRcm, "rcm", false,
-                   "reverse Cuthill-McKee from a George-Liu pseudo-peripheral vertex, per component",
-                   "Cuthill and McKee 1969; George and Liu 1979")
+MESHREUSE_ORDERING(
+    OrderRcm, "rcm", false,
+    "reverse Cuthill-McKee from a George-Liu pseudo-peripheral vertex, per component",
+    "Cuthill and McKee 1969; George and Liu 1979")
 MESHREUSE_ORDERING(OrderRdr, "rdr", false,
                    "the paper's Algorithm 2: from the worst interior vertex, append unordered "
                    "neighbours by increasing quality, continue from the worst unprocessed one",
                    "Aupy, Park, Raghavan, Algorithm 2")
-MESHREUSE_ORDERING(OrderHilbert, "hilbert", false,
-                   "vertices sorted along a Hilbert curve over a 2^16 x 2^16 grid of the bounding box",
-                   "Hilbert 1891; space-filling curve orderings")
+MESHREUSE_ORDERING(
+    OrderHilbert, "hilbert", false,
+    "vertices sorted along a Hilbert curve over a 2^16 x 2^16 grid of the bounding box",
+    "Hilbert 1891; space-filling curve orderings")
 MESHREUSE_ORDERING(OrderFile, "file", true,
                    "file:PATH, a user's permutation: one 0-based vertex id per line, in new order",
                    "")

@@ -1,5 +1,5 @@
-// random: a uniform shuffle (Fisher-Yates) driven by SplitMix64 seeded with --seed, so the same seed
-// gives the same order on every platform. The paper's worst case (its Figure 1).
+// random: a uniform shuffle (Fisher-Yates) driven by SplitMix64 seeded with --seed, so the same
+// seed gives the same order on every platform. The paper's worst case (its Figure 1).
 #include "core/orderings/registry.h"
 #include "core/synthetic.h"
 

@@ -52,9 +52,10 @@ Permutation OrderRcm(const Mesh& m, const OrderingContext&) {
     int32_t r = s;
     Levels lv = BfsLevels(m, r, stamp, round++, queue);
     while (true) {
-      const int32_t x = *std::min_element(lv.last.begin(), lv.last.end(), [&](int32_t a, int32_t b) {
-        return degree(a) != degree(b) ? degree(a) < degree(b) : a < b;
-      });
+      const int32_t x =
+          *std::min_element(lv.last.begin(), lv.last.end(), [&](int32_t a, int32_t b) {
+            return degree(a) != degree(b) ? degree(a) < degree(b) : a < b;
+          });
       Levels lx = BfsLevels(m, x, stamp, round++, queue);
       if (lx.eccentricity <= lv.eccentricity) break;
       r = x;

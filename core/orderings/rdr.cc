@@ -76,6 +76,8 @@ Permutation RdrOrder(const Mesh& m, const std::vector<double>& quality) {
   return Permutation::FromNewToOld(std::move(order));
 }
 
-Permutation OrderRdr(const Mesh& m, const OrderingContext&) { return RdrOrder(m, VertexQualities(m)); }
+Permutation OrderRdr(const Mesh& m, const OrderingContext&) {
+  return RdrOrder(m, VertexQualities(m));
+}
 
 }  // namespace meshreuse

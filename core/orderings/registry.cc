@@ -35,7 +35,8 @@ Permutation ComputeOrdering(const std::string& spec, const Mesh& m, uint64_t see
   const size_t colon = spec.find(':');
   const std::string name = spec.substr(0, colon);
   const OrderingInfo* o = FindOrdering(name);
-  if (!o) throw std::invalid_argument("unknown ordering '" + name + "' (known: " + OrderingNames() + ")");
+  if (!o)
+    throw std::invalid_argument("unknown ordering '" + name + "' (known: " + OrderingNames() + ")");
   OrderingContext ctx;
   ctx.seed = seed;
   if (colon != std::string::npos) ctx.argument = spec.substr(colon + 1);

@@ -28,7 +28,7 @@ struct OrderingInfo {
 
 const std::vector<OrderingInfo>& Orderings();
 const OrderingInfo* FindOrdering(const std::string& name);  // nullptr when unknown
-std::string OrderingNames();                                   // "ori, random, ..."
+std::string OrderingNames();                                // "ori, random, ..."
 
 // Computes "name" or "name:argument". Throws std::invalid_argument for an unknown name or a
 // missing/unexpected argument, and whatever the ordering throws (file: InputError).

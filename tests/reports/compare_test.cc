@@ -41,8 +41,9 @@ TEST(Compare, SummaryAveragesThePapersRatios) {
     r.mesh = mesh, r.ordering = ord, r.threads = 1, r.median_total = t;
     return r;
   };
-  const std::vector<CompareRow> rows = {row("A", "ori", 2), row("A", "bfs", 1), row("A", "rdr", 0.5),
-                                        row("B", "ori", 4), row("B", "bfs", 4), row("B", "rdr", 2)};
+  const std::vector<CompareRow> rows = {row("A", "ori", 2),   row("A", "bfs", 1),
+                                        row("A", "rdr", 0.5), row("B", "ori", 4),
+                                        row("B", "bfs", 4),   row("B", "rdr", 2)};
   // rdr: speedup mean(2/0.5, 4/2) = 3; T_bfs/T mean(2, 2) = 2; gain vs bfs mean(50%, 50%).
   EXPECT_EQ(CompareSummaryTable(rows).Csv(),
             "ordering,threads,meshes,speedup_vs_ori1,T_ori/T,T_bfs/T,gain_vs_ori_%,gain_vs_bfs_%\n"

@@ -46,7 +46,8 @@ bool HasIsolatedBoundaryVertex(const Mesh& m) {
   for (int32_t v = 0; v < m.NumVertices(); ++v) {
     if (!m.boundary[v]) continue;
     bool any_interior = false;
-    for (const int32_t* p = m.v2v.RowBegin(v); p != m.v2v.RowEnd(v); ++p) any_interior |= !m.boundary[*p];
+    for (const int32_t* p = m.v2v.RowBegin(v); p != m.v2v.RowEnd(v); ++p)
+      any_interior |= !m.boundary[*p];
     if (!any_interior) return true;
   }
   return false;
@@ -80,7 +81,8 @@ TEST_P(EveryOrdering, BijectionDeterministicAndJacobiInvariant) {
   int isolated = 0;
   for (size_t k = 0; k < corpus.size(); ++k) {
     const Mesh& m = corpus[k];
-    SCOPED_TRACE("mesh " + std::to_string(k) + " (" + std::to_string(m.NumVertices()) + " vertices)");
+    SCOPED_TRACE("mesh " + std::to_string(k) + " (" + std::to_string(m.NumVertices()) +
+                 " vertices)");
     isolated += HasIsolatedBoundaryVertex(m);
     const std::string spec = SpecFor(o, m, dir_, static_cast<int>(k));
     const Permutation p = ComputeOrdering(spec, m, 42);
@@ -100,11 +102,13 @@ TEST_P(EveryOrdering, BijectionDeterministicAndJacobiInvariant) {
     const SmoothResult b = Smooth(reordered, so);
     for (int32_t i = 0; i < m.NumVertices(); ++i) {
       ASSERT_NEAR(reordered.xy[2 * i], plain.xy[2 * p.OldOf(i)], 1e-12) << "new vertex " << i;
-      ASSERT_NEAR(reordered.xy[2 * i + 1], plain.xy[2 * p.OldOf(i) + 1], 1e-12) << "new vertex " << i;
+      ASSERT_NEAR(reordered.xy[2 * i + 1], plain.xy[2 * p.OldOf(i) + 1], 1e-12)
+          << "new vertex " << i;
     }
     EXPECT_NEAR(a.quality_after, b.quality_after, 1e-12);
   }
-  EXPECT_GE(isolated, 3) << "the corpus should exercise boundary vertices with no interior neighbour";
+  EXPECT_GE(isolated, 3)
+      << "the corpus should exercise boundary vertices with no interior neighbour";
 }
 
 INSTANTIATE_TEST_SUITE_P(Registry, EveryOrdering, ::testing::ValuesIn(Orderings()),
@@ -117,8 +121,8 @@ TEST(Registry, NamesAndErrors) {
   EXPECT_EQ(FindOrdering("nope"), nullptr);
   const Mesh m = testing::TwoInterior();
   EXPECT_THROW(ComputeOrdering("nope", m), std::invalid_argument);
-  EXPECT_THROW(ComputeOrdering("file", m), std::invalid_argument);    // needs :PATH
-  EXPECT_THROW(ComputeOrdering("rdr:x", m), std::invalid_argument);   // takes none
+  EXPECT_THROW(ComputeOrdering("file", m), std::invalid_argument);   // needs :PATH
+  EXPECT_THROW(ComputeOrdering("rdr:x", m), std::invalid_argument);  // takes none
   for (const char* required : {"ori", "random", "bfs", "rbfs", "rcm", "rdr", "hilbert", "file"})
     EXPECT_NE(FindOrdering(required), nullptr) << required;
 }
@@ -172,7 +176,8 @@ TEST(Bfs, HandWorked) {
   const Mesh m = testing::TwoInterior();
   // From 0: 1 5 6; from 1: 2 7; from 5: 4; from 2: 3.
   EXPECT_EQ(ComputeOrdering("bfs", m).new_to_old(), (std::vector<int32_t>{0, 1, 5, 6, 2, 7, 4, 3}));
-  EXPECT_EQ(ComputeOrdering("rbfs", m).new_to_old(), (std::vector<int32_t>{3, 4, 7, 2, 6, 5, 1, 0}));
+  EXPECT_EQ(ComputeOrdering("rbfs", m).new_to_old(),
+            (std::vector<int32_t>{3, 4, 7, 2, 6, 5, 1, 0}));
   // Two components: the triangle first (from 0), then the wheel from its lowest id, 3.
   const Mesh c = ReadMesh(testing::DataPath("two_components.node"));
   EXPECT_EQ(ComputeOrdering("bfs", c).new_to_old(), (std::vector<int32_t>{0, 1, 2, 3, 4, 5, 6, 7}));
@@ -211,12 +216,14 @@ TEST(StableSortByKey, MatchesStdStableSort) {
     const int n = 1 + static_cast<int>(rng.Below(2000));
     std::vector<double> key(n);
     const int distinct = 1 + static_cast<int>(rng.Below(n + 5));  // many ties sometimes
-    for (double& k : key) k = static_cast<double>(rng.Below(distinct)) / distinct * (trial % 5 + 0.5);
+    for (double& k : key)
+      k = static_cast<double>(rng.Below(distinct)) / distinct * (trial % 5 + 0.5);
     if (trial % 7 == 0) key[rng.Below(n)] = 1e9;  // one far outlier crowds the rest into one bucket
     std::vector<int32_t> ids(n);
     for (int i = 0; i < n; ++i) ids[i] = i;
     std::vector<int32_t> expect = ids;
-    std::stable_sort(expect.begin(), expect.end(), [&](int32_t a, int32_t b) { return key[a] < key[b]; });
+    std::stable_sort(expect.begin(), expect.end(),
+                     [&](int32_t a, int32_t b) { return key[a] < key[b]; });
     ASSERT_EQ(orderings::StableSortByKey(ids, key), expect) << "trial " << trial;
   }
 }
@@ -260,7 +267,8 @@ TEST_F(FileOrdering, ErrorsNameLineAndProblem) {
   ExpectError("0\n1\n2\n3 4\n", 4, "one vertex id per line");
   ExpectError("0\n1\n2\n8\n", 4, "vertex id 8 is outside 0..7");
   ExpectError("0\n1\n# c\n2\n1\n", 5, "vertex id 1 is repeated (first on line 2)");
-  ExpectError("0\n1\n2\n4\n5\n6\n7\n", 7, "the file has 7 ids, the mesh 8 vertices (vertex 3 is missing)");
+  ExpectError("0\n1\n2\n4\n5\n6\n7\n", 7,
+              "the file has 7 ids, the mesh 8 vertices (vertex 3 is missing)");
   ExpectError("", 0, "the file has 0 ids");
   try {
     ComputeOrdering("file:" + (dir_ / "missing").string(), mesh_);
