@@ -41,6 +41,21 @@ Header ReadHeader(TextFile& f, int min_fields, int max_fields, const char* what)
   return h;
 }
 
+// Items are numbered consecutively from 0 or 1 (the first one fixes `base`); returns the number.
+int64_t CheckSequenceNumber(const TextFile& f, std::string_view tok, int64_t i, int64_t* base,
+                            const std::string& item) {
+  const int64_t id = f.ParseInt(tok, ("the " + item + " number").c_str());
+  if (i == 0) {
+    if (id != 0 && id != 1)
+      f.Fail(item + " numbers must start at 0 or 1, found " + std::string(tok));
+    *base = id;
+  } else if (id != *base + i) {
+    f.Fail(item + " number " + std::string(tok) + " is out of sequence (expected " +
+           std::to_string(*base + i) + ")");
+  }
+  return id;
+}
+
 void ExpectEnd(TextFile& f, int64_t count, const char* items) {
   std::string_view line;
   if (f.NextDataLine(&line))
@@ -82,15 +97,7 @@ RawMesh ReadTriangleFiles(const std::string& node_path, const std::string& ele_p
       node.Fail("expected " + std::to_string(cols) + " columns (id, x, y, " +
                 std::to_string(nattr) + " attributes, " + std::to_string(nmark) +
                 " markers), found " + std::to_string(n));
-    const int64_t id = node.ParseInt(tok[0], "the vertex number");
-    if (i == 0) {
-      if (id != 0 && id != 1)
-        node.Fail("vertex numbers must start at 0 or 1, found " + std::string(tok[0]));
-      base = id;
-    } else if (id != base + i) {
-      node.Fail("vertex number " + std::string(tok[0]) + " is out of sequence (expected " +
-                std::to_string(base + i) + ")");
-    }
+    const int64_t id = CheckSequenceNumber(node, tok[0], i, &base, "vertex");
     raw.xy[2 * i] = node.ParseDouble(tok[1], "the x coordinate");
     raw.xy[2 * i + 1] = node.ParseDouble(tok[2], "the y coordinate");
     raw.vertex_line[i] = node.line();
@@ -121,15 +128,7 @@ RawMesh ReadTriangleFiles(const std::string& node_path, const std::string& ele_p
     if (n != ecols)
       ele.Fail("expected " + std::to_string(ecols) + " columns (id, " + std::to_string(per) +
                " vertices, " + std::to_string(eattr) + " attributes), found " + std::to_string(n));
-    const int64_t id = ele.ParseInt(tok[0], "the triangle number");
-    if (t == 0) {
-      if (id != 0 && id != 1)
-        ele.Fail("triangle numbers must start at 0 or 1, found " + std::string(tok[0]));
-      tbase = id;
-    } else if (id != tbase + t) {
-      ele.Fail("triangle number " + std::string(tok[0]) + " is out of sequence (expected " +
-               std::to_string(tbase + t) + ")");
-    }
+    CheckSequenceNumber(ele, tok[0], t, &tbase, "triangle");
     for (int k = 0; k < 3; ++k) {  // quadratic triangles: the corners are the first three
       const int64_t c = ele.ParseInt(tok[1 + k], "a triangle corner");
       if (c < base || c >= base + nv)
