@@ -17,6 +17,8 @@ int SmoothCommand(const Args& args);
 int OrderingsCommand(const Args& args);
 int ReorderCommand(const Args& args);
 int CompareCommand(const Args& args);
+int TraceCommand(const Args& args);
+int AnalyzeCommand(const Args& args);
 
 // The full command line, for run.json.
 const std::vector<std::string>& FullCommandLine();

@@ -29,6 +29,8 @@ const Command kCommands[] = {
     {"reorder", "reorder a mesh's vertices, write the mesh and the permutation", ReorderCommand},
     {"smooth", "Laplacian smoothing, per-sweep quality and time", SmoothCommand},
     {"compare", "time the smoother under several orderings and thread counts", CompareCommand},
+    {"trace", "write the smoother's access trace to a binary file", TraceCommand},
+    {"analyze", "reuse distances, quantiles, histograms, profiles and modelled misses", AnalyzeCommand},
 };
 
 std::vector<std::string> g_argv;

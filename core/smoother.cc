@@ -15,4 +15,15 @@ UpdateMode ParseUpdateMode(const std::string& s) {
   throw std::invalid_argument("unknown update mode '" + s + "' (expected gauss-seidel or jacobi)");
 }
 
+std::vector<uint64_t> AccessesPerSweep(const Mesh& m, int threads) {
+  std::vector<uint64_t> n(threads < 1 ? 1 : threads, 0);
+  const int64_t ni = static_cast<int64_t>(m.interior.size());
+  for (int64_t k = 0; k < ni; ++k) {
+    const int32_t v = m.interior[k];
+    n[smoother_detail::StaticOwner(k, ni, static_cast<int>(n.size()))] +=
+        2 + m.v2v.RowSize(v) + 3 * m.v2t.RowSize(v);
+  }
+  return n;
+}
+
 }  // namespace meshreuse

@@ -9,6 +9,18 @@
 // sum over v's triangles of w_t (q_t' - q_t). Stop rule: a sweep that improves Q by less than `tol`
 // is the last one, and there are at most `max_iters` sweeps.
 // Tracing is the template parameter: Smooth<NullSink> is the timed, uninstrumented kernel.
+//
+// The access sequence of one Gauss-Seidel visit of interior vertex v (what a tracing sink sees):
+//   1. kAdjacency  v          (&v2v.off[v]: v's adjacency row is read)
+//   2. kCoordRead  u          for each neighbour u of v, in increasing id (&xy[2u])
+//   3. kCoordWrite v          (&xy[2v]: v moves)
+//   4. kCoordRead  a, b, c    for each triangle t of v, in increasing id, its corners in stored
+//                             order (the triangle's quality is recomputed; v is one of them)
+// so 2 + deg(v) + 3 * triangles(v) touches; AccessesPerSweep() sums them. Jacobi visits touch
+// 1-3 (reading the old buffer, writing the new one); then its quality pass touches the three
+// corners of every triangle in triangle order (kCoordRead), split among threads statically.
+// Traced runs (Sink::kEnabled) execute serially and give thread t the iterations that the static
+// schedule gives it, so each thread's stream is exact and in its own program order.
 #pragma once
 
 #include <omp.h>
@@ -85,30 +97,47 @@ inline void MoveToAverage(const Arrays& a, const double* src, double* dst, int32
   if constexpr (Sink::kEnabled) sink.Touch(tid, AccessKind::kCoordWrite, v, dst + 2 * int64_t{v});
 }
 
+// The thread that OpenMP's schedule(static) without a chunk size gives iteration k of n to: P
+// contiguous blocks, the first n % P of them one longer (libgomp's split).
+inline int StaticOwner(int64_t k, int64_t n, int threads) {
+  const int64_t q = n / threads, r = n % threads;
+  return static_cast<int>(k < r * (q + 1) ? k / (q + 1) : r + (k - r * (q + 1)) / (q > 0 ? q : 1));
+}
+
+template <class Sink>
+inline double VisitGaussSeidel(const Arrays& a, int32_t v, double* tq, const double* w, int tid,
+                               Sink& sink) {
+  MoveToAverage(a, a.xy, a.xy, v, tid, sink);
+  double dq = 0.0;
+  for (int64_t i = a.toff[v]; i < a.toff[v + 1]; ++i) {
+    const int64_t t = a.tris[i];
+    const int32_t* c = a.tri + 3 * t;
+    if constexpr (Sink::kEnabled)
+      for (int j = 0; j < 3; ++j)
+        sink.Touch(tid, AccessKind::kCoordRead, c[j], a.xy + 2 * int64_t{c[j]});
+    const double q = TriangleQuality(a.xy, c);
+    dq += w[t] * (q - tq[t]);
+    tq[t] = q;
+  }
+  return dq;
+}
+
 template <class Sink>
 double GaussSeidelSweep(const Arrays& a, const std::vector<int32_t>& interior, double* tq,
                         const double* w, int threads, Sink& sink) {
   const int64_t ni = static_cast<int64_t>(interior.size());
   const int32_t* order = interior.data();
   double dq = 0.0;
+  if constexpr (Sink::kEnabled) {  // serial replay of the static schedule, one stream per thread
+    for (int64_t k = 0; k < ni; ++k)
+      dq += VisitGaussSeidel(a, order[k], tq, w, StaticOwner(k, ni, threads), sink);
+    return dq;
+  }
 #pragma omp parallel num_threads(threads) if (threads > 1) reduction(+ : dq)
   {
     const int tid = omp_get_thread_num();
 #pragma omp for schedule(static)
-    for (int64_t k = 0; k < ni; ++k) {
-      const int32_t v = order[k];
-      MoveToAverage(a, a.xy, a.xy, v, tid, sink);
-      for (int64_t i = a.toff[v]; i < a.toff[v + 1]; ++i) {
-        const int64_t t = a.tris[i];
-        const int32_t* c = a.tri + 3 * t;
-        if constexpr (Sink::kEnabled)
-          for (int j = 0; j < 3; ++j)
-            sink.Touch(tid, AccessKind::kCoordRead, c[j], a.xy + 2 * int64_t{c[j]});
-        const double q = TriangleQuality(a.xy, c);
-        dq += w[t] * (q - tq[t]);
-        tq[t] = q;
-      }
-    }
+    for (int64_t k = 0; k < ni; ++k) dq += VisitGaussSeidel(a, order[k], tq, w, tid, sink);
   }
   return dq;
 }
@@ -122,14 +151,28 @@ double JacobiSweep(Mesh& m, std::vector<double>& next, double* tq, const double*
   const int64_t ni = static_cast<int64_t>(m.interior.size());
   const int32_t* order = m.interior.data();
   double* dst = next.data();
+  const int64_t nt = m.NumTriangles();
+  const int32_t* tri = m.tri.data();
+  double q_new = 0.0;
+  if constexpr (Sink::kEnabled) {  // serial replay of the static schedule, one stream per thread
+    for (int64_t k = 0; k < ni; ++k)
+      MoveToAverage(a, a.xy, dst, order[k], StaticOwner(k, ni, threads), sink);
+    m.xy.swap(next);
+    const double* xy = m.xy.data();
+    for (int64_t t = 0; t < nt; ++t) {
+      const int tid = StaticOwner(t, nt, threads);
+      for (int j = 0; j < 3; ++j)
+        sink.Touch(tid, AccessKind::kCoordRead, tri[3 * t + j], xy + 2 * int64_t{tri[3 * t + j]});
+      tq[t] = TriangleQuality(xy, tri + 3 * t);
+      q_new += w[t] * tq[t];
+    }
+    return q_new;
+  }
 #pragma omp parallel for num_threads(threads) if (threads > 1) schedule(static)
   for (int64_t k = 0; k < ni; ++k)
     MoveToAverage(a, a.xy, dst, order[k], omp_get_thread_num(), sink);
   m.xy.swap(next);  // boundary entries are equal in both buffers, interior ones are now new
-  const int64_t nt = m.NumTriangles();
   const double* xy = m.xy.data();
-  const int32_t* tri = m.tri.data();
-  double q_new = 0.0;
 #pragma omp parallel for num_threads(threads) if (threads > 1) schedule(static) reduction(+ : q_new)
   for (int64_t t = 0; t < nt; ++t) {
     tq[t] = TriangleQuality(xy, tri + 3 * t);
@@ -157,6 +200,7 @@ SmoothResult Smooth(Mesh& mesh, const SmoothOptions& opt, Sink& sink,
   const int threads = opt.threads < 1 ? 1 : opt.threads;
 
   for (int it = 1; it <= opt.max_iters; ++it) {
+    if constexpr (Sink::kEnabled) sink.BeginSweep(it);
     const auto t0 = Clock::now();
     double q_new;
     if (opt.mode == UpdateMode::kGaussSeidel) {
@@ -181,6 +225,10 @@ SmoothResult Smooth(Mesh& mesh, const SmoothOptions& opt, Sink& sink,
   r.quality_after = GlobalQuality(mesh);
   return r;
 }
+
+// Touches per Gauss-Seidel sweep, per thread of the static schedule (see the sequence above):
+// sum over the thread's interior vertices of 2 + deg(v) + 3 * triangles(v).
+std::vector<uint64_t> AccessesPerSweep(const Mesh& m, int threads = 1);
 
 // The timed, uninstrumented smoother.
 inline SmoothResult Smooth(Mesh& mesh, const SmoothOptions& opt) {

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cstdio>
+#include <cstdlib>
 #include <stdexcept>
 
 namespace meshreuse {
@@ -80,6 +81,21 @@ std::string Table::Markdown() const {
   out += "\n";
   for (const auto& r : rows_) out += line(r);
   return out;
+}
+
+std::string Table::RowJson(size_t r) const {
+  std::string s = "{";
+  for (size_t c = 0; c < header_.size(); ++c) {
+    const std::string& v = rows_[r][c];
+    char* end = nullptr;
+    std::strtod(v.c_str(), &end);
+    const bool number = !v.empty() && end && *end == '\0' && v.find(',') == std::string::npos &&
+                        v != "inf" && v != "nan";
+    std::string quoted = "\"";
+    for (char ch : v) quoted += (ch == '"' || ch == '\\') ? std::string("\\") + ch : std::string(1, ch);
+    s += (c ? ", \"" : "\"") + header_[c] + "\": " + (number ? v : quoted + "\"");
+  }
+  return s + "}";
 }
 
 std::string Fixed(double v, int decimals) {

@@ -16,6 +16,8 @@ class Table {
   std::string Aligned() const;  // numbers right-aligned, text left-aligned
   std::string Csv() const;      // RFC 4180 quoting
   std::string Markdown() const;
+  // Row r as a JSON object keyed by the header; numeric-looking cells become numbers.
+  std::string RowJson(size_t r) const;
 
  private:
   std::vector<std::string> header_;

@@ -1,0 +1,95 @@
+// ReuseHistogram and ReuseProfile; see reuse_histogram.h.
+#include "analysis/reuse_histogram.h"
+
+#include <cmath>
+#include <stdexcept>
+
+#include "analysis/stack_distance.h"
+
+namespace meshreuse {
+
+static_assert(StackDistance::kCold == ~uint64_t{0}, "Add() tests for cold by value");
+
+void ReuseHistogram::Grow(uint64_t d) {
+  const uint64_t want = std::max<uint64_t>(d + 1, 2 * counts_.size());
+  counts_.resize(counts_.capacity() > d ? std::min<uint64_t>(want, counts_.capacity()) : want, 0);
+}
+
+void ReuseHistogram::Merge(const ReuseHistogram& o) {
+  if (o.counts_.size() > counts_.size()) counts_.resize(o.counts_.size(), 0);
+  for (size_t d = 0; d < o.counts_.size(); ++d) counts_[d] += o.counts_[d];
+  finite_ += o.finite_;
+  cold_ += o.cold_;
+  sum_ += o.sum_;
+}
+
+double ReuseHistogram::mean() const {
+  return finite_ ? static_cast<double>(static_cast<long double>(sum_) / finite_) : NAN;
+}
+
+uint64_t ReuseHistogram::max() const {
+  for (size_t d = counts_.size(); d > 0; --d)
+    if (counts_[d - 1]) return d - 1;
+  return 0;
+}
+
+uint64_t ReuseHistogram::Quantile(double x) const {
+  if (!(x >= 0.0 && x <= 1.0)) throw std::invalid_argument("a quantile must be between 0 and 1");
+  if (finite_ == 0) throw std::domain_error("no finite reuse distances");
+  // The smallest observed d with cum(d) >= x * finite. x is a double (0.4 is 0.4000000000000000222),
+  // so x * n can exceed the integer it stands for by a few ulps: allow 1e-12 * n, far below one
+  // access for any trace we can hold.
+  const long double need = static_cast<long double>(x) * static_cast<long double>(finite_) -
+                           1e-12L * static_cast<long double>(finite_);
+  uint64_t cum = 0;
+  for (size_t d = 0; d < counts_.size(); ++d) {
+    if (!counts_[d]) continue;
+    cum += counts_[d];
+    if (static_cast<long double>(cum) >= need) return d;
+  }
+  return max();
+}
+
+uint64_t ReuseHistogram::CountAtLeast(uint64_t d) const {
+  uint64_t n = 0;
+  for (size_t i = d; i < counts_.size(); ++i) n += counts_[i];
+  return n;
+}
+
+std::vector<ReuseHistogram::Bin> ReuseHistogram::Binned(uint64_t exact_below) const {
+  std::vector<Bin> bins;
+  const uint64_t top = max();
+  for (uint64_t d = 0; d < exact_below && d <= top; ++d) bins.push_back({d, d, counts_.size() > d ? counts_[d] : 0});
+  for (uint64_t lo = exact_below; lo <= top && finite_; lo *= 2) {
+    const uint64_t hi = 2 * lo - 1;
+    uint64_t c = 0;
+    for (uint64_t d = lo; d <= hi && d < counts_.size(); ++d) c += counts_[d];
+    bins.push_back({lo, hi, c});
+    if (lo == 0) break;
+  }
+  return bins;
+}
+
+ReuseProfile::ReuseProfile(std::vector<uint64_t> lengths, int steps)
+    : lengths_(std::move(lengths)), nsteps_(steps) {
+  for (size_t i = 0; i < lengths_.size(); ++i)
+    for (int s = 0; s < nsteps_; ++s) steps_.push_back({static_cast<int>(i + 1), s});
+}
+
+void ReuseProfile::Add(uint64_t d) {
+  while (iter_ < lengths_.size() && pos_ >= lengths_[iter_]) ++iter_, pos_ = 0;
+  if (iter_ >= lengths_.size()) return;  // past the announced length: not profiled
+  const int s = static_cast<int>(static_cast<long double>(pos_) * nsteps_ / lengths_[iter_]);
+  Step& st = steps_[iter_ * nsteps_ + s];
+  ++st.accesses;
+  if (d == StackDistance::kCold) ++st.cold;
+  else st.sum += d;
+  ++pos_;
+}
+
+double ReuseProfile::Step::mean() const {
+  const uint64_t f = accesses - cold;
+  return f ? static_cast<double>(static_cast<long double>(sum) / f) : NAN;
+}
+
+}  // namespace meshreuse

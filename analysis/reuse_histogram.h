@@ -1,0 +1,79 @@
+// The distribution of reuse distances of one stream: an exact count per distance (the array is as
+// long as the largest distance seen, which is below the number of distinct ids), the cold count,
+// the mean, quantiles, and tail counts for the miss model. Quantile X (DESIGN.md) = the smallest
+// observed d such that at least a fraction X of the finite distances are <= d; X = 0 gives the
+// smallest, X = 1 the largest. The binned view is exact below 64 and log2 bins beyond.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace meshreuse {
+
+class ReuseHistogram {
+ public:
+  void Add(uint64_t d) {  // StackDistance's kCold (all ones) counts as cold
+    if (d == ~uint64_t{0}) {
+      ++cold_;
+      return;
+    }
+    if (d >= counts_.size()) Grow(d);  // within the reserved capacity when Reserve() was right
+    ++counts_[d];
+    ++finite_;
+    sum_ += d;
+  }
+  void Merge(const ReuseHistogram& o);
+  // Distances are below the number of distinct ids: with that number known (vertex ids), one
+  // exact allocation instead of doubling.
+  void Reserve(uint64_t distinct) { counts_.reserve(distinct); }
+
+  uint64_t accesses() const { return finite_ + cold_; }
+  uint64_t finite() const { return finite_; }
+  uint64_t cold() const { return cold_; }
+  double mean() const;  // of the finite distances; NaN when there are none
+  uint64_t max() const;  // largest finite distance (0 when none)
+  // Throws std::invalid_argument for x outside [0, 1] and std::domain_error when there are no
+  // finite distances.
+  uint64_t Quantile(double x) const;
+  uint64_t CountAtLeast(uint64_t d) const;  // finite distances >= d
+  const std::vector<uint64_t>& counts() const { return counts_; }
+
+  struct Bin {
+    uint64_t lo, hi, count;  // distances lo..hi inclusive
+  };
+  std::vector<Bin> Binned(uint64_t exact_below = 64) const;
+
+ private:
+  void Grow(uint64_t d);
+  std::vector<uint64_t> counts_;
+  uint64_t finite_ = 0, cold_ = 0;
+  unsigned __int128 sum_ = 0;  // exact: distances are integers (long double was x87, and slow)
+};
+
+// Mean reuse distance over time: each iteration (sweep) of the stream cut into `steps` equal
+// parts, as the paper's carabiner profile figure. Needs each iteration's length in advance.
+class ReuseProfile {
+ public:
+  ReuseProfile() = default;
+  ReuseProfile(std::vector<uint64_t> iteration_lengths, int steps = 100);
+  void Add(uint64_t d);
+  struct Step {
+    int iteration;  // 1-based
+    int step;       // 0-based
+    uint64_t accesses = 0, cold = 0;
+    unsigned __int128 sum = 0;  // of finite distances, exact
+    double mean() const;
+  };
+  const std::vector<Step>& steps() const { return steps_; }
+  bool enabled() const { return !lengths_.empty(); }
+
+ private:
+  std::vector<uint64_t> lengths_;
+  int nsteps_ = 100;
+  std::vector<Step> steps_;
+  size_t iter_ = 0;
+  uint64_t pos_ = 0;  // within the iteration
+};
+
+}  // namespace meshreuse

@@ -1,0 +1,82 @@
+// Reuse analysis of a whole trace: one StackDistance + ReuseHistogram (+ ReuseProfile) per thread
+// stream and per granularity -- element (vertex id) and line (byte address / line size) -- fed in
+// one pass. Each thread's stream is analysed on its own (private caches, as the paper's per-core
+// L1/L2). AnalysisSink lets the smoother stream into it without a trace file.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "analysis/reuse_histogram.h"
+#include "analysis/stack_distance.h"
+#include "tracer/sink.h"
+
+namespace meshreuse {
+
+enum class Granularity { kElement = 1, kLine = 2, kBoth = 3 };
+Granularity ParseGranularity(const std::string& s);  // element | line | both
+const char* GranularityName(Granularity g);
+
+struct StreamAnalysis {
+  explicit StreamAnalysis(uint64_t dense_limit) : sd(dense_limit) { hist.Reserve(dense_limit); }
+  StackDistance sd;
+  ReuseHistogram hist;
+  ReuseProfile profile;
+  void Add(uint64_t id) {
+    const uint64_t d = sd.Access(id);
+    hist.Add(d);
+    if (profile.enabled()) profile.Add(d);
+  }
+};
+
+struct TraceAnalysisOptions {
+  int threads = 1;
+  Granularity granularity = Granularity::kBoth;
+  uint32_t line_bytes = 64;      // a power of two
+  uint64_t dense_elements = 0;   // element ids below this use direct arrays (0: hash everything)
+  // iteration_lengths[t] = accesses of each iteration in thread t's stream; empty: no profile.
+  std::vector<std::vector<uint64_t>> iteration_lengths;
+  int profile_steps = 100;
+};
+
+class TraceAnalysis {
+ public:
+  explicit TraceAnalysis(const TraceAnalysisOptions& o);
+  void Add(int thread, uint64_t element, uint64_t address) {
+    if (element_[thread]) element_[thread]->Add(element);
+    if (line_[thread]) line_[thread]->Add(address >> line_shift_);
+  }
+  int threads() const { return static_cast<int>(element_.size()); }
+  const StreamAnalysis* element(int t) const { return element_[t].get(); }
+  const StreamAnalysis* line(int t) const { return line_[t].get(); }
+  const TraceAnalysisOptions& options() const { return opt_; }
+
+ private:
+  TraceAnalysisOptions opt_;
+  int line_shift_;
+  std::vector<std::unique_ptr<StreamAnalysis>> element_, line_;
+};
+
+struct AnalysisSink {
+  static constexpr bool kEnabled = true;
+  TraceAnalysis* analysis;
+  void BeginSweep(int) {}
+  void Touch(int thread, AccessKind, int32_t vertex, const void* address) {
+    analysis->Add(thread, static_cast<uint32_t>(vertex), reinterpret_cast<uintptr_t>(address));
+  }
+};
+
+// Other tools' traces: one id or address per record. Text: a decimal or 0x-hex number per line,
+// '#' comments and blank lines skipped ("-" reads stdin). u32 / u64: raw little-endian values.
+// Calls `add(value)` for each; throws InputError naming the file and line (text) or byte offset.
+enum class ExternalFormat { kText, kU32, kU64 };
+ExternalFormat ParseExternalFormat(const std::string& s);
+template <class F>
+void ReadExternalTrace(const std::string& path, ExternalFormat fmt, F&& add);
+uint64_t ExternalTraceLength(const std::string& path, ExternalFormat fmt);  // 0 if unknown (text)
+
+}  // namespace meshreuse
+
+#include "analysis/external_trace_impl.h"

@@ -1,0 +1,338 @@
+// meshreuse trace | analyze: write the smoother's access trace; reuse distances, quantiles,
+// histograms, profiles and modelled misses of a mesh (streamed, no file), a trace file, or another
+// tool's trace (--format text|u32|u64).
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "analysis/cache_model.h"
+#include "analysis/trace_analysis.h"
+#include "cli/common.h"
+#include "cli/options.h"
+#include "core/mesh_io.h"
+#include "core/orderings/registry.h"
+#include "core/smoother.h"
+#include "reports/run_info.h"
+#include "reports/table.h"
+#include "tracer/trace_reader.h"
+#include "tracer/trace_writer.h"
+
+namespace meshreuse::cli {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double Since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+bool EndsWith(const std::string& s, const std::string& x) {
+  return s.size() >= x.size() && s.compare(s.size() - x.size(), x.size(), x) == 0;
+}
+
+bool IsMesh(const std::string& p) {
+  return EndsWith(p, ".node") || EndsWith(p, ".ele") || EndsWith(p, ".msh") ||
+         std::filesystem::exists(p + ".node");
+}
+
+std::string Base(const std::string& p) { return std::filesystem::path(p).filename().string(); }
+
+// Reorders (unless ori) and checks the ordering name first, so a typo fails before any work.
+Mesh Prepare(const std::string& path, const std::string& ordering, uint64_t seed,
+             const Progress& progress) {
+  Mesh m = LoadMesh(path, progress);
+  if (ordering != "ori") {
+    progress.Say("reordering with " + ordering);
+    m = ApplyPermutation(m, ComputeOrdering(ordering, m, seed));
+  }
+  return m;
+}
+
+SmoothOptions TraceSweeps(int iterations, int threads, const std::string& mode) {
+  SmoothOptions o;
+  o.max_iters = iterations;
+  o.tol = -std::numeric_limits<double>::infinity();  // exactly `iterations` sweeps
+  o.threads = threads;
+  try {
+    o.mode = ParseUpdateMode(mode);
+  } catch (const std::invalid_argument& e) {
+    throw po::error(e.what());
+  }
+  return o;
+}
+
+struct Job {
+  std::string input, ordering;
+  int64_t vertices = 0;  // for accesses per vertex per sweep (0: unknown)
+  int iterations = 0;
+  std::unique_ptr<TraceAnalysis> analysis;
+};
+
+std::string Cap(uint64_t c) { return c == kInfiniteCapacity ? "inf" : std::to_string(c); }
+
+}  // namespace
+
+int TraceCommand(const Args& args) {
+  po::options_description desc("options");
+  std::string mesh, ordering = "ori", out, mode = "gauss-seidel";
+  int iterations = 1, threads = 1;
+  uint32_t element_bytes = 66;
+  uint64_t seed = 1;
+  desc.add_options()("mesh", po::value(&mesh)->required(), "input mesh")(
+      "ordering", po::value(&ordering)->default_value("ori"), ("one of: " + OrderingNames()).c_str())(
+      "seed", po::value(&seed)->default_value(1), "seed of randomised orderings")(
+      "iterations,k", po::value(&iterations)->default_value(1), "sweeps to trace")(
+      "threads,t", po::value(&threads)->default_value(1), "streams: the static schedule's threads")(
+      "mode", po::value(&mode)->default_value("gauss-seidel"), "gauss-seidel or jacobi")(
+      "element-bytes", po::value(&element_bytes)->default_value(66), "element size recorded in the header")(
+      "output,o", po::value(&out)->required(), "trace file")("quiet,q", "no progress on stderr");
+  po::positional_options_description pos;
+  pos.add("mesh", 1);
+  po::variables_map vm;
+  if (!ParseOptions(args, "trace MESH [--ordering NAME] [--iterations K] [--threads P] -o FILE",
+                    "Writes every access of K smoothing sweeps (vertex id, byte address, kind, "
+                    "thread) to a binary trace (format in tracer/trace_format.h, 16 bytes per "
+                    "access). The access sequence of one vertex visit is documented in "
+                    "core/smoother.h.",
+                    desc, pos, vm))
+    return 0;
+  if (iterations < 1 || iterations > 100000) throw po::error("--iterations must be 1..100000");
+  if (threads < 1 || threads > 255) throw po::error("--threads must be 1..255");
+  if (!FindOrdering(ordering.substr(0, ordering.find(':'))))
+    throw po::error("unknown ordering '" + ordering + "' (known: " + OrderingNames() + ")");
+  const SmoothOptions so = TraceSweeps(iterations, threads, mode);
+  const Progress progress(vm.count("quiet") > 0);
+  Mesh m = Prepare(mesh, ordering, seed, progress);
+  TraceHeader h;
+  h.threads = static_cast<uint32_t>(threads);
+  h.element_bytes = element_bytes;
+  h.mesh = Base(mesh);
+  h.ordering = ordering;
+  const auto t0 = Clock::now();
+  TraceWriter w(out, h, iterations);
+  progress.Say("tracing " + std::to_string(iterations) + " sweep(s), about " +
+               Grouped(static_cast<long long>(AccessesPerSweep(m)[0] * iterations)) + " accesses");
+  Smooth(m, so, w);
+  w.Close();
+  const uint64_t n = w.records();
+  std::printf("wrote %s: %s accesses (%s per vertex per sweep), %d sweep(s), %d stream(s), %.1f MB, %.2f s\n",
+              out.c_str(), Grouped(static_cast<long long>(n)).c_str(),
+              Fixed(static_cast<double>(n) / m.NumVertices() / iterations, 2).c_str(), iterations,
+              threads, (static_cast<double>(n) * sizeof(TraceRecord)) / 1e6, Since(t0));
+  return 0;
+}
+
+int AnalyzeCommand(const Args& args) {
+  po::options_description desc("options");
+  std::vector<std::string> inputs;
+  std::string orderings = "ori", format, granularity = "both", quantiles = "50,75,90,100",
+              cache = "westmere-ex", mode = "gauss-seidel", hist_csv, prof_csv, out_dir, measured;
+  int iterations = 1, threads = 1;
+  uint32_t element_bytes = 66, line_bytes = 64;
+  uint64_t seed = 1;
+  desc.add_options()("input", po::value(&inputs)->required()->multitoken(),
+                     "mesh(es) (.node/.ele/.msh: the smoother streams into the analyzer), a trace "
+                     "file from `meshreuse trace`, or another tool's trace with --format ('-': stdin)")(
+      "orderings", po::value(&orderings)->default_value("ori"), "for meshes: comma-separated orderings")(
+      "seed", po::value(&seed)->default_value(1), "seed of randomised orderings")(
+      "iterations,k", po::value(&iterations)->default_value(1), "for meshes: sweeps to analyse")(
+      "threads,t", po::value(&threads)->default_value(1), "for meshes: streams (static schedule)")(
+      "mode", po::value(&mode)->default_value("gauss-seidel"), "for meshes: gauss-seidel or jacobi")(
+      "format", po::value(&format), "other tools' traces: text (decimal or 0x-hex per line), u32, u64")(
+      "granularity", po::value(&granularity)->default_value("both"), "element, line or both")(
+      "quantiles", po::value(&quantiles)->default_value("50,75,90,100"), "percentages to report")(
+      "cache", po::value(&cache)->default_value("westmere-ex"), "westmere-ex or L1=32K,L2=256K,L3=24M")(
+      "element-bytes", po::value(&element_bytes)->default_value(66), "element size for the element miss model")(
+      "line-bytes", po::value(&line_bytes)->default_value(64), "cache line size (a power of two)")(
+      "measured-misses", po::value(&measured),
+      "inverse model: L1=N,L2=N,... measured misses -> the capacity (elements or lines) that explains them")(
+      "json", "print JSON")("csv", "print CSV")(
+      "histogram-csv", po::value(&hist_csv), "write the histograms (exact < 64, log2 bins beyond)")(
+      "profile-csv", po::value(&prof_csv), "write the profiles (each sweep in 100 steps)")(
+      "out", po::value(&out_dir), "write analyze.{csv,json}, histogram.csv, profile.csv, run.json")(
+      "quiet,q", "no progress on stderr");
+  po::positional_options_description pos;
+  pos.add("input", -1);
+  po::variables_map vm;
+  if (!ParseOptions(args, "analyze INPUT... [--orderings ori,bfs,rdr] [--iterations K] [--json|--csv]",
+                    "Exact LRU reuse distances (element = vertex id, line = address / line size; "
+                    "each thread's stream on its own): accesses, cold, distinct, mean, quantiles, "
+                    "modelled misses per cache level (fully associative LRU) and the paper's "
+                    "equation-2 cost. Several meshes x --orderings print the paper's Table 2.",
+                    desc, pos, vm))
+    return 0;
+  Granularity gran;
+  ExternalFormat fmt = ExternalFormat::kText;
+  std::vector<CacheLevel> levels, inverse;
+  std::vector<double> qs;
+  try {
+    if (!measured.empty()) inverse = ParseCacheSpec(measured);
+    gran = ParseGranularity(granularity);
+    if (!format.empty()) fmt = ParseExternalFormat(format);
+    levels = ParseCacheSpec(cache);
+    for (const std::string& q : SplitList(quantiles)) {
+      size_t used = 0;
+      const double v = std::stod(q, &used);
+      if (used != q.size() || !(v >= 0 && v <= 100)) throw std::invalid_argument("quantile '" + q + "'");
+      qs.push_back(v / 100);
+    }
+  } catch (const std::invalid_argument& e) {
+    throw po::error(e.what());
+  }
+  if (iterations < 1 || iterations > 100000) throw po::error("--iterations must be 1..100000");
+  if (threads < 1 || threads > 255) throw po::error("--threads must be 1..255");
+  if (line_bytes == 0 || (line_bytes & (line_bytes - 1))) throw po::error("--line-bytes must be a power of two");
+  if (element_bytes == 0) throw po::error("--element-bytes must be positive");
+  const std::vector<std::string> ords = SplitList(orderings);
+  for (const std::string& o : ords)
+    if (!FindOrdering(o.substr(0, o.find(':'))))
+      throw po::error("unknown ordering '" + o + "' (known: " + OrderingNames() + ")");
+  const Progress progress(vm.count("quiet") > 0);
+
+  std::vector<Job> jobs;
+  for (const std::string& in : inputs) {
+    if (format.empty() && in != "-" && IsMesh(in)) {
+      for (const std::string& ord : ords) {
+        Mesh m = Prepare(in, ord, seed, progress);
+        const SmoothOptions so = TraceSweeps(iterations, threads, mode);
+        TraceAnalysisOptions o;
+        o.threads = threads;
+        o.granularity = gran;
+        o.line_bytes = line_bytes;
+        o.dense_elements = static_cast<uint64_t>(m.NumVertices());
+        if (so.mode == UpdateMode::kGaussSeidel)
+          for (uint64_t n : AccessesPerSweep(m, threads)) o.iteration_lengths.push_back(std::vector<uint64_t>(iterations, n));
+        Job j{in, ord, m.NumVertices(), iterations, std::make_unique<TraceAnalysis>(o)};
+        progress.Say("analysing " + std::to_string(iterations) + " sweep(s) of " + in + " in " + ord + " order");
+        const auto t0 = Clock::now();
+        AnalysisSink sink{j.analysis.get()};
+        Smooth(m, so, sink);
+        progress.Say("done in " + Fixed(Since(t0), 2) + " s");
+        jobs.push_back(std::move(j));
+      }
+    } else if (format.empty() && in != "-") {
+      TraceReader r(in);
+      const TraceHeader& h = r.header();
+      TraceAnalysisOptions o;
+      o.threads = static_cast<int>(h.threads);
+      o.granularity = gran;
+      o.line_bytes = line_bytes;
+      // Per-thread sweep lengths for the profile come from a first pass over the thread bytes.
+      {
+        std::vector<std::vector<uint64_t>> len(h.threads, std::vector<uint64_t>(h.iteration_starts.size(), 0));
+        TraceReader pass(in);
+        std::vector<TraceRecord> batch;
+        uint64_t idx = 0;
+        size_t it = 0;
+        uint32_t max_vertex = 0;
+        while (pass.Next(&batch))
+          for (const TraceRecord& rec : batch) {
+            while (it + 1 < h.iteration_starts.size() && idx >= h.iteration_starts[it + 1]) ++it;
+            if (!len.empty() && !h.iteration_starts.empty() && rec.thread < h.threads) ++len[rec.thread][it];
+            max_vertex = std::max(max_vertex, rec.vertex);
+            ++idx;
+          }
+        if (!h.iteration_starts.empty()) o.iteration_lengths = len;
+        o.dense_elements = uint64_t{max_vertex} + 1;
+      }
+      Job j{in, h.ordering.empty() ? "?" : h.ordering, 0, static_cast<int>(h.iteration_starts.size()),
+            std::make_unique<TraceAnalysis>(o)};
+      progress.Say("analysing trace " + in + " (" + Grouped(static_cast<long long>(h.records)) + " accesses)");
+      std::vector<TraceRecord> batch;
+      while (r.Next(&batch))
+        for (const TraceRecord& rec : batch) {
+          if (rec.thread >= h.threads) throw InputError(in, 0, "record with thread " + std::to_string(rec.thread) + " beyond the header's " + std::to_string(h.threads));
+          j.analysis->Add(rec.thread, rec.vertex, rec.address);
+        }
+      jobs.push_back(std::move(j));
+    } else {
+      TraceAnalysisOptions o;
+      o.granularity = gran;
+      o.line_bytes = line_bytes;
+      const uint64_t len = ExternalTraceLength(in, fmt);
+      if (len) o.iteration_lengths = {{len}};
+      Job j{in, "-", 0, len ? 1 : 0, std::make_unique<TraceAnalysis>(o)};
+      progress.Say("analysing " + in + " as " + (format.empty() ? "text" : format));
+      TraceAnalysis* a = j.analysis.get();
+      ReadExternalTrace(in, fmt, [a](uint64_t v) { a->Add(0, v, v); });
+      jobs.push_back(std::move(j));
+    }
+  }
+
+  // One row per input x ordering x thread x granularity.
+  std::vector<std::string> head = {"input", "ordering", "thread", "granularity", "accesses",
+                                   "per_vertex_sweep", "cold", "distinct", "mean"};
+  for (double q : qs) head.push_back("q" + Fixed(100 * q, q * 100 == std::floor(q * 100) ? 0 : 1));
+  for (const CacheLevel& l : levels) head.push_back(l.name + "_misses");
+  if (levels.size() == 3) head.insert(head.end(), {"cost_cycles_low", "cost_cycles_high"});
+  for (const CacheLevel& l : inverse) head.push_back(l.name + "_capacity_for_" + std::to_string(l.bytes));
+  Table t(head);
+  Table hist({"input", "ordering", "thread", "granularity", "lo", "hi", "count"});
+  Table prof({"input", "ordering", "thread", "granularity", "iteration", "step", "accesses", "cold", "mean"});
+  for (const Job& j : jobs)
+    for (int th = 0; th < j.analysis->threads(); ++th)
+      for (int g = 0; g < 2; ++g) {
+        const StreamAnalysis* s = g == 0 ? j.analysis->element(th) : j.analysis->line(th);
+        if (!s) continue;
+        const char* gname = g == 0 ? "element" : "line";
+        const ReuseHistogram& h = s->hist;
+        std::vector<std::string> row = {j.input, j.ordering, std::to_string(th), gname,
+                                        std::to_string(h.accesses()),
+                                        j.vertices && j.iterations ? Fixed(static_cast<double>(h.accesses()) / j.vertices / j.iterations, 2) : "-",
+                                        std::to_string(h.cold()), std::to_string(s->sd.distinct()),
+                                        h.finite() ? Fixed(h.mean(), 1) : "-"};
+        for (double q : qs) row.push_back(h.finite() ? std::to_string(h.Quantile(q)) : "-");
+        const std::vector<LevelMisses> miss = ModelMisses(h, levels, g == 0 ? element_bytes : line_bytes);
+        for (const LevelMisses& m : miss) row.push_back(std::to_string(m.misses));
+        if (levels.size() == 3) {
+          const CostRange c = AdditionalCycles(miss);
+          row.push_back(Fixed(c.low, 0));
+          row.push_back(Fixed(c.high, 0));
+        }
+        for (const CacheLevel& l : inverse) row.push_back(Cap(CapacityForMisses(h, l.bytes)));
+        t.AddRow(row);
+        for (const auto& b : h.Binned(64))
+          hist.AddRow({j.input, j.ordering, std::to_string(th), gname, std::to_string(b.lo),
+                       std::to_string(b.hi), std::to_string(b.count)});
+        for (const auto& st : s->profile.steps())
+          prof.AddRow({j.input, j.ordering, std::to_string(th), gname, std::to_string(st.iteration),
+                       std::to_string(st.step), std::to_string(st.accesses), std::to_string(st.cold),
+                       st.accesses > st.cold ? Fixed(st.mean(), 3) : ""});
+      }
+  if (vm.count("json")) {
+    std::string s = "[";
+    for (size_t r = 0; r < t.Rows(); ++r) s += std::string(r ? ",\n " : "\n ") + t.RowJson(r);
+    std::printf("%s\n]\n", s.c_str());
+  } else if (vm.count("csv")) {
+    std::printf("%s", t.Csv().c_str());
+  } else {
+    std::printf("%s", t.Aligned().c_str());
+    std::printf("(distances in %s; misses: fully associative LRU, %s, elements of %u B, lines of %u B)\n",
+                "distinct elements or lines", cache.c_str(), element_bytes, line_bytes);
+  }
+  if (!hist_csv.empty()) WriteText(hist_csv, hist.Csv());
+  if (!prof_csv.empty()) WriteText(prof_csv, prof.Csv());
+  if (!out_dir.empty()) {
+    std::filesystem::create_directories(out_dir);
+    WriteText(out_dir + "/analyze.csv", t.Csv());
+    std::string s = "[";
+    for (size_t r = 0; r < t.Rows(); ++r) s += std::string(r ? ",\n " : "\n ") + t.RowJson(r);
+    WriteText(out_dir + "/analyze.json", s + "\n]\n");
+    WriteText(out_dir + "/histogram.csv", hist.Csv());
+    WriteText(out_dir + "/profile.csv", prof.Csv());
+    WriteText(out_dir + "/run.json",
+              "{\n" + RunJsonHeader("meshreuse analyze") + "  \"config\": {\"orderings\": " +
+                  JsonString(orderings) + ", \"seed\": " + std::to_string(seed) +
+                  ", \"iterations\": " + std::to_string(iterations) + ", \"threads\": " +
+                  std::to_string(threads) + ", \"granularity\": " + JsonString(granularity) +
+                  ", \"cache\": " + JsonString(cache) + ", \"element_bytes\": " +
+                  std::to_string(element_bytes) + ", \"line_bytes\": " + std::to_string(line_bytes) +
+                  "}\n}\n");
+    progress.Say("wrote " + out_dir + "/{analyze.csv,analyze.json,histogram.csv,profile.csv,run.json}");
+  }
+  return 0;
+}
+
+}  // namespace meshreuse::cli

@@ -1,0 +1,247 @@
+// The analyzer against a naive O(N*M) reference on many random traces, the edge cases, compaction
+// mid-trace, memory per distinct id, and the histogram's quantiles.
+#include "analysis/stack_distance.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <algorithm>
+#include <cstdint>
+#include <unordered_map>
+
+#include "analysis/reuse_histogram.h"
+#include "core/synthetic.h"
+
+namespace meshreuse {
+namespace {
+
+constexpr uint64_t kCold = StackDistance::kCold;
+
+// For each access, walk back to the previous access of the same id, counting distinct ids (ids
+// renumbered 0..M-1 first, so a stamp array marks the ones seen).
+std::vector<uint64_t> Naive(const std::vector<uint64_t>& trace) {
+  std::vector<uint64_t> sorted = trace;
+  std::sort(sorted.begin(), sorted.end());
+  sorted.erase(std::unique(sorted.begin(), sorted.end()), sorted.end());
+  std::vector<size_t> id(trace.size());
+  for (size_t i = 0; i < trace.size(); ++i)
+    id[i] = std::lower_bound(sorted.begin(), sorted.end(), trace[i]) - sorted.begin();
+  std::vector<size_t> stamp(sorted.size(), SIZE_MAX);
+  std::vector<uint64_t> out;
+  for (size_t i = 0; i < trace.size(); ++i) {
+    uint64_t d = kCold, seen = 0;
+    for (size_t j = i; j-- > 0;) {
+      if (id[j] == id[i]) {
+        d = seen;
+        break;
+      }
+      if (stamp[id[j]] != i) stamp[id[j]] = i, ++seen;
+    }
+    out.push_back(d);
+  }
+  return out;
+}
+
+std::vector<uint64_t> Distances(const std::vector<uint64_t>& trace, uint64_t dense, uint32_t min_cap,
+                          uint64_t* compactions = nullptr) {
+  StackDistance sd(dense, min_cap);
+  std::vector<uint64_t> out;
+  for (uint64_t id : trace) out.push_back(sd.Access(id));
+  if (compactions) *compactions = sd.compactions();
+  return out;
+}
+
+std::vector<uint64_t> RandomTrace(SplitMix64& rng, size_t n, uint64_t alphabet, int kind) {
+  std::vector<uint64_t> t(n);
+  uint64_t window = 0;
+  for (size_t i = 0; i < n; ++i) {
+    switch (kind) {
+      case 0: t[i] = rng.Below(alphabet); break;                         // uniform
+      case 1: {                                                          // skewed (Zipf-like)
+        const double u = rng.Uniform();
+        t[i] = static_cast<uint64_t>(std::pow(u, 3.0) * alphabet);
+        break;
+      }
+      case 2: t[i] = i % alphabet; break;                                // cyclic scan
+      default:                                                           // sliding window
+        if (rng.Below(8) == 0) ++window;
+        t[i] = (window + rng.Below(16)) % alphabet;
+    }
+  }
+  return t;
+}
+
+TEST(StackDistance, MatchesNaiveOnManyRandomTraces) {
+  SplitMix64 rng(2024);
+  int compacted = 0;
+  for (int trial = 0; trial < 120; ++trial) {
+    const size_t n = static_cast<size_t>(rng.Below(3000));
+    const uint64_t alphabet = 1 + rng.Below(trial % 3 == 0 ? 8 : 600);
+    const int kind = trial % 4;
+    std::vector<uint64_t> trace = RandomTrace(rng, n, alphabet, kind);
+    const std::vector<uint64_t> expect = Naive(trace);
+    uint64_t compactions = 0;
+    SCOPED_TRACE("trial " + std::to_string(trial) + " n " + std::to_string(n) + " alphabet " +
+                 std::to_string(alphabet) + " kind " + std::to_string(kind));
+    ASSERT_EQ(Distances(trace, 1u << 20, 128, &compactions), expect) << "dense ids";
+    compacted += compactions > 0;
+    // The same trace with ids far above the dense range: the hashed path.
+    for (uint64_t& id : trace) id += uint64_t{1} << 40;
+    ASSERT_EQ(Distances(trace, 1u << 20, 128), expect) << "hashed ids";
+    // A mix: half the ids dense, half hashed.
+    for (size_t i = 0; i < trace.size(); ++i)
+      if (trace[i] % 2) trace[i] -= uint64_t{1} << 40;
+    ASSERT_EQ(Distances(trace, 1u << 20, 256), expect) << "mixed ids";
+  }
+  EXPECT_GT(compacted, 50) << "compaction should happen in many trials";
+}
+
+TEST(StackDistance, LongReusesGoThroughTheTree) {
+  // Reuse gaps of thousands of positions (beyond the popcount shortcut), with compaction.
+  SplitMix64 rng(7);
+  std::vector<uint64_t> t = RandomTrace(rng, 12000, 2500, 0);  // gaps of ~2500, many > 3072
+  uint64_t compactions = 0;
+  EXPECT_EQ(Distances(t, 1u << 20, 4096, &compactions), Naive(t));
+  EXPECT_GT(compactions, 0u);
+}
+
+// A second, independent reference fast enough for long traces: the textbook Fenwick tree over
+// every time position.
+std::vector<uint64_t> Textbook(const std::vector<uint64_t>& trace) {
+  const size_t n = trace.size();
+  std::vector<int64_t> tree(n + 1, 0);
+  auto add = [&](size_t i, int64_t d) {
+    for (++i; i <= n; i += i & (~i + 1)) tree[i] += d;
+  };
+  auto prefix = [&](size_t i) {
+    int64_t s = 0;
+    for (; i > 0; i -= i & (~i + 1)) s += tree[i];
+    return s;
+  };
+  std::unordered_map<uint64_t, size_t> last;
+  std::vector<uint64_t> out;
+  for (size_t t = 0; t < n; ++t) {
+    auto f = last.find(trace[t]);
+    if (f == last.end()) {
+      out.push_back(kCold);
+      last.emplace(trace[t], t);
+    } else {
+      out.push_back(static_cast<uint64_t>(prefix(t) - prefix(f->second + 1)));
+      add(f->second, -1);
+      f->second = t;
+    }
+    add(t, 1);
+  }
+  return out;
+}
+
+TEST(StackDistance, VeryLongReusesUseBlockAndSuperblockCounts) {
+  // Reuse gaps of up to ~10^6 positions: beyond a superblock (262,144 positions).
+  SplitMix64 rng(11);
+  for (uint64_t alphabet : {20000, 150000, 400000}) {
+    std::vector<uint64_t> t = RandomTrace(rng, 1200000, alphabet, alphabet == 150000 ? 1 : 0);
+    uint64_t compactions = 0;
+    ASSERT_EQ(Distances(t, 1u << 20, 1u << 16, &compactions), Textbook(t)) << "alphabet " << alphabet;
+    EXPECT_GT(compactions, 0u);
+  }
+  // A cyclic scan of 300,000 ids: every warm distance is 299,999, the gap 300,000 positions.
+  StackDistance sd(300000);
+  for (int lap = 0; lap < 3; ++lap)
+    for (uint64_t id = 0; id < 300000; ++id) ASSERT_EQ(sd.Access(id), lap == 0 ? kCold : 299999u);
+}
+
+TEST(StackDistance, EdgeCases) {
+  EXPECT_TRUE(Distances({}, 100, 128).empty());
+  EXPECT_EQ(Distances({5}, 100, 128), (std::vector<uint64_t>{kCold}));
+  EXPECT_EQ(Distances({3, 3, 3, 3}, 100, 128), (std::vector<uint64_t>{kCold, 0, 0, 0}));     // all equal
+  EXPECT_EQ(Distances({1, 2, 3, 4}, 100, 128), (std::vector<uint64_t>(4, kCold)));           // all distinct
+  EXPECT_EQ(Distances({0, 7, 0, 7, 0}, 100, 128), (std::vector<uint64_t>{kCold, kCold, 1, 1, 1}));  // id 0
+  EXPECT_EQ(Distances({0, 0}, 0, 128), (std::vector<uint64_t>{kCold, 0}));  // id 0 hashed (address 0)
+  EXPECT_EQ(Distances({1, 2, 3, 1, 2, 3}, 100, 128),
+            (std::vector<uint64_t>{kCold, kCold, kCold, 2, 2, 2}));
+}
+
+TEST(StackDistance, CompactionMidTraceKeepsDistancesExact) {
+  // A cyclic scan over 300 ids starting from a 128-position window: compactions every few laps
+  // (the window then holds 4x the live ids), and every warm distance is exactly 299.
+  StackDistance sd(1000, 128);
+  for (int lap = 0; lap < 20; ++lap)
+    for (uint64_t id = 0; id < 300; ++id) ASSERT_EQ(sd.Access(id), lap == 0 ? kCold : 299u);
+  EXPECT_GE(sd.compactions(), 5u);
+  EXPECT_EQ(sd.distinct(), 300u);
+  EXPECT_EQ(sd.accesses(), 6000u);
+}
+
+TEST(StackDistance, MemoryFollowsDistinctIdsNotTraceLength) {
+  SplitMix64 rng(3);
+  const uint64_t distinct = 100000;
+  StackDistance sd(distinct);
+  for (uint64_t id = 0; id < distinct; ++id) sd.Access(id);
+  for (int i = 0; i < 1000000; ++i) sd.Access(rng.Below(distinct));
+  const size_t after_1m = sd.MemoryBytes();
+  for (int i = 0; i < 9000000; ++i) sd.Access(rng.Below(distinct));
+  EXPECT_EQ(sd.MemoryBytes(), after_1m) << "memory grew with the trace";
+  EXPECT_LE(static_cast<double>(after_1m) / distinct, 32.0);
+}
+
+TEST(ReuseHistogram, QuantilesMeanAndTails) {
+  ReuseHistogram h;
+  for (uint64_t d : {0, 0, 1, 5, 9}) h.Add(d);
+  h.Add(kCold);
+  EXPECT_EQ(h.accesses(), 6u);
+  EXPECT_EQ(h.cold(), 1u);
+  EXPECT_EQ(h.finite(), 5u);
+  EXPECT_DOUBLE_EQ(h.mean(), 3.0);
+  EXPECT_EQ(h.Quantile(0.0), 0u);   // the smallest
+  EXPECT_EQ(h.Quantile(0.4), 0u);   // 2 of 5 <= 0
+  EXPECT_EQ(h.Quantile(0.41), 1u);
+  EXPECT_EQ(h.Quantile(0.5), 1u);
+  EXPECT_EQ(h.Quantile(0.8), 5u);
+  EXPECT_EQ(h.Quantile(0.81), 9u);
+  EXPECT_EQ(h.Quantile(1.0), 9u);   // the largest
+  EXPECT_EQ(h.max(), 9u);
+  EXPECT_EQ(h.CountAtLeast(1), 3u);
+  EXPECT_EQ(h.CountAtLeast(10), 0u);
+  EXPECT_THROW(h.Quantile(1.5), std::invalid_argument);
+  EXPECT_THROW(ReuseHistogram().Quantile(0.5), std::domain_error);
+  ReuseHistogram only_small;
+  only_small.Add(4);
+  EXPECT_EQ(only_small.Quantile(0.0), 4u);  // X = 0 is the smallest observed, not 0
+}
+
+TEST(ReuseHistogram, BinsAreExactThenLog2) {
+  ReuseHistogram h;
+  for (uint64_t d : {0, 1, 1, 3, 4, 7, 8, 100}) h.Add(d);
+  const auto bins = h.Binned(4);
+  ASSERT_EQ(bins.size(), 9u);  // 0 1 2 3 | 4-7 8-15 16-31 32-63 64-127
+  EXPECT_EQ(bins[1].count, 2u);
+  EXPECT_EQ(bins[4].lo, 4u);
+  EXPECT_EQ(bins[4].hi, 7u);
+  EXPECT_EQ(bins[4].count, 2u);
+  EXPECT_EQ(bins[5].count, 1u);
+  EXPECT_EQ(bins[8].count, 1u);
+  uint64_t total = 0;
+  for (const auto& b : bins) total += b.count;
+  EXPECT_EQ(total, h.finite());
+}
+
+TEST(ReuseProfile, MeanPerStep) {
+  ReuseProfile p({10, 4}, 2);  // two iterations, two steps each
+  for (uint64_t d : {1, 1, 1, 1, 1, 3, 3, 3, 3, 3}) p.Add(d);
+  p.Add(kCold);
+  p.Add(2);
+  p.Add(4);
+  p.Add(4);
+  p.Add(9);  // beyond the announced length: ignored
+  const auto& s = p.steps();
+  ASSERT_EQ(s.size(), 4u);
+  EXPECT_DOUBLE_EQ(s[0].mean(), 1.0);
+  EXPECT_DOUBLE_EQ(s[1].mean(), 3.0);
+  EXPECT_EQ(s[2].cold, 1u);
+  EXPECT_DOUBLE_EQ(s[2].mean(), 2.0);
+  EXPECT_DOUBLE_EQ(s[3].mean(), 4.0);
+  EXPECT_EQ(s[3].iteration, 2);
+}
+
+}  // namespace
+}  // namespace meshreuse

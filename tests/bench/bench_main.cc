@@ -1,0 +1,244 @@
+// Benchmarks (Google Benchmark; not unit tests, never run by ctest). Run:
+//   build/release/tests/bench/meshreuse_bench --mesh=out/meshes/paper/carabiner.node
+// They measure, in one run so the ratios are side by side:
+//   Analyzer/<ordering>      StackDistance + histogram over the first-sweep element trace
+//   TextbookFenwick/<ord.>   the textbook analyzer (Fenwick tree over every time position, hash
+//                            map of last accesses) on the same trace, for the ratio
+//   Sweep/plain, Sweep/null  a hand-written Gauss-Seidel sweep with no sink at all, and
+//                            Smooth<NullSink>'s sweep: NullSink must cost nothing
+//   Sweep/analyze            one sweep streamed into the element analyzer (streaming cost)
+//   StreamingRatio           untraced and streamed sweeps alternated: their ratio
+//   Memory/<sweeps>          analyzer bytes per distinct element after 1 and 100 sweeps
+#include <benchmark/benchmark.h>
+
+#include <cstring>
+#include <filesystem>
+#include <map>
+#include <unordered_map>
+
+#include "analysis/reuse_histogram.h"
+#include "analysis/stack_distance.h"
+#include "analysis/trace_analysis.h"
+#include "core/mesh_io.h"
+#include "core/orderings/registry.h"
+#include "core/quality.h"
+#include "core/smoother.h"
+#include "core/synthetic.h"
+
+namespace meshreuse {
+namespace {
+
+std::string g_mesh = "out/meshes/paper/carabiner.node";
+
+const Mesh& BaseMesh() {
+  static const Mesh m = [] {
+    if (std::filesystem::exists(g_mesh)) return ReadMesh(g_mesh);
+    SyntheticOptions o;  // about 330k vertices when no mesh file is there
+    o.nx = 640, o.ny = 510, o.holes = 3, o.seed = 1;
+    return BuildMesh(MakeSyntheticMesh(o));
+  }();
+  return m;
+}
+
+const Mesh& Ordered(const std::string& ordering) {
+  static std::map<std::string, Mesh> cache;
+  auto it = cache.find(ordering);
+  if (it == cache.end())
+    it = cache.emplace(ordering, ApplyPermutation(BaseMesh(), ComputeOrdering(ordering, BaseMesh(), 1))).first;
+  return it->second;
+}
+
+struct ElementTrace {
+  static constexpr bool kEnabled = true;
+  std::vector<uint32_t> ids;
+  void BeginSweep(int) {}
+  void Touch(int, AccessKind, int32_t v, const void*) { ids.push_back(static_cast<uint32_t>(v)); }
+};
+
+const std::vector<uint32_t>& FirstSweepTrace(const std::string& ordering) {
+  static std::map<std::string, std::vector<uint32_t>> cache;
+  auto it = cache.find(ordering);
+  if (it == cache.end()) {
+    Mesh m = Ordered(ordering).Clone();
+    SmoothOptions o;
+    o.max_iters = 1;
+    ElementTrace t;
+    Smooth(m, o, t);
+    it = cache.emplace(ordering, std::move(t.ids)).first;
+  }
+  return it->second;
+}
+
+void Analyzer(benchmark::State& state, std::string ordering) {
+  const std::vector<uint32_t>& trace = FirstSweepTrace(ordering);
+  for (auto _ : state) {
+    StackDistance sd(BaseMesh().NumVertices());
+    ReuseHistogram h;
+    h.Reserve(BaseMesh().NumVertices());
+    for (uint32_t id : trace) h.Add(sd.Access(id));
+    benchmark::DoNotOptimize(h.finite());
+  }
+  state.SetItemsProcessed(state.iterations() * static_cast<int64_t>(trace.size()));
+}
+
+// The textbook method: a Fenwick tree over every time position of the trace.
+void TextbookFenwick(benchmark::State& state, std::string ordering) {
+  const std::vector<uint32_t>& trace = FirstSweepTrace(ordering);
+  for (auto _ : state) {
+    const size_t n = trace.size();
+    std::vector<int32_t> tree(n + 1, 0);
+    std::unordered_map<uint32_t, size_t> last;
+    auto add = [&](size_t i, int32_t d) {
+      for (++i; i <= n; i += i & (~i + 1)) tree[i] += d;
+    };
+    auto prefix = [&](size_t i) {  // sum of [0, i)
+      int64_t s = 0;
+      for (; i > 0; i -= i & (~i + 1)) s += tree[i];
+      return s;
+    };
+    ReuseHistogram h;
+    for (size_t t = 0; t < n; ++t) {
+      auto f = last.find(trace[t]);
+      if (f == last.end()) {
+        h.Add(StackDistance::kCold);
+        last.emplace(trace[t], t);
+      } else {
+        h.Add(static_cast<uint64_t>(prefix(t) - prefix(f->second + 1)));
+        add(f->second, -1);
+        f->second = t;
+      }
+      add(t, 1);
+    }
+    benchmark::DoNotOptimize(h.finite());
+  }
+  state.SetItemsProcessed(state.iterations() * static_cast<int64_t>(FirstSweepTrace(ordering).size()));
+}
+
+// A Gauss-Seidel sweep written without any sink: what Smooth<NullSink> must match.
+double PlainSweep(Mesh& m, std::vector<double>& tq, const std::vector<double>& w) {
+  double* xy = m.xy.data();
+  double dq = 0;
+  for (int32_t v : m.interior) {
+    double sx = 0, sy = 0;
+    for (const int32_t* p = m.v2v.RowBegin(v); p != m.v2v.RowEnd(v); ++p)
+      sx += xy[2 * int64_t{*p}], sy += xy[2 * int64_t{*p} + 1];
+    const double inv = 1.0 / static_cast<double>(m.v2v.RowSize(v));
+    xy[2 * int64_t{v}] = sx * inv;
+    xy[2 * int64_t{v} + 1] = sy * inv;
+    for (const int32_t* p = m.v2t.RowBegin(v); p != m.v2t.RowEnd(v); ++p) {
+      const double q = TriangleQuality(xy, &m.tri[3 * int64_t{*p}]);
+      dq += w[*p] * (q - tq[*p]);
+      tq[*p] = q;
+    }
+  }
+  return dq;
+}
+
+void SweepPlain(benchmark::State& state) {
+  Mesh m = BaseMesh().Clone();
+  std::vector<double> tq = TriangleQualities(m);
+  const std::vector<double> w = GlobalQualityWeights(m);
+  for (auto _ : state) benchmark::DoNotOptimize(PlainSweep(m, tq, w));
+}
+
+void SweepNull(benchmark::State& state) {
+  Mesh m = BaseMesh().Clone();
+  SmoothOptions o;
+  o.max_iters = 1;
+  o.tol = -1;
+  double secs = 0;
+  for (auto _ : state) {
+    const SmoothResult r = Smooth(m, o);  // one sweep; its own timer excludes the set-up
+    secs = r.sweeps[0].seconds;
+    state.SetIterationTime(secs);
+  }
+}
+
+void SweepAnalyze(benchmark::State& state) {
+  Mesh m = BaseMesh().Clone();
+  SmoothOptions o;
+  o.max_iters = 1;
+  o.tol = -1;
+  for (auto _ : state) {
+    TraceAnalysisOptions ao;
+    ao.granularity = Granularity::kElement;
+    ao.dense_elements = static_cast<uint64_t>(m.NumVertices());
+    TraceAnalysis a(ao);
+    AnalysisSink sink{&a};
+    const SmoothResult r = Smooth(m, o, sink);
+    state.SetIterationTime(r.sweeps[0].seconds);
+  }
+}
+
+// The streaming cost as a ratio measured side by side: each iteration times one untraced sweep
+// and one sweep streamed into the element analyzer, on the same mesh state.
+void StreamingRatio(benchmark::State& state) {
+  SmoothOptions o;
+  o.max_iters = 1;
+  o.tol = -1;
+  double plain = 0, traced = 0;
+  for (auto _ : state) {
+    Mesh a = BaseMesh().Clone(), b = BaseMesh().Clone();
+    plain += Smooth(a, o).sweeps[0].seconds;
+    TraceAnalysisOptions ao;
+    ao.granularity = Granularity::kElement;
+    ao.dense_elements = static_cast<uint64_t>(b.NumVertices());
+    TraceAnalysis an(ao);
+    AnalysisSink sink{&an};
+    traced += Smooth(b, o, sink).sweeps[0].seconds;
+  }
+  state.counters["plain_ms"] = 1e3 * plain / static_cast<double>(state.iterations());
+  state.counters["streamed_ms"] = 1e3 * traced / static_cast<double>(state.iterations());
+  state.counters["ratio"] = traced / plain;
+}
+
+void Memory(benchmark::State& state) {
+  const int sweeps = static_cast<int>(state.range(0));
+  for (auto _ : state) {
+    Mesh m = BaseMesh().Clone();
+    SmoothOptions o;
+    o.max_iters = sweeps;
+    o.tol = -1;
+    TraceAnalysisOptions ao;
+    ao.granularity = Granularity::kElement;
+    ao.dense_elements = static_cast<uint64_t>(m.NumVertices());
+    TraceAnalysis a(ao);
+    AnalysisSink sink{&a};
+    Smooth(m, o, sink);
+    const StreamAnalysis* s = a.element(0);
+    state.counters["accesses"] = static_cast<double>(s->sd.accesses());
+    state.counters["bytes_per_distinct"] =
+        static_cast<double>(s->sd.MemoryBytes()) / static_cast<double>(s->sd.distinct());
+    state.counters["with_histogram"] =
+        static_cast<double>(s->sd.MemoryBytes() + s->hist.counts().capacity() * 8) /
+        static_cast<double>(s->sd.distinct());
+  }
+}
+
+}  // namespace
+}  // namespace meshreuse
+
+int main(int argc, char** argv) {
+  std::vector<char*> rest;
+  for (int i = 0; i < argc; ++i) {
+    if (std::strncmp(argv[i], "--mesh=", 7) == 0) meshreuse::g_mesh = argv[i] + 7;
+    else rest.push_back(argv[i]);
+  }
+  int n = static_cast<int>(rest.size());
+  using namespace meshreuse;
+  for (const char* o : {"ori", "random", "bfs", "rdr"})
+    benchmark::RegisterBenchmark(("Analyzer/" + std::string(o)).c_str(), Analyzer, std::string(o))
+        ->Unit(benchmark::kMillisecond);
+  for (const char* o : {"ori", "rdr"})
+    benchmark::RegisterBenchmark(("TextbookFenwick/" + std::string(o)).c_str(), TextbookFenwick, std::string(o))
+        ->Unit(benchmark::kMillisecond);
+  benchmark::RegisterBenchmark("Sweep/plain", SweepPlain)->Unit(benchmark::kMillisecond);
+  benchmark::RegisterBenchmark("Sweep/null", SweepNull)->UseManualTime()->Unit(benchmark::kMillisecond);
+  benchmark::RegisterBenchmark("Sweep/analyze", SweepAnalyze)->UseManualTime()->Unit(benchmark::kMillisecond);
+  benchmark::RegisterBenchmark("StreamingRatio", StreamingRatio)->Iterations(5)->Unit(benchmark::kMillisecond);
+  benchmark::RegisterBenchmark("Memory", Memory)->Arg(1)->Arg(100)->Iterations(1)->Unit(benchmark::kSecond);
+  benchmark::Initialize(&n, rest.data());
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}

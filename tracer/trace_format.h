@@ -1,0 +1,49 @@
+// The binary trace format (DESIGN.md "Files the toolkit writes"). Little-endian throughout.
+//   offset  size  field
+//   0       8     magic "MRTRACE\0"
+//   8       4     version (1)
+//   12      4     header bytes (records start here)
+//   16      4     granularity: 3 = both (each record has a vertex id and a byte address)
+//   20      4     element bytes (the paper's node size, 66 by default; for the element miss model)
+//   24      4     threads (streams)
+//   28      4     iterations I (sweeps recorded)
+//   32      4     boundary slots S >= I (room reserved when the file was opened)
+//   36      4     zero
+//   40      8     record count
+//   48      8*S   iteration boundaries: index of the first record of sweep 1..I, then zeros
+//   ...     2+n   mesh name (u16 length, bytes), then 2+n ordering name; zero padding to 16
+// then `record count` records of 16 bytes: u64 address, u32 vertex, u8 kind (AccessKind),
+// u8 thread, u16 zero. Records of all threads are in one sequence (a traced run is serial: thread
+// 0's part of a sweep, then thread 1's ...); each thread's stream is its records in file order.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace meshreuse {
+
+inline constexpr char kTraceMagic[8] = {'M', 'R', 'T', 'R', 'A', 'C', 'E', '\0'};
+inline constexpr uint32_t kTraceVersion = 1;
+inline constexpr uint32_t kGranularityBoth = 3;
+
+struct TraceRecord {
+  uint64_t address;
+  uint32_t vertex;
+  uint8_t kind;
+  uint8_t thread;
+  uint16_t zero;
+};
+static_assert(sizeof(TraceRecord) == 16, "records are 16 bytes on disk");
+
+struct TraceHeader {
+  uint32_t version = kTraceVersion;
+  uint32_t granularity = kGranularityBoth;
+  uint32_t element_bytes = 66;
+  uint32_t threads = 1;
+  uint64_t records = 0;
+  std::vector<uint64_t> iteration_starts;  // one per sweep
+  std::string mesh, ordering;
+};
+
+}  // namespace meshreuse

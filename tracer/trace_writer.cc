@@ -1,0 +1,89 @@
+// TraceWriter; see trace_writer.h.
+#include "tracer/trace_writer.h"
+
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+
+#include "core/error.h"
+
+namespace meshreuse {
+
+namespace {
+template <class T>
+void Put(std::vector<char>& b, T v) {  // little-endian on the x86/ARM hosts we build for
+  const char* p = reinterpret_cast<const char*>(&v);
+  b.insert(b.end(), p, p + sizeof(T));
+}
+void PutString(std::vector<char>& b, const std::string& s) {
+  const uint16_t n = static_cast<uint16_t>(std::min<size_t>(s.size(), 65535));
+  Put(b, n);
+  b.insert(b.end(), s.begin(), s.begin() + n);
+}
+}  // namespace
+
+std::vector<char> EncodeTraceHeader(const TraceHeader& h, int reserve_iterations) {
+  std::vector<char> b(kTraceMagic, kTraceMagic + 8);
+  Put(b, h.version);
+  Put(b, uint32_t{0});  // header bytes, patched below
+  Put(b, h.granularity);
+  Put(b, h.element_bytes);
+  Put(b, h.threads);
+  Put(b, static_cast<uint32_t>(h.iteration_starts.size()));
+  Put(b, static_cast<uint32_t>(reserve_iterations));
+  Put(b, uint32_t{0});
+  Put(b, h.records);
+  for (int i = 0; i < reserve_iterations; ++i)
+    Put(b, i < static_cast<int>(h.iteration_starts.size()) ? h.iteration_starts[i] : uint64_t{0});
+  PutString(b, h.mesh);
+  PutString(b, h.ordering);
+  while (b.size() % 16) b.push_back(0);  // records start 16-byte aligned
+  const uint32_t n = static_cast<uint32_t>(b.size());
+  std::memcpy(b.data() + 12, &n, 4);
+  return b;
+}
+
+TraceWriter::TraceWriter(std::string path, TraceHeader header, int max_iterations)
+    : path_(std::move(path)), header_(std::move(header)), max_iterations_(max_iterations) {
+  if (static_cast<int>(header_.iteration_starts.size()) > max_iterations_)
+    max_iterations_ = static_cast<int>(header_.iteration_starts.size());
+  tmp_ = path_ + ".tmp." + std::to_string(::getpid());
+  f_ = std::fopen(tmp_.c_str(), "wb");
+  if (!f_) throw InputError(path_, 0, std::string("cannot write: ") + std::strerror(errno));
+  const std::vector<char> h = EncodeTraceHeader(header_, max_iterations_);
+  std::fwrite(h.data(), 1, h.size(), f_);
+  buf_.reserve((1 << 20) / sizeof(TraceRecord));
+}
+
+TraceWriter::~TraceWriter() {
+  if (f_) std::fclose(f_);
+  if (!closed_) std::remove(tmp_.c_str());
+}
+
+void TraceWriter::BeginSweep(int sweep) {
+  if (sweep > max_iterations_) return;  // only the sweeps the header has room for are marked
+  header_.iteration_starts.push_back(records());
+}
+
+void TraceWriter::Flush() {
+  if (!buf_.empty() && std::fwrite(buf_.data(), sizeof(TraceRecord), buf_.size(), f_) != buf_.size())
+    throw InputError(path_, 0, "write failed (disk full?)");
+  records_ += buf_.size();
+  buf_.clear();
+}
+
+void TraceWriter::Close() {
+  Flush();
+  header_.records = records_;
+  const std::vector<char> h = EncodeTraceHeader(header_, max_iterations_);
+  const bool ok = std::fseek(f_, 0, SEEK_SET) == 0 && std::fwrite(h.data(), 1, h.size(), f_) == h.size();
+  const bool closed_ok = std::fclose(f_) == 0;
+  f_ = nullptr;
+  if (!ok || !closed_ok) throw InputError(path_, 0, "write failed (disk full?)");
+  if (std::rename(tmp_.c_str(), path_.c_str()) != 0)
+    throw InputError(path_, 0, std::string("cannot rename into place: ") + std::strerror(errno));
+  closed_ = true;
+}
+
+}  // namespace meshreuse

@@ -1,0 +1,51 @@
+// TraceWriter: a sink that writes the binary trace (trace_format.h). Records are buffered and
+// written in 1 MiB blocks to PATH.tmp.PID; Close() writes the final header and renames the file
+// into place, so an interrupted run leaves no trace file behind. The header reserves room for
+// `max_iterations` boundaries (the sweep count is known only at the end).
+#pragma once
+
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "tracer/sink.h"
+#include "tracer/trace_format.h"
+
+namespace meshreuse {
+
+class TraceWriter {
+ public:
+  static constexpr bool kEnabled = true;
+
+  TraceWriter(std::string path, TraceHeader header, int max_iterations);
+  ~TraceWriter();  // removes the temporary file unless Close() succeeded
+  TraceWriter(const TraceWriter&) = delete;
+  TraceWriter& operator=(const TraceWriter&) = delete;
+
+  void BeginSweep(int sweep);
+  void Touch(int thread, AccessKind kind, int32_t vertex, const void* address) {
+    if (buf_.size() == buf_.capacity()) Flush();
+    buf_.push_back(TraceRecord{reinterpret_cast<uintptr_t>(address), static_cast<uint32_t>(vertex),
+                               static_cast<uint8_t>(kind), static_cast<uint8_t>(thread), 0});
+  }
+  void Close();  // throws InputError on an I/O failure
+  uint64_t records() const { return records_ + buf_.size(); }
+
+ private:
+  void Flush();
+  std::vector<char> HeaderBytes() const;
+
+  std::string path_, tmp_;
+  TraceHeader header_;
+  int max_iterations_;
+  std::FILE* f_ = nullptr;
+  std::vector<TraceRecord> buf_;
+  uint64_t records_ = 0;
+  bool closed_ = false;
+};
+
+// Encodes/decodes the header; Decode throws InputError(path, 0, ...) for a wrong magic, an unknown
+// version or a header that does not fit.
+std::vector<char> EncodeTraceHeader(const TraceHeader& h, int reserve_iterations);
+
+}  // namespace meshreuse
