@@ -24,7 +24,8 @@ std::vector<CacheLevel> ParseCacheSpec(const std::string& spec) {
       size.pop_back();
     }
     if (size.empty() || size.find_first_not_of("0123456789") != std::string::npos)
-      throw std::invalid_argument("cache size '" + part.substr(eq + 1) + "' is not a number with K, M or G");
+      throw std::invalid_argument("cache size '" + part.substr(eq + 1) +
+                                  "' is not a number with K, M or G");
     const uint64_t bytes = std::stoull(size) * mult;
     if (bytes == 0) throw std::invalid_argument("cache level '" + part + "' has size 0");
     levels.push_back({part.substr(0, eq), bytes});
@@ -39,8 +40,9 @@ std::vector<LevelMisses> ModelMisses(const ReuseHistogram& h, const std::vector<
   for (const CacheLevel& l : levels) {
     const uint64_t cap = l.bytes / unit_bytes;
     const uint64_t misses = h.cold() + h.CountAtLeast(cap);
-    out.push_back({l.name, cap, misses,
-                   h.accesses() ? static_cast<double>(misses) / static_cast<double>(h.accesses()) : 0.0});
+    out.push_back(
+        {l.name, cap, misses,
+         h.accesses() ? static_cast<double>(misses) / static_cast<double>(h.accesses()) : 0.0});
   }
   return out;
 }

@@ -29,7 +29,7 @@ struct LevelMisses {
   std::string name;
   uint64_t capacity;  // in elements (or lines)
   uint64_t misses;
-  double rate;        // misses / accesses
+  double rate;  // misses / accesses
 };
 
 // unit_bytes: the element size (66 by default) or the line size (64).

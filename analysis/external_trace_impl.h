@@ -41,8 +41,10 @@ void ReadExternalTrace(const std::string& path, ExternalFormat fmt, F&& add) {
       offset += whole;
       carry = n - whole;
       if (carry && std::feof(f))
-        throw InputError(path, 0, "truncated: " + std::to_string(carry) + " stray bytes after " +
-                                      std::to_string(offset / w) + " values of " + std::to_string(w) + " bytes");
+        throw InputError(path, 0,
+                         "truncated: " + std::to_string(carry) + " stray bytes after " +
+                             std::to_string(offset / w) + " values of " + std::to_string(w) +
+                             " bytes");
       std::memmove(buf.data(), buf.data() + whole, carry);
       if (std::feof(f)) break;
     }
@@ -62,7 +64,8 @@ void ReadExternalTrace(const std::string& path, ExternalFormat fmt, F&& add) {
     if (e - b > 2 && b[0] == '0' && (b[1] == 'x' || b[1] == 'X')) b += 2, base = 16;
     const auto r = std::from_chars(b, e, v, base);
     if (r.ec != std::errc() || r.ptr != e)
-      throw InputError(path, line, "expected a decimal or 0x-hex id, found '" + std::string(b, e) + "'");
+      throw InputError(path, line,
+                       "expected a decimal or 0x-hex id, found '" + std::string(b, e) + "'");
     add(v);
   };
   size_t n;

@@ -36,9 +36,9 @@ uint64_t ReuseHistogram::max() const {
 uint64_t ReuseHistogram::Quantile(double x) const {
   if (!(x >= 0.0 && x <= 1.0)) throw std::invalid_argument("a quantile must be between 0 and 1");
   if (finite_ == 0) throw std::domain_error("no finite reuse distances");
-  // The smallest observed d with cum(d) >= x * finite. x is a double (0.4 is 0.4000000000000000222),
-  // so x * n can exceed the integer it stands for by a few ulps: allow 1e-12 * n, far below one
-  // access for any trace we can hold.
+  // The smallest observed d with cum(d) >= x * finite. x is a double (0.4 is
+  // 0.4000000000000000222), so x * n can exceed the integer it stands for by a few ulps: allow
+  // 1e-12 * n, far below one access for any trace we can hold.
   const long double need = static_cast<long double>(x) * static_cast<long double>(finite_) -
                            1e-12L * static_cast<long double>(finite_);
   uint64_t cum = 0;
@@ -59,7 +59,8 @@ uint64_t ReuseHistogram::CountAtLeast(uint64_t d) const {
 std::vector<ReuseHistogram::Bin> ReuseHistogram::Binned(uint64_t exact_below) const {
   std::vector<Bin> bins;
   const uint64_t top = max();
-  for (uint64_t d = 0; d < exact_below && d <= top; ++d) bins.push_back({d, d, counts_.size() > d ? counts_[d] : 0});
+  for (uint64_t d = 0; d < exact_below && d <= top; ++d)
+    bins.push_back({d, d, counts_.size() > d ? counts_[d] : 0});
   for (uint64_t lo = exact_below; lo <= top && finite_; lo *= 2) {
     const uint64_t hi = 2 * lo - 1;
     uint64_t c = 0;
@@ -82,8 +83,10 @@ void ReuseProfile::Add(uint64_t d) {
   const int s = static_cast<int>(static_cast<long double>(pos_) * nsteps_ / lengths_[iter_]);
   Step& st = steps_[iter_ * nsteps_ + s];
   ++st.accesses;
-  if (d == StackDistance::kCold) ++st.cold;
-  else st.sum += d;
+  if (d == StackDistance::kCold)
+    ++st.cold;
+  else
+    st.sum += d;
   ++pos_;
 }
 

@@ -31,7 +31,7 @@ class ReuseHistogram {
   uint64_t accesses() const { return finite_ + cold_; }
   uint64_t finite() const { return finite_; }
   uint64_t cold() const { return cold_; }
-  double mean() const;  // of the finite distances; NaN when there are none
+  double mean() const;   // of the finite distances; NaN when there are none
   uint64_t max() const;  // largest finite distance (0 when none)
   // Throws std::invalid_argument for x outside [0, 1] and std::domain_error when there are no
   // finite distances.

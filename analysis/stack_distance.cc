@@ -39,7 +39,9 @@ size_t StackDistance::MemoryBytes() const {
 uint32_t& StackDistance::LastOfSlow(uint64_t id, uint32_t* key) {
   if (id < dense_limit_) {
     if (id >= dense_last_.size())
-      dense_last_.resize(std::max<uint64_t>(id + 1, std::min<uint64_t>(dense_limit_, 2 * dense_last_.size())), kNone);
+      dense_last_.resize(
+          std::max<uint64_t>(id + 1, std::min<uint64_t>(dense_limit_, 2 * dense_last_.size())),
+          kNone);
     *key = static_cast<uint32_t>(id);
     return dense_last_[id];
   }
@@ -140,8 +142,10 @@ void StackDistance::Compact() {
     for (uint64_t x = bits_[w]; x; x &= x - 1) {
       const uint32_t key = owner_[w * 64 + __builtin_ctzll(x)];
       owner[k] = key;
-      if (key & kHashedBit) hashed_last_[key & ~kHashedBit] = k;
-      else dense_last_[key] = k;
+      if (key & kHashedBit)
+        hashed_last_[key & ~kHashedBit] = k;
+      else
+        dense_last_[key] = k;
       ++k;
     }
   owner_.swap(owner);

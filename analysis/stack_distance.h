@@ -10,7 +10,8 @@
 // slower end to end on carabiner). When the time axis fills, live markers are renumbered
 // compactly (compaction) into a window 4x the live count, so memory follows the number of
 // distinct ids, never the trace length: about 21 bytes per distinct id for dense ids (below
-// `dense_limit`, a direct array), plus a hash table entry for others. Counters are 64-bit; positions inside the window are 32-bit.
+// `dense_limit`, a direct array), plus a hash table entry for others. Counters are 64-bit;
+// positions inside the window are 32-bit.
 #pragma once
 
 #include <cstddef>
@@ -25,7 +26,8 @@ class StackDistance {
   static constexpr uint64_t kCold = std::numeric_limits<uint64_t>::max();
 
   // Ids below dense_limit (at most 2^31) live in a direct array; larger ones in a hash table.
-  explicit StackDistance(uint64_t dense_limit = uint64_t{1} << 26, uint32_t min_capacity = 1u << 16);
+  explicit StackDistance(uint64_t dense_limit = uint64_t{1} << 26,
+                         uint32_t min_capacity = 1u << 16);
   StackDistance(StackDistance&&) = default;
   StackDistance& operator=(StackDistance&&) = default;
   StackDistance(const StackDistance&) = delete;
@@ -50,7 +52,7 @@ class StackDistance {
     return LastOfSlow(id, key);
   }
   uint32_t& LastOfSlow(uint64_t id, uint32_t* key);
-  uint64_t CountLive(uint32_t a, uint32_t b) const;  // live markers in [a, b)
+  uint64_t CountLive(uint32_t a, uint32_t b) const;     // live markers in [a, b)
   uint64_t CountWords(uint32_t w, uint32_t we) const;   // in whole words [w, we)
   uint64_t CountBlocks(uint32_t b, uint32_t be) const;  // in whole blocks [b, be)
   void Compact();
@@ -63,12 +65,12 @@ class StackDistance {
   std::vector<uint32_t> slots_;
   uint64_t hash_used_ = 0;
 
-  std::vector<uint64_t> bits_;    // live markers
-  std::vector<uint32_t> owner_;   // key (id or kHashedBit | slot) of the marker at each position
-  std::vector<uint32_t> block_;   // live markers per 64 words
-  std::vector<uint32_t> super_;   // live markers per 64 blocks
-  uint32_t capacity_ = 0;         // positions in the window
-  uint32_t t_ = 0;                // next position
+  std::vector<uint64_t> bits_;   // live markers
+  std::vector<uint32_t> owner_;  // key (id or kHashedBit | slot) of the marker at each position
+  std::vector<uint32_t> block_;  // live markers per 64 words
+  std::vector<uint32_t> super_;  // live markers per 64 blocks
+  uint32_t capacity_ = 0;        // positions in the window
+  uint32_t t_ = 0;               // next position
   uint64_t accesses_ = 0, distinct_ = 0, compactions_ = 0;
 };
 

@@ -38,8 +38,8 @@ TraceAnalysis::TraceAnalysis(const TraceAnalysisOptions& o) : opt_(o) {
     throw std::invalid_argument("the line size must be a power of two");
   line_shift_ = __builtin_ctz(o.line_bytes);
   for (int t = 0; t < o.threads; ++t) {
-    const bool prof = static_cast<size_t>(t) < o.iteration_lengths.size() &&
-                      !o.iteration_lengths[t].empty();
+    const bool prof =
+        static_cast<size_t>(t) < o.iteration_lengths.size() && !o.iteration_lengths[t].empty();
     std::unique_ptr<StreamAnalysis> e, l;
     if (static_cast<int>(o.granularity) & static_cast<int>(Granularity::kElement)) {
       e = std::make_unique<StreamAnalysis>(o.dense_elements);

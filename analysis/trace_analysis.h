@@ -34,8 +34,8 @@ struct StreamAnalysis {
 struct TraceAnalysisOptions {
   int threads = 1;
   Granularity granularity = Granularity::kBoth;
-  uint32_t line_bytes = 64;      // a power of two
-  uint64_t dense_elements = 0;   // element ids below this use direct arrays (0: hash everything)
+  uint32_t line_bytes = 64;     // a power of two
+  uint64_t dense_elements = 0;  // element ids below this use direct arrays (0: hash everything)
   // iteration_lengths[t] = accesses of each iteration in thread t's stream; empty: no profile.
   std::vector<std::vector<uint64_t>> iteration_lengths;
   int profile_steps = 100;

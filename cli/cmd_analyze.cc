@@ -26,7 +26,9 @@ namespace meshreuse::cli {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-double Since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+double Since(Clock::time_point t0) {
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
 
 bool EndsWith(const std::string& s, const std::string& x) {
   return s.size() >= x.size() && s.compare(s.size() - x.size(), x.size(), x) == 0;
@@ -81,13 +83,15 @@ int TraceCommand(const Args& args) {
   uint32_t element_bytes = 66;
   uint64_t seed = 1;
   desc.add_options()("mesh", po::value(&mesh)->required(), "input mesh")(
-      "ordering", po::value(&ordering)->default_value("ori"), ("one of: " + OrderingNames()).c_str())(
-      "seed", po::value(&seed)->default_value(1), "seed of randomised orderings")(
+      "ordering", po::value(&ordering)->default_value("ori"),
+      ("one of: " + OrderingNames()).c_str())("seed", po::value(&seed)->default_value(1),
+                                              "seed of randomised orderings")(
       "iterations,k", po::value(&iterations)->default_value(1), "sweeps to trace")(
       "threads,t", po::value(&threads)->default_value(1), "streams: the static schedule's threads")(
       "mode", po::value(&mode)->default_value("gauss-seidel"), "gauss-seidel or jacobi")(
-      "element-bytes", po::value(&element_bytes)->default_value(66), "element size recorded in the header")(
-      "output,o", po::value(&out)->required(), "trace file")("quiet,q", "no progress on stderr");
+      "element-bytes", po::value(&element_bytes)->default_value(66),
+      "element size recorded in the header")("output,o", po::value(&out)->required(), "trace file")(
+      "quiet,q", "no progress on stderr");
   po::positional_options_description pos;
   pos.add("mesh", 1);
   po::variables_map vm;
@@ -117,10 +121,12 @@ int TraceCommand(const Args& args) {
   Smooth(m, so, w);
   w.Close();
   const uint64_t n = w.records();
-  std::printf("wrote %s: %s accesses (%s per vertex per sweep), %d sweep(s), %d stream(s), %.1f MB, %.2f s\n",
-              out.c_str(), Grouped(static_cast<long long>(n)).c_str(),
-              Fixed(static_cast<double>(n) / m.NumVertices() / iterations, 2).c_str(), iterations,
-              threads, (static_cast<double>(n) * sizeof(TraceRecord)) / 1e6, Since(t0));
+  std::printf(
+      "wrote %s: %s accesses (%s per vertex per sweep), %d sweep(s), %d stream(s), %.1f MB, %.2f "
+      "s\n",
+      out.c_str(), Grouped(static_cast<long long>(n)).c_str(),
+      Fixed(static_cast<double>(n) / m.NumVertices() / iterations, 2).c_str(), iterations, threads,
+      (static_cast<double>(n) * sizeof(TraceRecord)) / 1e6, Since(t0));
   return 0;
 }
 
@@ -132,23 +138,29 @@ int AnalyzeCommand(const Args& args) {
   int iterations = 1, threads = 1;
   uint32_t element_bytes = 66, line_bytes = 64;
   uint64_t seed = 1;
-  desc.add_options()("input", po::value(&inputs)->required()->multitoken(),
-                     "mesh(es) (.node/.ele/.msh: the smoother streams into the analyzer), a trace "
-                     "file from `meshreuse trace`, or another tool's trace with --format ('-': stdin)")(
-      "orderings", po::value(&orderings)->default_value("ori"), "for meshes: comma-separated orderings")(
-      "seed", po::value(&seed)->default_value(1), "seed of randomised orderings")(
+  desc.add_options()(
+      "input", po::value(&inputs)->required()->multitoken(),
+      "mesh(es) (.node/.ele/.msh: the smoother streams into the analyzer), a trace "
+      "file from `meshreuse trace`, or another tool's trace with --format ('-': stdin)")(
+      "orderings", po::value(&orderings)->default_value("ori"),
+      "for meshes: comma-separated orderings")("seed", po::value(&seed)->default_value(1),
+                                               "seed of randomised orderings")(
       "iterations,k", po::value(&iterations)->default_value(1), "for meshes: sweeps to analyse")(
       "threads,t", po::value(&threads)->default_value(1), "for meshes: streams (static schedule)")(
-      "mode", po::value(&mode)->default_value("gauss-seidel"), "for meshes: gauss-seidel or jacobi")(
-      "format", po::value(&format), "other tools' traces: text (decimal or 0x-hex per line), u32, u64")(
+      "mode", po::value(&mode)->default_value("gauss-seidel"),
+      "for meshes: gauss-seidel or jacobi")(
+      "format", po::value(&format),
+      "other tools' traces: text (decimal or 0x-hex per line), u32, u64")(
       "granularity", po::value(&granularity)->default_value("both"), "element, line or both")(
       "quantiles", po::value(&quantiles)->default_value("50,75,90,100"), "percentages to report")(
-      "cache", po::value(&cache)->default_value("westmere-ex"), "westmere-ex or L1=32K,L2=256K,L3=24M")(
-      "element-bytes", po::value(&element_bytes)->default_value(66), "element size for the element miss model")(
+      "cache", po::value(&cache)->default_value("westmere-ex"),
+      "westmere-ex or L1=32K,L2=256K,L3=24M")("element-bytes",
+                                              po::value(&element_bytes)->default_value(66),
+                                              "element size for the element miss model")(
       "line-bytes", po::value(&line_bytes)->default_value(64), "cache line size (a power of two)")(
       "measured-misses", po::value(&measured),
-      "inverse model: L1=N,L2=N,... measured misses -> the capacity (elements or lines) that explains them")(
-      "json", "print JSON")("csv", "print CSV")(
+      "inverse model: L1=N,L2=N,... measured misses -> the capacity (elements or lines) that "
+      "explains them")("json", "print JSON")("csv", "print CSV")(
       "histogram-csv", po::value(&hist_csv), "write the histograms (exact < 64, log2 bins beyond)")(
       "profile-csv", po::value(&prof_csv), "write the profiles (each sweep in 100 steps)")(
       "out", po::value(&out_dir), "write analyze.{csv,json}, histogram.csv, profile.csv, run.json")(
@@ -156,7 +168,8 @@ int AnalyzeCommand(const Args& args) {
   po::positional_options_description pos;
   pos.add("input", -1);
   po::variables_map vm;
-  if (!ParseOptions(args, "analyze INPUT... [--orderings ori,bfs,rdr] [--iterations K] [--json|--csv]",
+  if (!ParseOptions(args,
+                    "analyze INPUT... [--orderings ori,bfs,rdr] [--iterations K] [--json|--csv]",
                     "Exact LRU reuse distances (element = vertex id, line = address / line size; "
                     "each thread's stream on its own): accesses, cold, distinct, mean, quantiles, "
                     "modelled misses per cache level (fully associative LRU) and the paper's "
@@ -175,7 +188,8 @@ int AnalyzeCommand(const Args& args) {
     for (const std::string& q : SplitList(quantiles)) {
       size_t used = 0;
       const double v = std::stod(q, &used);
-      if (used != q.size() || !(v >= 0 && v <= 100)) throw std::invalid_argument("quantile '" + q + "'");
+      if (used != q.size() || !(v >= 0 && v <= 100))
+        throw std::invalid_argument("quantile '" + q + "'");
       qs.push_back(v / 100);
     }
   } catch (const std::invalid_argument& e) {
@@ -183,7 +197,8 @@ int AnalyzeCommand(const Args& args) {
   }
   if (iterations < 1 || iterations > 100000) throw po::error("--iterations must be 1..100000");
   if (threads < 1 || threads > 255) throw po::error("--threads must be 1..255");
-  if (line_bytes == 0 || (line_bytes & (line_bytes - 1))) throw po::error("--line-bytes must be a power of two");
+  if (line_bytes == 0 || (line_bytes & (line_bytes - 1)))
+    throw po::error("--line-bytes must be a power of two");
   if (element_bytes == 0) throw po::error("--element-bytes must be positive");
   const std::vector<std::string> ords = SplitList(orderings);
   for (const std::string& o : ords)
@@ -203,9 +218,11 @@ int AnalyzeCommand(const Args& args) {
         o.line_bytes = line_bytes;
         o.dense_elements = static_cast<uint64_t>(m.NumVertices());
         if (so.mode == UpdateMode::kGaussSeidel)
-          for (uint64_t n : AccessesPerSweep(m, threads)) o.iteration_lengths.push_back(std::vector<uint64_t>(iterations, n));
+          for (uint64_t n : AccessesPerSweep(m, threads))
+            o.iteration_lengths.push_back(std::vector<uint64_t>(iterations, n));
         Job j{in, ord, m.NumVertices(), iterations, std::make_unique<TraceAnalysis>(o)};
-        progress.Say("analysing " + std::to_string(iterations) + " sweep(s) of " + in + " in " + ord + " order");
+        progress.Say("analysing " + std::to_string(iterations) + " sweep(s) of " + in + " in " +
+                     ord + " order");
         const auto t0 = Clock::now();
         AnalysisSink sink{j.analysis.get()};
         Smooth(m, so, sink);
@@ -221,7 +238,8 @@ int AnalyzeCommand(const Args& args) {
       o.line_bytes = line_bytes;
       // Per-thread sweep lengths for the profile come from a first pass over the thread bytes.
       {
-        std::vector<std::vector<uint64_t>> len(h.threads, std::vector<uint64_t>(h.iteration_starts.size(), 0));
+        std::vector<std::vector<uint64_t>> len(h.threads,
+                                               std::vector<uint64_t>(h.iteration_starts.size(), 0));
         TraceReader pass(in);
         std::vector<TraceRecord> batch;
         uint64_t idx = 0;
@@ -230,20 +248,26 @@ int AnalyzeCommand(const Args& args) {
         while (pass.Next(&batch))
           for (const TraceRecord& rec : batch) {
             while (it + 1 < h.iteration_starts.size() && idx >= h.iteration_starts[it + 1]) ++it;
-            if (!len.empty() && !h.iteration_starts.empty() && rec.thread < h.threads) ++len[rec.thread][it];
+            if (!len.empty() && !h.iteration_starts.empty() && rec.thread < h.threads)
+              ++len[rec.thread][it];
             max_vertex = std::max(max_vertex, rec.vertex);
             ++idx;
           }
         if (!h.iteration_starts.empty()) o.iteration_lengths = len;
-        o.dense_elements = uint64_t{max_vertex} + 1;
+        o.dense_elements = h.records ? uint64_t{max_vertex} + 1 : 0;
       }
-      Job j{in, h.ordering.empty() ? "?" : h.ordering, 0, static_cast<int>(h.iteration_starts.size()),
-            std::make_unique<TraceAnalysis>(o)};
-      progress.Say("analysing trace " + in + " (" + Grouped(static_cast<long long>(h.records)) + " accesses)");
+      // The vertex count is not in the header; the largest vertex id + 1 stands for it.
+      Job j{in, h.ordering.empty() ? "?" : h.ordering, static_cast<int64_t>(o.dense_elements),
+            static_cast<int>(h.iteration_starts.size()), std::make_unique<TraceAnalysis>(o)};
+      progress.Say("analysing trace " + in + " (" + Grouped(static_cast<long long>(h.records)) +
+                   " accesses)");
       std::vector<TraceRecord> batch;
       while (r.Next(&batch))
         for (const TraceRecord& rec : batch) {
-          if (rec.thread >= h.threads) throw InputError(in, 0, "record with thread " + std::to_string(rec.thread) + " beyond the header's " + std::to_string(h.threads));
+          if (rec.thread >= h.threads)
+            throw InputError(in, 0,
+                             "record with thread " + std::to_string(rec.thread) +
+                                 " beyond the header's " + std::to_string(h.threads));
           j.analysis->Add(rec.thread, rec.vertex, rec.address);
         }
       jobs.push_back(std::move(j));
@@ -262,15 +286,18 @@ int AnalyzeCommand(const Args& args) {
   }
 
   // One row per input x ordering x thread x granularity.
-  std::vector<std::string> head = {"input", "ordering", "thread", "granularity", "accesses",
-                                   "per_vertex_sweep", "cold", "distinct", "mean"};
+  std::vector<std::string> head = {"input",       "ordering", "thread",
+                                   "granularity", "accesses", "per_vertex_sweep",
+                                   "cold",        "distinct", "mean"};
   for (double q : qs) head.push_back("q" + Fixed(100 * q, q * 100 == std::floor(q * 100) ? 0 : 1));
   for (const CacheLevel& l : levels) head.push_back(l.name + "_misses");
   if (levels.size() == 3) head.insert(head.end(), {"cost_cycles_low", "cost_cycles_high"});
-  for (const CacheLevel& l : inverse) head.push_back(l.name + "_capacity_for_" + std::to_string(l.bytes));
+  for (const CacheLevel& l : inverse)
+    head.push_back(l.name + "_capacity_for_" + std::to_string(l.bytes));
   Table t(head);
   Table hist({"input", "ordering", "thread", "granularity", "lo", "hi", "count"});
-  Table prof({"input", "ordering", "thread", "granularity", "iteration", "step", "accesses", "cold", "mean"});
+  Table prof({"input", "ordering", "thread", "granularity", "iteration", "step", "accesses", "cold",
+              "mean"});
   for (const Job& j : jobs)
     for (int th = 0; th < j.analysis->threads(); ++th)
       for (int g = 0; g < 2; ++g) {
@@ -278,13 +305,21 @@ int AnalyzeCommand(const Args& args) {
         if (!s) continue;
         const char* gname = g == 0 ? "element" : "line";
         const ReuseHistogram& h = s->hist;
-        std::vector<std::string> row = {j.input, j.ordering, std::to_string(th), gname,
-                                        std::to_string(h.accesses()),
-                                        j.vertices && j.iterations ? Fixed(static_cast<double>(h.accesses()) / j.vertices / j.iterations, 2) : "-",
-                                        std::to_string(h.cold()), std::to_string(s->sd.distinct()),
-                                        h.finite() ? Fixed(h.mean(), 1) : "-"};
+        std::vector<std::string> row = {
+            j.input,
+            j.ordering,
+            std::to_string(th),
+            gname,
+            std::to_string(h.accesses()),
+            j.vertices && j.iterations
+                ? Fixed(static_cast<double>(h.accesses()) / j.vertices / j.iterations, 2)
+                : "-",
+            std::to_string(h.cold()),
+            std::to_string(s->sd.distinct()),
+            h.finite() ? Fixed(h.mean(), 1) : "-"};
         for (double q : qs) row.push_back(h.finite() ? std::to_string(h.Quantile(q)) : "-");
-        const std::vector<LevelMisses> miss = ModelMisses(h, levels, g == 0 ? element_bytes : line_bytes);
+        const std::vector<LevelMisses> miss =
+            ModelMisses(h, levels, g == 0 ? element_bytes : line_bytes);
         for (const LevelMisses& m : miss) row.push_back(std::to_string(m.misses));
         if (levels.size() == 3) {
           const CostRange c = AdditionalCycles(miss);
@@ -298,8 +333,8 @@ int AnalyzeCommand(const Args& args) {
                        std::to_string(b.hi), std::to_string(b.count)});
         for (const auto& st : s->profile.steps())
           prof.AddRow({j.input, j.ordering, std::to_string(th), gname, std::to_string(st.iteration),
-                       std::to_string(st.step), std::to_string(st.accesses), std::to_string(st.cold),
-                       st.accesses > st.cold ? Fixed(st.mean(), 3) : ""});
+                       std::to_string(st.step), std::to_string(st.accesses),
+                       std::to_string(st.cold), st.accesses > st.cold ? Fixed(st.mean(), 3) : ""});
       }
   if (vm.count("json")) {
     std::string s = "[";
@@ -309,8 +344,9 @@ int AnalyzeCommand(const Args& args) {
     std::printf("%s", t.Csv().c_str());
   } else {
     std::printf("%s", t.Aligned().c_str());
-    std::printf("(distances in %s; misses: fully associative LRU, %s, elements of %u B, lines of %u B)\n",
-                "distinct elements or lines", cache.c_str(), element_bytes, line_bytes);
+    std::printf(
+        "(distances in %s; misses: fully associative LRU, %s, elements of %u B, lines of %u B)\n",
+        "distinct elements or lines", cache.c_str(), element_bytes, line_bytes);
   }
   if (!hist_csv.empty()) WriteText(hist_csv, hist.Csv());
   if (!prof_csv.empty()) WriteText(prof_csv, prof.Csv());
@@ -327,10 +363,11 @@ int AnalyzeCommand(const Args& args) {
                   JsonString(orderings) + ", \"seed\": " + std::to_string(seed) +
                   ", \"iterations\": " + std::to_string(iterations) + ", \"threads\": " +
                   std::to_string(threads) + ", \"granularity\": " + JsonString(granularity) +
-                  ", \"cache\": " + JsonString(cache) + ", \"element_bytes\": " +
-                  std::to_string(element_bytes) + ", \"line_bytes\": " + std::to_string(line_bytes) +
-                  "}\n}\n");
-    progress.Say("wrote " + out_dir + "/{analyze.csv,analyze.json,histogram.csv,profile.csv,run.json}");
+                  ", \"cache\": " + JsonString(cache) +
+                  ", \"element_bytes\": " + std::to_string(element_bytes) +
+                  ", \"line_bytes\": " + std::to_string(line_bytes) + "}\n}\n");
+    progress.Say("wrote " + out_dir +
+                 "/{analyze.csv,analyze.json,histogram.csv,profile.csv,run.json}");
   }
   return 0;
 }

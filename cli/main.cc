@@ -30,7 +30,8 @@ const Command kCommands[] = {
     {"smooth", "Laplacian smoothing, per-sweep quality and time", SmoothCommand},
     {"compare", "time the smoother under several orderings and thread counts", CompareCommand},
     {"trace", "write the smoother's access trace to a binary file", TraceCommand},
-    {"analyze", "reuse distances, quantiles, histograms, profiles and modelled misses", AnalyzeCommand},
+    {"analyze", "reuse distances, quantiles, histograms, profiles and modelled misses",
+     AnalyzeCommand},
 };
 
 std::vector<std::string> g_argv;

@@ -129,7 +129,8 @@ Mesh BuildMesh(RawMesh raw, BuildReport* report) {
     for (int32_t& c : raw.tri) c = new_id[c];
     std::vector<double>().swap(raw.xy);
   } else {
-    m.xy = std::move(raw.xy);
+    m.xy.assign(raw.xy.begin(), raw.xy.end());
+    std::vector<double>().swap(raw.xy);
   }
   m.tri = std::move(raw.tri);
   m.v2t = BuildV2T(nv, m.tri);

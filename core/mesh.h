@@ -11,11 +11,13 @@
 #include <string>
 #include <vector>
 
+#include "core/aligned.h"
+
 namespace meshreuse {
 
 // Compressed rows: row r is idx[off[r] .. off[r+1]). Offsets are 64-bit, entries 32-bit ids.
 struct Csr {
-  std::vector<int64_t> off;
+  AlignedVector<int64_t> off;  // 64-byte aligned: traced (see aligned.h)
   std::vector<int32_t> idx;
 
   int64_t RowSize(int32_t r) const { return off[r + 1] - off[r]; }
@@ -49,7 +51,7 @@ class Mesh {
   int32_t NumTriangles() const { return static_cast<int32_t>(tri.size() / 3); }
   int32_t NumBoundary() const { return NumVertices() - static_cast<int32_t>(interior.size()); }
 
-  std::vector<double> xy;
+  AlignedVector<double> xy;  // 64-byte aligned: traced (see aligned.h)
   std::vector<int32_t> tri;
   std::vector<uint8_t> boundary;  // 1 on the topological boundary
   Csr v2v;                        // distinct neighbours, increasing id

@@ -144,7 +144,7 @@ double GaussSeidelSweep(const Arrays& a, const std::vector<int32_t>& interior, d
 
 // Jacobi: new positions from the old buffer into `next`, swap, then all triangle qualities anew.
 template <class Sink>
-double JacobiSweep(Mesh& m, std::vector<double>& next, double* tq, const double* w, int threads,
+double JacobiSweep(Mesh& m, AlignedVector<double>& next, double* tq, const double* w, int threads,
                    Sink& sink) {
   const Arrays a{m.xy.data(),      m.v2v.off.data(), m.v2v.idx.data(),
                  m.v2t.off.data(), m.v2t.idx.data(), m.tri.data()};
@@ -195,7 +195,7 @@ SmoothResult Smooth(Mesh& mesh, const SmoothOptions& opt, Sink& sink,
   const std::vector<double> w = GlobalQualityWeights(mesh);
   double q = 0.0;
   for (size_t t = 0; t < tq.size(); ++t) q += w[t] * tq[t];
-  std::vector<double> next;
+  AlignedVector<double> next;
   if (opt.mode == UpdateMode::kJacobi) next = mesh.xy;
   const int threads = opt.threads < 1 ? 1 : opt.threads;
 

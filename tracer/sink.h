@@ -59,14 +59,19 @@ struct RecordingSink {
   std::vector<Touched> touches;
   std::vector<size_t> sweep_starts;  // index into touches where each sweep begins
   void BeginSweep(int) { sweep_starts.push_back(touches.size()); }
-  void Touch(int thread, AccessKind k, int32_t v, const void* a) { touches.push_back({thread, k, v, a}); }
+  void Touch(int thread, AccessKind k, int32_t v, const void* a) {
+    touches.push_back({thread, k, v, a});
+  }
 };
 
 inline const char* AccessKindName(AccessKind k) {
   switch (k) {
-    case AccessKind::kAdjacency: return "adjacency";
-    case AccessKind::kCoordRead: return "coord-read";
-    case AccessKind::kCoordWrite: return "coord-write";
+    case AccessKind::kAdjacency:
+      return "adjacency";
+    case AccessKind::kCoordRead:
+      return "coord-read";
+    case AccessKind::kCoordWrite:
+      return "coord-write";
   }
   return "?";
 }

@@ -48,13 +48,15 @@ TraceReader::TraceReader(std::string path) : path_(std::move(path)) {
   std::vector<char> fixed(48);
   const size_t got = std::fread(fixed.data(), 1, fixed.size(), f_);
   if (got < 8 || std::memcmp(fixed.data(), kTraceMagic, 8) != 0)
-    throw InputError(path_, 0, "not a meshreuse trace (wrong magic; for other traces use --format)");
+    throw InputError(path_, 0,
+                     "not a meshreuse trace (wrong magic; for other traces use --format)");
   if (got < fixed.size()) throw InputError(path_, 0, "truncated trace header");
   Cursor c{fixed, 8, path_};
   header_.version = c.Get<uint32_t>();
   if (header_.version != kTraceVersion)
-    throw InputError(path_, 0, "unknown trace version " + std::to_string(header_.version) +
-                                   " (this reader knows version " + std::to_string(kTraceVersion) + ")");
+    throw InputError(path_, 0,
+                     "unknown trace version " + std::to_string(header_.version) +
+                         " (this reader knows version " + std::to_string(kTraceVersion) + ")");
   const uint32_t header_bytes = c.Get<uint32_t>();
   header_.granularity = c.Get<uint32_t>();
   header_.element_bytes = c.Get<uint32_t>();

@@ -67,7 +67,8 @@ void TraceWriter::BeginSweep(int sweep) {
 }
 
 void TraceWriter::Flush() {
-  if (!buf_.empty() && std::fwrite(buf_.data(), sizeof(TraceRecord), buf_.size(), f_) != buf_.size())
+  if (!buf_.empty() &&
+      std::fwrite(buf_.data(), sizeof(TraceRecord), buf_.size(), f_) != buf_.size())
     throw InputError(path_, 0, "write failed (disk full?)");
   records_ += buf_.size();
   buf_.clear();
@@ -77,7 +78,8 @@ void TraceWriter::Close() {
   Flush();
   header_.records = records_;
   const std::vector<char> h = EncodeTraceHeader(header_, max_iterations_);
-  const bool ok = std::fseek(f_, 0, SEEK_SET) == 0 && std::fwrite(h.data(), 1, h.size(), f_) == h.size();
+  const bool ok =
+      std::fseek(f_, 0, SEEK_SET) == 0 && std::fwrite(h.data(), 1, h.size(), f_) == h.size();
   const bool closed_ok = std::fclose(f_) == 0;
   f_ = nullptr;
   if (!ok || !closed_ok) throw InputError(path_, 0, "write failed (disk full?)");

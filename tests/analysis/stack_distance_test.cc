@@ -4,8 +4,8 @@
 
 #include <gtest/gtest.h>
 
-#include <cmath>
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <unordered_map>
 
@@ -42,8 +42,8 @@ std::vector<uint64_t> Naive(const std::vector<uint64_t>& trace) {
   return out;
 }
 
-std::vector<uint64_t> Distances(const std::vector<uint64_t>& trace, uint64_t dense, uint32_t min_cap,
-                          uint64_t* compactions = nullptr) {
+std::vector<uint64_t> Distances(const std::vector<uint64_t>& trace, uint64_t dense,
+                                uint32_t min_cap, uint64_t* compactions = nullptr) {
   StackDistance sd(dense, min_cap);
   std::vector<uint64_t> out;
   for (uint64_t id : trace) out.push_back(sd.Access(id));
@@ -56,14 +56,18 @@ std::vector<uint64_t> RandomTrace(SplitMix64& rng, size_t n, uint64_t alphabet, 
   uint64_t window = 0;
   for (size_t i = 0; i < n; ++i) {
     switch (kind) {
-      case 0: t[i] = rng.Below(alphabet); break;                         // uniform
-      case 1: {                                                          // skewed (Zipf-like)
+      case 0:
+        t[i] = rng.Below(alphabet);
+        break;   // uniform
+      case 1: {  // skewed (Zipf-like)
         const double u = rng.Uniform();
         t[i] = static_cast<uint64_t>(std::pow(u, 3.0) * alphabet);
         break;
       }
-      case 2: t[i] = i % alphabet; break;                                // cyclic scan
-      default:                                                           // sliding window
+      case 2:
+        t[i] = i % alphabet;
+        break;  // cyclic scan
+      default:  // sliding window
         if (rng.Below(8) == 0) ++window;
         t[i] = (window + rng.Below(16)) % alphabet;
     }
@@ -141,7 +145,8 @@ TEST(StackDistance, VeryLongReusesUseBlockAndSuperblockCounts) {
   for (uint64_t alphabet : {20000, 150000, 400000}) {
     std::vector<uint64_t> t = RandomTrace(rng, 1200000, alphabet, alphabet == 150000 ? 1 : 0);
     uint64_t compactions = 0;
-    ASSERT_EQ(Distances(t, 1u << 20, 1u << 16, &compactions), Textbook(t)) << "alphabet " << alphabet;
+    ASSERT_EQ(Distances(t, 1u << 20, 1u << 16, &compactions), Textbook(t))
+        << "alphabet " << alphabet;
     EXPECT_GT(compactions, 0u);
   }
   // A cyclic scan of 300,000 ids: every warm distance is 299,999, the gap 300,000 positions.
@@ -153,10 +158,13 @@ TEST(StackDistance, VeryLongReusesUseBlockAndSuperblockCounts) {
 TEST(StackDistance, EdgeCases) {
   EXPECT_TRUE(Distances({}, 100, 128).empty());
   EXPECT_EQ(Distances({5}, 100, 128), (std::vector<uint64_t>{kCold}));
-  EXPECT_EQ(Distances({3, 3, 3, 3}, 100, 128), (std::vector<uint64_t>{kCold, 0, 0, 0}));     // all equal
-  EXPECT_EQ(Distances({1, 2, 3, 4}, 100, 128), (std::vector<uint64_t>(4, kCold)));           // all distinct
-  EXPECT_EQ(Distances({0, 7, 0, 7, 0}, 100, 128), (std::vector<uint64_t>{kCold, kCold, 1, 1, 1}));  // id 0
-  EXPECT_EQ(Distances({0, 0}, 0, 128), (std::vector<uint64_t>{kCold, 0}));  // id 0 hashed (address 0)
+  EXPECT_EQ(Distances({3, 3, 3, 3}, 100, 128),
+            (std::vector<uint64_t>{kCold, 0, 0, 0}));                               // all equal
+  EXPECT_EQ(Distances({1, 2, 3, 4}, 100, 128), (std::vector<uint64_t>(4, kCold)));  // all distinct
+  EXPECT_EQ(Distances({0, 7, 0, 7, 0}, 100, 128),
+            (std::vector<uint64_t>{kCold, kCold, 1, 1, 1}));  // id 0
+  EXPECT_EQ(Distances({0, 0}, 0, 128),
+            (std::vector<uint64_t>{kCold, 0}));  // id 0 hashed (address 0)
   EXPECT_EQ(Distances({1, 2, 3, 1, 2, 3}, 100, 128),
             (std::vector<uint64_t>{kCold, kCold, kCold, 2, 2, 2}));
 }
@@ -192,13 +200,13 @@ TEST(ReuseHistogram, QuantilesMeanAndTails) {
   EXPECT_EQ(h.cold(), 1u);
   EXPECT_EQ(h.finite(), 5u);
   EXPECT_DOUBLE_EQ(h.mean(), 3.0);
-  EXPECT_EQ(h.Quantile(0.0), 0u);   // the smallest
-  EXPECT_EQ(h.Quantile(0.4), 0u);   // 2 of 5 <= 0
+  EXPECT_EQ(h.Quantile(0.0), 0u);  // the smallest
+  EXPECT_EQ(h.Quantile(0.4), 0u);  // 2 of 5 <= 0
   EXPECT_EQ(h.Quantile(0.41), 1u);
   EXPECT_EQ(h.Quantile(0.5), 1u);
   EXPECT_EQ(h.Quantile(0.8), 5u);
   EXPECT_EQ(h.Quantile(0.81), 9u);
-  EXPECT_EQ(h.Quantile(1.0), 9u);   // the largest
+  EXPECT_EQ(h.Quantile(1.0), 9u);  // the largest
   EXPECT_EQ(h.max(), 9u);
   EXPECT_EQ(h.CountAtLeast(1), 3u);
   EXPECT_EQ(h.CountAtLeast(10), 0u);

@@ -44,7 +44,10 @@ const Mesh& Ordered(const std::string& ordering) {
   static std::map<std::string, Mesh> cache;
   auto it = cache.find(ordering);
   if (it == cache.end())
-    it = cache.emplace(ordering, ApplyPermutation(BaseMesh(), ComputeOrdering(ordering, BaseMesh(), 1))).first;
+    it = cache
+             .emplace(ordering,
+                      ApplyPermutation(BaseMesh(), ComputeOrdering(ordering, BaseMesh(), 1)))
+             .first;
   return it->second;
 }
 
@@ -111,7 +114,8 @@ void TextbookFenwick(benchmark::State& state, std::string ordering) {
     }
     benchmark::DoNotOptimize(h.finite());
   }
-  state.SetItemsProcessed(state.iterations() * static_cast<int64_t>(FirstSweepTrace(ordering).size()));
+  state.SetItemsProcessed(state.iterations() *
+                          static_cast<int64_t>(FirstSweepTrace(ordering).size()));
 }
 
 // A Gauss-Seidel sweep written without any sink: what Smooth<NullSink> must match.
@@ -221,8 +225,10 @@ void Memory(benchmark::State& state) {
 int main(int argc, char** argv) {
   std::vector<char*> rest;
   for (int i = 0; i < argc; ++i) {
-    if (std::strncmp(argv[i], "--mesh=", 7) == 0) meshreuse::g_mesh = argv[i] + 7;
-    else rest.push_back(argv[i]);
+    if (std::strncmp(argv[i], "--mesh=", 7) == 0)
+      meshreuse::g_mesh = argv[i] + 7;
+    else
+      rest.push_back(argv[i]);
   }
   int n = static_cast<int>(rest.size());
   using namespace meshreuse;
@@ -230,13 +236,24 @@ int main(int argc, char** argv) {
     benchmark::RegisterBenchmark(("Analyzer/" + std::string(o)).c_str(), Analyzer, std::string(o))
         ->Unit(benchmark::kMillisecond);
   for (const char* o : {"ori", "rdr"})
-    benchmark::RegisterBenchmark(("TextbookFenwick/" + std::string(o)).c_str(), TextbookFenwick, std::string(o))
+    benchmark::RegisterBenchmark(("TextbookFenwick/" + std::string(o)).c_str(), TextbookFenwick,
+                                 std::string(o))
         ->Unit(benchmark::kMillisecond);
   benchmark::RegisterBenchmark("Sweep/plain", SweepPlain)->Unit(benchmark::kMillisecond);
-  benchmark::RegisterBenchmark("Sweep/null", SweepNull)->UseManualTime()->Unit(benchmark::kMillisecond);
-  benchmark::RegisterBenchmark("Sweep/analyze", SweepAnalyze)->UseManualTime()->Unit(benchmark::kMillisecond);
-  benchmark::RegisterBenchmark("StreamingRatio", StreamingRatio)->Iterations(5)->Unit(benchmark::kMillisecond);
-  benchmark::RegisterBenchmark("Memory", Memory)->Arg(1)->Arg(100)->Iterations(1)->Unit(benchmark::kSecond);
+  benchmark::RegisterBenchmark("Sweep/null", SweepNull)
+      ->UseManualTime()
+      ->Unit(benchmark::kMillisecond);
+  benchmark::RegisterBenchmark("Sweep/analyze", SweepAnalyze)
+      ->UseManualTime()
+      ->Unit(benchmark::kMillisecond);
+  benchmark::RegisterBenchmark("StreamingRatio", StreamingRatio)
+      ->Iterations(5)
+      ->Unit(benchmark::kMillisecond);
+  benchmark::RegisterBenchmark("Memory", Memory)
+      ->Arg(1)
+      ->Arg(100)
+      ->Iterations(1)
+      ->Unit(benchmark::kSecond);
   benchmark::Initialize(&n, rest.data());
   benchmark::RunSpecifiedBenchmarks();
   benchmark::Shutdown();

@@ -22,7 +22,7 @@ contains "no arguments" "usage: meshreuse <command>"
 check "--help" 0 "$bin" --help
 check "unknown command" 2 "$bin" frobnicate
 contains "unknown command" "unknown command 'frobnicate'"
-for c in "mesh info" "mesh generate" "mesh convert" "smooth" "orderings" "reorder" "compare"; do
+for c in "mesh info" "mesh generate" "mesh convert" "smooth" "orderings" "reorder" "compare" "trace" "analyze"; do
   check "$c --help" 0 "$bin" $c --help
   contains "$c --help" "usage: meshreuse $c"
 done
@@ -115,6 +115,46 @@ for r in rows:
 PY
 check "compare bad threads" 2 "$bin" compare "$data/two_interior.node" --threads 1,x
 check "compare unknown ordering" 2 "$bin" compare "$data/two_interior.node" --orderings ori,zzz
+
+# Traces and reuse distances: a trace file and the streamed mesh give the same numbers.
+check "trace" 0 "$bin" trace "$data/two_interior.node" --ordering rdr --iterations 3 --threads 2 -o "$tmp/t.trace" --quiet
+contains "trace" "132 accesses (5.50 per vertex per sweep), 3 sweep(s), 2 stream(s)"
+check "analyze trace" 0 "$bin" analyze "$tmp/t.trace" --csv --quiet
+cp "$tmp/out" "$tmp/from_file.csv"
+check "analyze mesh" 0 "$bin" analyze "$data/two_interior.node" --orderings rdr --iterations 3 --threads 2 --csv --quiet
+if diff <(cut -d, -f2- "$tmp/from_file.csv") <(cut -d, -f2- "$tmp/out") >/dev/null; then pass=$((pass + 1)); else
+  fail=$((fail + 1)); echo "FAIL analyze: the trace file and the streamed mesh disagree"; diff "$tmp/from_file.csv" "$tmp/out" | head; fi
+check "analyze json" 0 "$bin" analyze "$data/two_interior.node" --iterations 2 --json --quiet --histogram-csv "$tmp/h.csv" --profile-csv "$tmp/p.csv" --measured-misses L1=5
+/usr/bin/python3 - "$tmp/out" <<'PY' && pass=$((pass + 1)) || { fail=$((fail + 1)); echo "FAIL analyze --json"; }
+import json, sys
+rows = json.load(open(sys.argv[1]))
+e = [r for r in rows if r["granularity"] == "element"][0]
+assert e["accesses"] == 88 and e["cold"] == 8 and e["distinct"] == 8, e
+assert e["q100"] >= e["q90"] >= e["q75"] >= e["q50"], e
+assert e["L1_misses"] == 8 and "cost_cycles_low" in e and "L1_capacity_for_5" in e, e
+PY
+[[ $(wc -l <"$tmp/p.csv") -eq 401 ]] && pass=$((pass + 1)) || { fail=$((fail + 1)); echo "FAIL profile csv: want 2 sweeps x 100 steps x 2 granularities + header"; }
+grep -q '^input,ordering,thread,granularity,lo,hi,count' "$tmp/h.csv" && pass=$((pass + 1)) || { fail=$((fail + 1)); echo "FAIL histogram csv"; }
+printf '1\n2\n0x1\n# c\n3\n2\n' >"$tmp/ext.txt"
+check "analyze text" 0 "$bin" analyze "$tmp/ext.txt" --format text --granularity element --csv --quiet
+contains "analyze text" "$tmp/ext.txt,-,0,element,5,-,3,3,1.5,1,2,2,2"  # ids 1 2 1 3 2: distances 1, 2
+check "analyze stdin" 0 bash -c "printf '5\n5\n' | '$bin' analyze - --format text --granularity element --csv --quiet"
+contains "analyze stdin" "-,-,0,element,2,-,1,1,0.0,0,0,0,0"
+/usr/bin/python3 -c 'import struct,sys; open(sys.argv[1],"wb").write(struct.pack("<4Q",7,8,7,8))' "$tmp/ext.u64"
+check "analyze u64" 0 "$bin" analyze "$tmp/ext.u64" --format u64 --granularity element --csv --quiet
+contains "analyze u64" ",element,4,-,2,2,1.0,1,1,1,1"
+printf 'MRTRACEX' >"$tmp/bad.trace"
+check "analyze bad trace" 2 "$bin" analyze "$tmp/bad.trace" --quiet
+contains "analyze bad trace" "meshreuse: error: $tmp/bad.trace: not a meshreuse trace (wrong magic"
+head -c 100 "$tmp/t.trace" >"$tmp/cut.trace"
+check "analyze truncated trace" 2 "$bin" analyze "$tmp/cut.trace" --quiet
+contains "analyze truncated trace" "truncated trace"
+printf '1\nx2\n' >"$tmp/bad.txt"
+check "analyze bad text" 2 "$bin" analyze "$tmp/bad.txt" --format text --quiet
+contains "analyze bad text" "$tmp/bad.txt:2: expected a decimal or 0x-hex id, found 'x2'"
+check "analyze bad cache" 2 "$bin" analyze "$data/two_interior.node" --cache L1=lots
+check "analyze bad granularity" 2 "$bin" analyze "$data/two_interior.node" --granularity page
+check "trace unwritable" 2 "$bin" trace "$data/two_interior.node" -o /nonexistent-dir/t.trace --quiet
 
 echo "cli commands: $pass passed, $fail failed"
 [[ $fail -eq 0 ]]

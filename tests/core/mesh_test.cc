@@ -91,7 +91,8 @@ TEST(BuildMesh, DropsUnusedVerticesKeepingOrder) {
   BuildReport report;
   const Mesh m = BuildMesh(std::move(raw), &report);
   EXPECT_EQ(m.NumVertices(), 4);
-  EXPECT_EQ(m.xy, (std::vector<double>{0, 0, 1, 0, 0, 1, 1, 1}));
+  EXPECT_EQ(std::vector<double>(m.xy.begin(), m.xy.end()),
+            (std::vector<double>{0, 0, 1, 0, 0, 1, 1, 1}));
   EXPECT_EQ(m.tri, (std::vector<int32_t>{0, 1, 2, 1, 3, 2}));
   EXPECT_EQ(report.kept, (std::vector<int32_t>{0, 2, 3, 4}));
   ASSERT_EQ(report.warnings.size(), 1u);
@@ -131,6 +132,24 @@ TEST(BuildMesh, RejectsEmptyAndNonFinite) {
   inf.xy = {0, 0, 1, 0, 0, std::numeric_limits<double>::infinity()};
   inf.tri = {0, 1, 2};
   EXPECT_THROW(BuildMesh(std::move(inf)), InputError);
+}
+
+}  // namespace
+}  // namespace meshreuse
+
+namespace meshreuse {
+namespace {
+
+TEST(Mesh, TracedArraysStartOnACacheLine) {
+  for (int k = 0; k < 20; ++k) {  // a few allocations of different sizes
+    SyntheticOptions o;
+    o.nx = 3 + k, o.ny = 2 + k, o.seed = static_cast<uint64_t>(k + 1);
+    const Mesh m = BuildMesh(MakeSyntheticMesh(o));
+    EXPECT_EQ(reinterpret_cast<uintptr_t>(m.xy.data()) % 64, 0u);
+    EXPECT_EQ(reinterpret_cast<uintptr_t>(m.v2v.off.data()) % 64, 0u);
+    const Mesh c = m.Clone();
+    EXPECT_EQ(reinterpret_cast<uintptr_t>(c.xy.data()) % 64, 0u);
+  }
 }
 
 }  // namespace

@@ -71,7 +71,7 @@ std::vector<double> NaiveGaussSeidel(const Mesh& m, int sweeps) {
   std::vector<bool> fixed(nv, false);
   for (const auto& [e, n] : edges)
     if (n == 1) fixed[e.first] = fixed[e.second] = true;
-  std::vector<double> xy = m.xy;
+  std::vector<double> xy(m.xy.begin(), m.xy.end());
   for (int s = 0; s < sweeps; ++s)
     for (int32_t v = 0; v < nv; ++v) {
       if (fixed[v]) continue;
@@ -97,7 +97,7 @@ TEST(Smoother, BoundaryVerticesNeverMove) {
   for (UpdateMode mode : {UpdateMode::kGaussSeidel, UpdateMode::kJacobi})
     for (int threads : {1, 2}) {
       Mesh m = Synthetic(11, 40, 30, 3);
-      const std::vector<double> before = m.xy;
+      const std::vector<double> before(m.xy.begin(), m.xy.end());
       Smooth(m, Sweeps(15, mode, threads));
       int moved_interior = 0;
       for (int32_t v = 0; v < m.NumVertices(); ++v) {

@@ -229,7 +229,8 @@ TEST(ExternalTrace, TextAndBinary) {
   ReadExternalTrace(text, ExternalFormat::kU32, [&](uint64_t v) { got.push_back(v); });
   EXPECT_EQ(got, (std::vector<uint64_t>{5, 0, 4000000000u}));
   EXPECT_EQ(ExternalTraceLength(text, ExternalFormat::kU32), 3u);
-  EXPECT_THROW(ReadExternalTrace(text, ExternalFormat::kU64, [](uint64_t) {}), InputError);  // 12 bytes
+  EXPECT_THROW(ReadExternalTrace(text, ExternalFormat::kU64, [](uint64_t) {}),
+               InputError);  // 12 bytes
   fs::remove(text);
 }
 
