@@ -1,9 +1,12 @@
 #!/usr/bin/env bash
 # The README's main job: installs what is missing, builds Release, meshes the nine shipped shapes
-# with Triangle to the paper's vertex counts (Table 4; cached under out/meshes/), then times the
-# smoother under the paper's orderings with `meshreuse compare` and prints the per-mesh table and
-# the paper's averaged Speedup and Gain. Results: results/reproduce-<UTC time>/ (compare.*,
-# summary.*, run.json, compare.log with the progress).
+# with Triangle to the paper's vertex counts (Table 4; cached under out/meshes/), then
+#   1. times the smoother under the paper's orderings (`meshreuse compare`): per-mesh table and
+#      the paper's averaged Speedup and Gain;
+#   2. the paper's Table 2: reuse-distance quantiles and accesses of the first sweep
+#      (`meshreuse analyze`), with modelled misses;
+#   3. the paper's reuse-distance profile figure (carabiner, 8 sweeps) and histograms, as PNG+PDF.
+# Results: results/reproduce-<UTC time>/ (compare/, table2/, profile/, each with its run.json).
 # Usage: scripts/reproduce.sh [--orderings ori,bfs,rdr] [--threads 1,2] [--repeat 3]
 #                             [--vertices N] [--shapes a,b,...] [--quiet]
 set -euo pipefail
@@ -25,7 +28,7 @@ while (($#)); do
 done
 say() { [[ -n $quiet ]] || echo "reproduce: $*" >&2; }
 
-bash scripts/setup.sh
+bash scripts/setup.sh --with-plots
 say "building Release in build/release"
 mkdir -p build results
 cmake -S . -B build/release -DCMAKE_BUILD_TYPE=Release >build/release.configure.log 2>&1 ||
@@ -51,9 +54,26 @@ done
 
 out=results/reproduce-$(date -u +%Y%m%dT%H%M%SZ)
 mkdir -p "$out"
-say "timing the smoother on ${#files[@]} meshes: orderings $orderings, threads $threads, $repeat rounds; results in $out"
+say "1/3 timing the smoother on ${#files[@]} meshes: orderings $orderings, threads $threads, $repeat rounds"
 "$bin" compare "${files[@]}" --orderings "$orderings" --threads "$threads" --repeat "$repeat" \
-  --out "$out" $quiet >"$out/compare.txt" 2> >(tee "$out/compare.log" >&2)
+  --out "$out/compare" $quiet >"$out/compare.txt"
+say "2/3 Table 2: reuse distances of the first sweep, ${#files[@]} meshes x $orderings"
+"$bin" analyze "${files[@]}" --orderings "$orderings" --iterations 1 --granularity element \
+  --out "$out/table2" $quiet >"$out/table2.txt"
+carabiner=""
+for f in "${files[@]}"; do [[ $f == */carabiner.node ]] && carabiner=$f; done
+if [[ -n $carabiner ]]; then
+  say "3/3 reuse-distance profile of carabiner, 8 sweeps x $orderings"
+  "$bin" analyze "$carabiner" --orderings "$orderings" --iterations 8 --granularity both \
+    --out "$out/profile" $quiet >"$out/profile.txt"
+  /usr/bin/python3 scripts/plot_reuse.py profile "$out/profile/profile.csv" "$out/profile/carabiner-profile" >&2
+  /usr/bin/python3 scripts/plot_reuse.py histogram "$out/profile/histogram.csv" "$out/profile/carabiner-histogram" >&2
+fi
+
 echo
-echo "Laplacian smoothing to convergence (tol 5e-6) under each ordering; results in $out"
+echo "== Laplacian smoothing to convergence (tol 5e-6) under each ordering ($out/compare)"
 cat "$out/compare.txt"
+echo
+echo "== Table 2: reuse distances (distinct vertices) of the first sweep ($out/table2)"
+cut -d, -f1,2,5,10-13 "$out/table2/analyze.csv" | sed 's|^[^,]*/||; s|\.node,|,|' | column -s, -t
+[[ -n $carabiner ]] && echo && echo "== Profile and histogram figures: $out/profile/carabiner-{profile,histogram}.{png,pdf}"
