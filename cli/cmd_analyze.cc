@@ -104,8 +104,7 @@ int TraceCommand(const Args& args) {
     return 0;
   if (iterations < 1 || iterations > 100000) throw po::error("--iterations must be 1..100000");
   if (threads < 1 || threads > 255) throw po::error("--threads must be 1..255");
-  if (!FindOrdering(ordering.substr(0, ordering.find(':'))))
-    throw po::error("unknown ordering '" + ordering + "' (known: " + OrderingNames() + ")");
+  CheckOrderings({ordering});
   const SmoothOptions so = TraceSweeps(iterations, threads, mode);
   const Progress progress(vm.count("quiet") > 0);
   Mesh m = Prepare(mesh, ordering, seed, progress);
@@ -201,9 +200,7 @@ int AnalyzeCommand(const Args& args) {
     throw po::error("--line-bytes must be a power of two");
   if (element_bytes == 0) throw po::error("--element-bytes must be positive");
   const std::vector<std::string> ords = SplitList(orderings);
-  for (const std::string& o : ords)
-    if (!FindOrdering(o.substr(0, o.find(':'))))
-      throw po::error("unknown ordering '" + o + "' (known: " + OrderingNames() + ")");
+  CheckOrderings(ords);
   const Progress progress(vm.count("quiet") > 0);
 
   std::vector<Job> jobs;

@@ -17,17 +17,6 @@
 
 namespace meshreuse::cli {
 
-namespace {
-
-void CheckOrderings(const std::vector<std::string>& specs) {
-  if (specs.empty()) throw po::error("no ordering given");
-  for (const std::string& s : specs)
-    if (!FindOrdering(s.substr(0, s.find(':'))))
-      throw po::error("unknown ordering '" + s + "' (known: " + OrderingNames() + ")");
-}
-
-}  // namespace
-
 int OrderingsCommand(const Args& args) {
   po::options_description desc("options");
   po::positional_options_description pos;

@@ -61,8 +61,7 @@ int SmoothCommand(const Args& args) {
   if (opt.max_iters < 1) throw po::error("--max-iters must be at least 1");
   if (std::isnan(opt.tol)) throw po::error("--tol must be a number (negative: never stop early)");
   if (!out_mesh.empty() && meshes.size() != 1) throw po::error("-o takes a single input mesh");
-  if (!FindOrdering(ordering.substr(0, ordering.find(':'))))
-    throw po::error("unknown ordering '" + ordering + "' (known: " + OrderingNames() + ")");
+  CheckOrderings({ordering});
   const Progress progress(vm.count("quiet") > 0);
 
   Table summary({"mesh", "ordering", "vertices", "triangles", "threads", "mode", "sweeps",

@@ -1,11 +1,13 @@
 // Shared CLI helpers; see common.h.
 #include "cli/common.h"
 
+#include <boost/program_options/errors.hpp>
 #include <cstdio>
 #include <sstream>
 
 #include "cli/commands.h"
 #include "core/mesh_io.h"
+#include "core/orderings/registry.h"
 #include "reports/run_info.h"
 #include "reports/table.h"
 
@@ -31,6 +33,14 @@ std::vector<std::string> SplitList(const std::string& s) {
   for (std::string item; std::getline(ss, item, ',');)
     if (!item.empty()) out.push_back(item);
   return out;
+}
+
+void CheckOrderings(const std::vector<std::string>& specs) {
+  if (specs.empty()) throw boost::program_options::error("no ordering given");
+  for (const std::string& s : specs)
+    if (!FindOrdering(s.substr(0, s.find(':'))))
+      throw boost::program_options::error("unknown ordering '" + s +
+                                          "' (known: " + OrderingNames() + ")");
 }
 
 std::string RunJsonHeader(const std::string& tool) {

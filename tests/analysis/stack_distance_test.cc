@@ -7,8 +7,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <unordered_map>
 
+#include "analysis/reference.h"
 #include "analysis/reuse_histogram.h"
 #include "core/synthetic.h"
 
@@ -109,43 +109,13 @@ TEST(StackDistance, LongReusesGoThroughTheTree) {
   EXPECT_GT(compactions, 0u);
 }
 
-// A second, independent reference fast enough for long traces: the textbook Fenwick tree over
-// every time position.
-std::vector<uint64_t> Textbook(const std::vector<uint64_t>& trace) {
-  const size_t n = trace.size();
-  std::vector<int64_t> tree(n + 1, 0);
-  auto add = [&](size_t i, int64_t d) {
-    for (++i; i <= n; i += i & (~i + 1)) tree[i] += d;
-  };
-  auto prefix = [&](size_t i) {
-    int64_t s = 0;
-    for (; i > 0; i -= i & (~i + 1)) s += tree[i];
-    return s;
-  };
-  std::unordered_map<uint64_t, size_t> last;
-  std::vector<uint64_t> out;
-  for (size_t t = 0; t < n; ++t) {
-    auto f = last.find(trace[t]);
-    if (f == last.end()) {
-      out.push_back(kCold);
-      last.emplace(trace[t], t);
-    } else {
-      out.push_back(static_cast<uint64_t>(prefix(t) - prefix(f->second + 1)));
-      add(f->second, -1);
-      f->second = t;
-    }
-    add(t, 1);
-  }
-  return out;
-}
-
 TEST(StackDistance, VeryLongReusesUseBlockAndSuperblockCounts) {
   // Reuse gaps of up to ~10^6 positions: beyond a superblock (262,144 positions).
   SplitMix64 rng(11);
   for (uint64_t alphabet : {20000, 150000, 400000}) {
     std::vector<uint64_t> t = RandomTrace(rng, 1200000, alphabet, alphabet == 150000 ? 1 : 0);
     uint64_t compactions = 0;
-    ASSERT_EQ(Distances(t, 1u << 20, 1u << 16, &compactions), Textbook(t))
+    ASSERT_EQ(Distances(t, 1u << 20, 1u << 16, &compactions), TextbookStackDistances(t))
         << "alphabet " << alphabet;
     EXPECT_GT(compactions, 0u);
   }

@@ -14,8 +14,8 @@
 #include <cstring>
 #include <filesystem>
 #include <map>
-#include <unordered_map>
 
+#include "analysis/reference.h"
 #include "analysis/reuse_histogram.h"
 #include "analysis/stack_distance.h"
 #include "analysis/trace_analysis.h"
@@ -84,38 +84,15 @@ void Analyzer(benchmark::State& state, std::string ordering) {
   state.SetItemsProcessed(state.iterations() * static_cast<int64_t>(trace.size()));
 }
 
-// The textbook method: a Fenwick tree over every time position of the trace.
+// The textbook method (analysis/reference.h), distances then the same histogram.
 void TextbookFenwick(benchmark::State& state, std::string ordering) {
   const std::vector<uint32_t>& trace = FirstSweepTrace(ordering);
   for (auto _ : state) {
-    const size_t n = trace.size();
-    std::vector<int32_t> tree(n + 1, 0);
-    std::unordered_map<uint32_t, size_t> last;
-    auto add = [&](size_t i, int32_t d) {
-      for (++i; i <= n; i += i & (~i + 1)) tree[i] += d;
-    };
-    auto prefix = [&](size_t i) {  // sum of [0, i)
-      int64_t s = 0;
-      for (; i > 0; i -= i & (~i + 1)) s += tree[i];
-      return s;
-    };
     ReuseHistogram h;
-    for (size_t t = 0; t < n; ++t) {
-      auto f = last.find(trace[t]);
-      if (f == last.end()) {
-        h.Add(StackDistance::kCold);
-        last.emplace(trace[t], t);
-      } else {
-        h.Add(static_cast<uint64_t>(prefix(t) - prefix(f->second + 1)));
-        add(f->second, -1);
-        f->second = t;
-      }
-      add(t, 1);
-    }
+    for (uint64_t d : TextbookStackDistances(trace)) h.Add(d);
     benchmark::DoNotOptimize(h.finite());
   }
-  state.SetItemsProcessed(state.iterations() *
-                          static_cast<int64_t>(FirstSweepTrace(ordering).size()));
+  state.SetItemsProcessed(state.iterations() * static_cast<int64_t>(trace.size()));
 }
 
 // A Gauss-Seidel sweep written without any sink: what Smooth<NullSink> must match.

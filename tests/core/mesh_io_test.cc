@@ -112,19 +112,7 @@ TEST(BrokenInput, ManifestIsComplete) {
   EXPECT_GE(listed.size(), 20u);
 }
 
-class TempDir {
- public:
-  TempDir() {
-    std::string t = (fs::temp_directory_path() / "meshreuse-test-XXXXXX").string();
-    path_ = ::mkdtemp(t.data());
-  }
-  ~TempDir() { fs::remove_all(path_); }
-  std::string operator/(const std::string& n) const { return (path_ / n).string(); }
-  const fs::path& path() const { return path_; }
-
- private:
-  fs::path path_;
-};
+using testing::TempDir;
 
 TEST(Writers, TriangleRoundTripIsExact) {
   SyntheticOptions o;

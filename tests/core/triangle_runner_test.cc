@@ -9,6 +9,7 @@
 
 #include "core/mesh_io.h"
 #include "core/shapes.h"
+#include "tests/test_util.h"
 
 namespace meshreuse {
 namespace {
@@ -20,13 +21,9 @@ class TriangleRunner : public ::testing::Test {
   void SetUp() override {
     if (FindProgram("triangle").empty())
       GTEST_SKIP() << "the 'triangle' program is not installed (Debian triangle-bin, non-free)";
-    std::string t = (fs::temp_directory_path() / "meshreuse-tri-XXXXXX").string();
-    dir_ = ::mkdtemp(t.data());
   }
-  void TearDown() override {
-    if (!dir_.empty()) fs::remove_all(dir_);
-  }
-  fs::path dir_;
+  testing::TempDir tmp_;
+  const fs::path& dir_ = tmp_.path();
 };
 
 TEST_F(TriangleRunner, EveryShapeHitsSmallAndMediumTargets) {

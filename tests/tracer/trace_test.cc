@@ -104,11 +104,6 @@ TEST(StaticOwner, MatchesOpenMPStaticSchedule) {
 
 class TraceFile : public ::testing::Test {
  protected:
-  void SetUp() override {
-    std::string t = (fs::temp_directory_path() / "meshreuse-trace-XXXXXX").string();
-    dir_ = ::mkdtemp(t.data());
-  }
-  void TearDown() override { fs::remove_all(dir_); }
   std::string Path(const std::string& n) const { return (dir_ / n).string(); }
   // Traces `sweeps` sweeps of the tiny mesh with 2 threads into PATH; returns the recording.
   RecordingSink Write(const std::string& path, int sweeps) {
@@ -138,7 +133,8 @@ class TraceFile : public ::testing::Test {
       EXPECT_NE(e.problem().find(message), std::string::npos) << e.what();
     }
   }
-  fs::path dir_;
+  testing::TempDir tmp_;
+  const fs::path& dir_ = tmp_.path();
 };
 
 TEST_F(TraceFile, RoundTrip) {

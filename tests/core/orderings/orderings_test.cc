@@ -67,12 +67,8 @@ std::string SpecFor(const OrderingInfo& o, const Mesh& m, const fs::path& dir, i
 
 class EveryOrdering : public ::testing::TestWithParam<OrderingInfo> {
  protected:
-  void SetUp() override {
-    std::string t = (fs::temp_directory_path() / "meshreuse-ord-XXXXXX").string();
-    dir_ = ::mkdtemp(t.data());
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-  fs::path dir_;
+  testing::TempDir tmp_;
+  const fs::path& dir_ = tmp_.path();
 };
 
 TEST_P(EveryOrdering, BijectionDeterministicAndJacobiInvariant) {
@@ -230,11 +226,6 @@ TEST(StableSortByKey, MatchesStdStableSort) {
 
 class FileOrdering : public ::testing::Test {
  protected:
-  void SetUp() override {
-    std::string t = (fs::temp_directory_path() / "meshreuse-file-XXXXXX").string();
-    dir_ = ::mkdtemp(t.data());
-  }
-  void TearDown() override { fs::remove_all(dir_); }
   std::string Write(const std::string& text) {
     const std::string p = (dir_ / "p.perm").string();
     std::ofstream(p) << text;
@@ -251,7 +242,8 @@ class FileOrdering : public ::testing::Test {
       EXPECT_NE(e.problem().find(msg), std::string::npos) << e.what();
     }
   }
-  fs::path dir_;
+  testing::TempDir tmp_;
+  const fs::path& dir_ = tmp_.path();
   Mesh mesh_ = testing::TwoInterior();
 };
 
