@@ -110,6 +110,7 @@ int TraceCommand(const Args& args) {
   Mesh m = Prepare(mesh, ordering, seed, progress);
   TraceHeader h;
   h.threads = static_cast<uint32_t>(threads);
+  h.vertices = static_cast<uint32_t>(m.NumVertices());
   h.element_bytes = element_bytes;
   h.mesh = Base(mesh);
   h.ordering = ordering;
@@ -233,28 +234,12 @@ int AnalyzeCommand(const Args& args) {
       o.threads = static_cast<int>(h.threads);
       o.granularity = gran;
       o.line_bytes = line_bytes;
-      // Per-thread sweep lengths for the profile come from a first pass over the thread bytes.
-      {
-        std::vector<std::vector<uint64_t>> len(h.threads,
-                                               std::vector<uint64_t>(h.iteration_starts.size(), 0));
-        TraceReader pass(in);
-        std::vector<TraceRecord> batch;
-        uint64_t idx = 0;
-        size_t it = 0;
-        uint32_t max_vertex = 0;
-        while (pass.Next(&batch))
-          for (const TraceRecord& rec : batch) {
-            while (it + 1 < h.iteration_starts.size() && idx >= h.iteration_starts[it + 1]) ++it;
-            if (!len.empty() && !h.iteration_starts.empty() && rec.thread < h.threads)
-              ++len[rec.thread][it];
-            max_vertex = std::max(max_vertex, rec.vertex);
-            ++idx;
-          }
-        if (!h.iteration_starts.empty()) o.iteration_lengths = len;
-        o.dense_elements = h.records ? uint64_t{max_vertex} + 1 : 0;
-      }
-      // The vertex count is not in the header; the largest vertex id + 1 stands for it.
-      Job j{in, h.ordering.empty() ? "?" : h.ordering, static_cast<int64_t>(o.dense_elements),
+      // Each thread's sweep lengths (for the profile) and the vertex count are in the header.
+      o.iteration_lengths.assign(h.threads, {});
+      for (const std::vector<uint64_t>& sweep : h.sweep_records)
+        for (uint32_t t = 0; t < h.threads; ++t) o.iteration_lengths[t].push_back(sweep[t]);
+      o.dense_elements = h.vertices;  // 0 (unknown): ids go to the hash table
+      Job j{in, h.ordering.empty() ? "?" : h.ordering, static_cast<int64_t>(h.vertices),
             static_cast<int>(h.iteration_starts.size()), std::make_unique<TraceAnalysis>(o)};
       progress.Say("analysing trace " + in + " (" + Grouped(static_cast<long long>(h.records)) +
                    " accesses)");

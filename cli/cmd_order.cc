@@ -120,8 +120,9 @@ int CompareCommand(const Args& args) {
     throw po::error(e.what());
   }
   const Progress progress(vm.count("quiet") > 0);
-  const std::vector<CompareRow> rows =
-      RunCompare(cfg, [&](const std::string& s) { progress.Say(s); });
+  const std::vector<CompareRow> rows = RunCompare(
+      cfg, [&](const std::string& s) { progress.Say(s); },
+      [](const std::string& w) { std::fprintf(stderr, "meshreuse: warning: %s\n", w.c_str()); });
   const Table t = CompareTable(rows);
   const Table summary = CompareSummaryTable(rows);
   std::printf("%s", t.Aligned().c_str());

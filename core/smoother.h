@@ -76,6 +76,11 @@ struct Arrays {
   const int32_t* tri;
 };
 
+inline Arrays ArraysOf(Mesh& m) {
+  return {m.xy.data(),      m.v2v.off.data(), m.v2v.idx.data(),
+          m.v2t.off.data(), m.v2t.idx.data(), m.tri.data()};
+}
+
 // Moves v to the average of its neighbours read from `src`, writing to `dst` (the same array for
 // Gauss-Seidel). Returns nothing; the caller updates qualities.
 template <class Sink>
@@ -146,8 +151,7 @@ double GaussSeidelSweep(const Arrays& a, const std::vector<int32_t>& interior, d
 template <class Sink>
 double JacobiSweep(Mesh& m, AlignedVector<double>& next, double* tq, const double* w, int threads,
                    Sink& sink) {
-  const Arrays a{m.xy.data(),      m.v2v.off.data(), m.v2v.idx.data(),
-                 m.v2t.off.data(), m.v2t.idx.data(), m.tri.data()};
+  const Arrays a = ArraysOf(m);
   const int64_t ni = static_cast<int64_t>(m.interior.size());
   const int32_t* order = m.interior.data();
   double* dst = next.data();
@@ -204,10 +208,8 @@ SmoothResult Smooth(Mesh& mesh, const SmoothOptions& opt, Sink& sink,
     const auto t0 = Clock::now();
     double q_new;
     if (opt.mode == UpdateMode::kGaussSeidel) {
-      const smoother_detail::Arrays a{mesh.xy.data(),      mesh.v2v.off.data(), mesh.v2v.idx.data(),
-                                      mesh.v2t.off.data(), mesh.v2t.idx.data(), mesh.tri.data()};
-      q_new = q + smoother_detail::GaussSeidelSweep(a, mesh.interior, tq.data(), w.data(), threads,
-                                                    sink);
+      q_new = q + smoother_detail::GaussSeidelSweep(smoother_detail::ArraysOf(mesh), mesh.interior,
+                                                    tq.data(), w.data(), threads, sink);
     } else {
       q_new = smoother_detail::JacobiSweep(mesh, next, tq.data(), w.data(), threads, sink);
     }

@@ -39,7 +39,8 @@ std::string Duration(double s) {
 }  // namespace
 
 std::vector<CompareRow> RunCompare(const CompareConfig& cfg,
-                                   const std::function<void(const std::string&)>& progress) {
+                                   const std::function<void(const std::string&)>& progress,
+                                   const std::function<void(const std::string&)>& warn) {
   auto say = [&](const std::string& s) {
     if (progress) progress(s);
   };
@@ -52,7 +53,10 @@ std::vector<CompareRow> RunCompare(const CompareConfig& cfg,
     const std::string& path = cfg.meshes[mi];
     say("mesh " + std::to_string(mi + 1) + "/" + std::to_string(cfg.meshes.size()) + ": reading " +
         path);
-    const Mesh base = ReadMesh(path);
+    std::vector<std::string> warnings;
+    const Mesh base = ReadMesh(path, &warnings);
+    if (warn)
+      for (const std::string& w : warnings) warn(w);
     std::vector<Mesh> reordered;
     const size_t first_row = rows.size();
     for (const std::string& spec : cfg.orderings) {

@@ -42,8 +42,11 @@ struct CompareRow {
   double gain_vs_bfs = 0;      // NaN when the run has no bfs at this thread count
 };
 
+// `progress` gets progress lines; `warn` the readers' warnings (dropped vertices, skipped
+// elements), which a caller should show even when progress is silenced.
 std::vector<CompareRow> RunCompare(const CompareConfig& cfg,
-                                   const std::function<void(const std::string&)>& progress = {});
+                                   const std::function<void(const std::string&)>& progress = {},
+                                   const std::function<void(const std::string&)>& warn = {});
 
 double Median(std::vector<double> v);
 Table CompareTable(const std::vector<CompareRow>& rows);

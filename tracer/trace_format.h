@@ -8,9 +8,10 @@
 //   24      4     threads (streams)
 //   28      4     iterations I (sweeps recorded)
 //   32      4     boundary slots S >= I (room reserved when the file was opened)
-//   36      4     zero
+//   36      4     vertices of the mesh (0: unknown)
 //   40      8     record count
 //   48      8*S   iteration boundaries: index of the first record of sweep 1..I, then zeros
+//   ...     8*S*T records of each thread in each sweep (sweep-major; T = threads), then zeros
 //   ...     2+n   mesh name (u16 length, bytes), then 2+n ordering name; zero padding to 16
 // then `record count` records of 16 bytes: u64 address, u32 vertex, u8 kind (AccessKind),
 // u8 thread, u16 zero. Records of all threads are in one sequence (a traced run is serial: thread
@@ -41,8 +42,11 @@ struct TraceHeader {
   uint32_t granularity = kGranularityBoth;
   uint32_t element_bytes = 66;
   uint32_t threads = 1;
+  uint32_t vertices = 0;  // 0: unknown
   uint64_t records = 0;
   std::vector<uint64_t> iteration_starts;  // one per sweep
+  // sweep_records[i][t]: records of thread t in sweep i (what a per-thread profile needs)
+  std::vector<std::vector<uint64_t>> sweep_records;
   std::string mesh, ordering;
 };
 

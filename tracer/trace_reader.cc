@@ -63,10 +63,11 @@ TraceReader::TraceReader(std::string path) : path_(std::move(path)) {
   header_.threads = c.Get<uint32_t>();
   const uint32_t iterations = c.Get<uint32_t>();
   const uint32_t slots = c.Get<uint32_t>();
-  c.Get<uint32_t>();
+  header_.vertices = c.Get<uint32_t>();
   header_.records = c.Get<uint64_t>();
   if (header_bytes < 48 || header_bytes > (1u << 26) || iterations > slots ||
-      48 + 8ull * slots > header_bytes || header_.threads == 0 || header_.threads > 256)
+      header_.threads == 0 || header_.threads > 256 ||
+      48 + 8ull * slots * (1 + header_.threads) > header_bytes)
     throw InputError(path_, 0, "corrupt trace header");
   std::vector<char> all(header_bytes);
   std::memcpy(all.data(), fixed.data(), 48);
@@ -76,6 +77,11 @@ TraceReader::TraceReader(std::string path) : path_(std::move(path)) {
   for (uint32_t i = 0; i < slots; ++i) {
     const uint64_t v = h.Get<uint64_t>();
     if (i < iterations) header_.iteration_starts.push_back(v);
+  }
+  for (uint32_t i = 0; i < slots; ++i) {
+    std::vector<uint64_t> per_thread(header_.threads);
+    for (uint64_t& n : per_thread) n = h.Get<uint64_t>();
+    if (i < iterations) header_.sweep_records.push_back(std::move(per_thread));
   }
   header_.mesh = h.GetString();
   header_.ordering = h.GetString();

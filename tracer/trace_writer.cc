@@ -32,10 +32,15 @@ std::vector<char> EncodeTraceHeader(const TraceHeader& h, int reserve_iterations
   Put(b, h.threads);
   Put(b, static_cast<uint32_t>(h.iteration_starts.size()));
   Put(b, static_cast<uint32_t>(reserve_iterations));
-  Put(b, uint32_t{0});
+  Put(b, h.vertices);
   Put(b, h.records);
   for (int i = 0; i < reserve_iterations; ++i)
     Put(b, i < static_cast<int>(h.iteration_starts.size()) ? h.iteration_starts[i] : uint64_t{0});
+  for (int i = 0; i < reserve_iterations; ++i)
+    for (uint32_t t = 0; t < h.threads; ++t)
+      Put(b, i < static_cast<int>(h.sweep_records.size()) && t < h.sweep_records[i].size()
+                 ? h.sweep_records[i][t]
+                 : uint64_t{0});
   PutString(b, h.mesh);
   PutString(b, h.ordering);
   while (b.size() % 16) b.push_back(0);  // records start 16-byte aligned
@@ -64,6 +69,7 @@ TraceWriter::~TraceWriter() {
 void TraceWriter::BeginSweep(int sweep) {
   if (sweep > max_iterations_) return;  // only the sweeps the header has room for are marked
   header_.iteration_starts.push_back(records());
+  header_.sweep_records.emplace_back(header_.threads, 0);
 }
 
 void TraceWriter::Flush() {

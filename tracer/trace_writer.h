@@ -1,7 +1,8 @@
 // TraceWriter: a sink that writes the binary trace (trace_format.h). Records are buffered and
 // written in 1 MiB blocks to PATH.tmp.PID; Close() writes the final header and renames the file
 // into place, so an interrupted run leaves no trace file behind. The header reserves room for
-// `max_iterations` boundaries (the sweep count is known only at the end).
+// `max_iterations` sweeps (the sweep count is known only at the end); each thread's records per
+// sweep are counted as they come, so readers need no pass of their own to find them.
 #pragma once
 
 #include <cstdio>
@@ -25,6 +26,7 @@ class TraceWriter {
   void BeginSweep(int sweep);
   void Touch(int thread, AccessKind kind, int32_t vertex, const void* address) {
     if (buf_.size() == buf_.capacity()) Flush();
+    if (!header_.sweep_records.empty()) ++header_.sweep_records.back()[thread];
     buf_.push_back(TraceRecord{reinterpret_cast<uintptr_t>(address), static_cast<uint32_t>(vertex),
                                static_cast<uint8_t>(kind), static_cast<uint8_t>(thread), 0});
   }
@@ -33,7 +35,6 @@ class TraceWriter {
 
  private:
   void Flush();
-  std::vector<char> HeaderBytes() const;
 
   std::string path_, tmp_;
   TraceHeader header_;
@@ -44,8 +45,7 @@ class TraceWriter {
   bool closed_ = false;
 };
 
-// Encodes/decodes the header; Decode throws InputError(path, 0, ...) for a wrong magic, an unknown
-// version or a header that does not fit.
+// The header bytes, with room for `reserve_iterations` sweeps (TraceReader decodes them).
 std::vector<char> EncodeTraceHeader(const TraceHeader& h, int reserve_iterations);
 
 }  // namespace meshreuse

@@ -97,6 +97,8 @@ contains "bad permutation file" "meshreuse: error: $tmp/bad.perm:4: vertex id 2 
 check "compare" 0 "$bin" compare "$data/two_interior.node" "$data/two_interior41.msh" --orderings ori,bfs,rdr,random --threads 1,2 --repeat 2 --out "$tmp/cmp" --quiet
 contains "compare" "speedup_vs_ori1"
 contains "compare" "(seed 1; times are medians of 2 runs"
+check "compare warns even when quiet" 0 "$bin" compare "$data/two_interior22.msh" --orderings ori --repeat 1 --quiet
+contains "compare warns even when quiet" "meshreuse: warning: $data/two_interior22.msh: dropped 1 vertices"
 for f in compare.csv compare.md compare.json run.json; do
   [[ -s $tmp/cmp/$f ]] && pass=$((pass + 1)) || { fail=$((fail + 1)); echo "FAIL compare: no $f"; }
 done
