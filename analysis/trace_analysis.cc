@@ -40,6 +40,8 @@ TraceAnalysis::TraceAnalysis(const TraceAnalysisOptions& o) : opt_(o) {
   for (int t = 0; t < o.threads; ++t) {
     const bool prof =
         static_cast<size_t>(t) < o.iteration_lengths.size() && !o.iteration_lengths[t].empty();
+    const bool line_prof = static_cast<size_t>(t) < o.line_iteration_lengths.size() &&
+                           !o.line_iteration_lengths[t].empty();
     std::unique_ptr<StreamAnalysis> e, l;
     if (static_cast<int>(o.granularity) & static_cast<int>(Granularity::kElement)) {
       e = std::make_unique<StreamAnalysis>(o.dense_elements);
@@ -47,7 +49,7 @@ TraceAnalysis::TraceAnalysis(const TraceAnalysisOptions& o) : opt_(o) {
     }
     if (static_cast<int>(o.granularity) & static_cast<int>(Granularity::kLine)) {
       l = std::make_unique<StreamAnalysis>(0);
-      if (prof) l->profile = ReuseProfile(o.iteration_lengths[t], o.profile_steps);
+      if (line_prof) l->profile = ReuseProfile(o.line_iteration_lengths[t], o.profile_steps);
     }
     element_.push_back(std::move(e));
     line_.push_back(std::move(l));

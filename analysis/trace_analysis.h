@@ -1,7 +1,9 @@
 // Reuse analysis of a whole trace: one StackDistance + ReuseHistogram (+ ReuseProfile) per thread
-// stream and per granularity -- element (vertex id) and line (byte address / line size) -- fed in
-// one pass. Each thread's stream is analysed on its own (private caches, as the paper's per-core
-// L1/L2). AnalysisSink lets the smoother stream into it without a trace file.
+// stream and per granularity, fed in one pass. Element granularity: the element stream (touches
+// of vertex records, by vertex id; the paper's model). Line granularity: the address stream (every
+// load and store, by byte address / line size); an access that straddles two lines touches both.
+// Each thread's stream is analysed on its own (private caches, as the paper's per-core L1/L2).
+// AnalysisSink lets the smoother stream into it without a trace file.
 #pragma once
 
 #include <cstdint>
@@ -36,17 +38,26 @@ struct TraceAnalysisOptions {
   Granularity granularity = Granularity::kBoth;
   uint32_t line_bytes = 64;     // a power of two
   uint64_t dense_elements = 0;  // element ids below this use direct arrays (0: hash everything)
-  // iteration_lengths[t] = accesses of each iteration in thread t's stream; empty: no profile.
+  // iteration_lengths[t] = element accesses of each iteration in thread t's stream, and
+  // line_iteration_lengths[t] its line accesses (loads and stores); empty: no profile.
   std::vector<std::vector<uint64_t>> iteration_lengths;
+  std::vector<std::vector<uint64_t>> line_iteration_lengths;
   int profile_steps = 100;
 };
 
 class TraceAnalysis {
  public:
   explicit TraceAnalysis(const TraceAnalysisOptions& o);
-  void Add(int thread, uint64_t element, uint64_t address) {
+  void AddElement(int thread, uint64_t element) {
     if (element_[thread]) element_[thread]->Add(element);
-    if (line_[thread]) line_[thread]->Add(address >> line_shift_);
+  }
+  // An access of `size` bytes (0 counts as 1) at `address`: one line, or two if it straddles.
+  void AddAccess(int thread, uint64_t address, uint32_t size) {
+    if (!line_[thread]) return;
+    const uint64_t first = address >> line_shift_;
+    const uint64_t last = (address + (size ? size - 1 : 0)) >> line_shift_;
+    line_[thread]->Add(first);
+    if (last != first) line_[thread]->Add(last);
   }
   int threads() const { return static_cast<int>(element_.size()); }
   const StreamAnalysis* element(int t) const { return element_[t].get(); }
@@ -63,8 +74,9 @@ struct AnalysisSink {
   static constexpr bool kEnabled = true;
   TraceAnalysis* analysis;
   void BeginSweep(int) {}
-  void Touch(int thread, AccessKind, int32_t vertex, const void* address) {
-    analysis->Add(thread, static_cast<uint32_t>(vertex), reinterpret_cast<uintptr_t>(address));
+  void Access(int thread, const MemRef& r) {
+    if (r.element != AccessKind::kNone) analysis->AddElement(thread, static_cast<uint32_t>(r.vertex));
+    analysis->AddAccess(thread, reinterpret_cast<uintptr_t>(r.address), r.size);
   }
 };
 

@@ -116,17 +116,23 @@ int TraceCommand(const Args& args) {
   h.ordering = ordering;
   const auto t0 = Clock::now();
   TraceWriter w(out, h, iterations);
+  uint64_t per_sweep = 0;
+  for (uint64_t n : RefsPerSweep(m, threads, so.mode)) per_sweep += n;
   progress.Say("tracing " + std::to_string(iterations) + " sweep(s), about " +
-               Grouped(static_cast<long long>(AccessesPerSweep(m)[0] * iterations)) + " accesses");
+               Grouped(static_cast<long long>(per_sweep * iterations)) + " accesses");
   Smooth(m, so, w);
   w.Close();
   const uint64_t n = w.records();
+  const uint64_t elements = w.elements();
+  const double per = static_cast<double>(m.NumVertices()) * iterations;
   std::printf(
-      "wrote %s: %s accesses (%s per vertex per sweep), %d sweep(s), %d stream(s), %.1f MB, %.2f "
-      "s\n",
+      "wrote %s: %s accesses (%s per vertex per sweep), %s element touches (%s), %d sweep(s), "
+      "%d stream(s), %.1f MB, %.2f s\n",
       out.c_str(), Grouped(static_cast<long long>(n)).c_str(),
-      Fixed(static_cast<double>(n) / m.NumVertices() / iterations, 2).c_str(), iterations, threads,
-      (static_cast<double>(n) * sizeof(TraceRecord)) / 1e6, Since(t0));
+      Fixed(static_cast<double>(n) / per, 2).c_str(),
+      Grouped(static_cast<long long>(elements)).c_str(),
+      Fixed(static_cast<double>(elements) / per, 2).c_str(),
+      iterations, threads, (static_cast<double>(n) * sizeof(TraceRecord)) / 1e6, Since(t0));
   return 0;
 }
 
@@ -218,6 +224,8 @@ int AnalyzeCommand(const Args& args) {
         if (so.mode == UpdateMode::kGaussSeidel)
           for (uint64_t n : AccessesPerSweep(m, threads))
             o.iteration_lengths.push_back(std::vector<uint64_t>(iterations, n));
+        for (uint64_t n : RefsPerSweep(m, threads, so.mode))
+          o.line_iteration_lengths.push_back(std::vector<uint64_t>(iterations, n));
         Job j{in, ord, m.NumVertices(), iterations, std::make_unique<TraceAnalysis>(o)};
         progress.Say("analysing " + std::to_string(iterations) + " sweep(s) of " + in + " in " +
                      ord + " order");
@@ -236,8 +244,11 @@ int AnalyzeCommand(const Args& args) {
       o.line_bytes = line_bytes;
       // Each thread's sweep lengths (for the profile) and the vertex count are in the header.
       o.iteration_lengths.assign(h.threads, {});
-      for (const std::vector<uint64_t>& sweep : h.sweep_records)
+      o.line_iteration_lengths.assign(h.threads, {});
+      for (const std::vector<uint64_t>& sweep : h.sweep_elements)
         for (uint32_t t = 0; t < h.threads; ++t) o.iteration_lengths[t].push_back(sweep[t]);
+      for (const std::vector<uint64_t>& sweep : h.sweep_records)
+        for (uint32_t t = 0; t < h.threads; ++t) o.line_iteration_lengths[t].push_back(sweep[t]);
       o.dense_elements = h.vertices;  // 0 (unknown): ids go to the hash table
       Job j{in, h.ordering.empty() ? "?" : h.ordering, static_cast<int64_t>(h.vertices),
             static_cast<int>(h.iteration_starts.size()), std::make_unique<TraceAnalysis>(o)};
@@ -250,7 +261,8 @@ int AnalyzeCommand(const Args& args) {
             throw InputError(in, 0,
                              "record with thread " + std::to_string(rec.thread) +
                                  " beyond the header's " + std::to_string(h.threads));
-          j.analysis->Add(rec.thread, rec.vertex, rec.address);
+          if (rec.kind < kElementKinds) j.analysis->AddElement(rec.thread, rec.vertex);
+          j.analysis->AddAccess(rec.thread, rec.address, rec.size);
         }
       jobs.push_back(std::move(j));
     } else {
@@ -258,11 +270,14 @@ int AnalyzeCommand(const Args& args) {
       o.granularity = gran;
       o.line_bytes = line_bytes;
       const uint64_t len = ExternalTraceLength(in, fmt);
-      if (len) o.iteration_lengths = {{len}};
+      if (len) o.iteration_lengths = o.line_iteration_lengths = {{len}};
       Job j{in, "-", 0, len ? 1 : 0, std::make_unique<TraceAnalysis>(o)};
       progress.Say("analysing " + in + " as " + (format.empty() ? "text" : format));
       TraceAnalysis* a = j.analysis.get();
-      ReadExternalTrace(in, fmt, [a](uint64_t v) { a->Add(0, v, v); });
+      ReadExternalTrace(in, fmt, [a](uint64_t v) {
+        a->AddElement(0, v);
+        a->AddAccess(0, v, 1);
+      });
       jobs.push_back(std::move(j));
     }
   }

@@ -44,7 +44,7 @@ struct Where {
 };
 
 // CSR of vertex -> incident triangles by counting sort; rows come out in increasing triangle id.
-Csr BuildV2T(int32_t nv, const std::vector<int32_t>& tri) {
+Csr BuildV2T(int32_t nv, const AlignedVector<int32_t>& tri) {
   Csr c;
   c.off.assign(static_cast<size_t>(nv) + 1, 0);
   for (int32_t v : tri) ++c.off[v + 1];
@@ -132,7 +132,8 @@ Mesh BuildMesh(RawMesh raw, BuildReport* report) {
     m.xy.assign(raw.xy.begin(), raw.xy.end());
     std::vector<double>().swap(raw.xy);
   }
-  m.tri = std::move(raw.tri);
+  m.tri.assign(raw.tri.begin(), raw.tri.end());
+  std::vector<int32_t>().swap(raw.tri);
   m.v2t = BuildV2T(nv, m.tri);
 
   // One pass over vertices: distinct neighbours (v2v), each edge's triangle count (boundary and

@@ -18,7 +18,7 @@ namespace meshreuse {
 // Compressed rows: row r is idx[off[r] .. off[r+1]). Offsets are 64-bit, entries 32-bit ids.
 struct Csr {
   AlignedVector<int64_t> off;  // 64-byte aligned: traced (see aligned.h)
-  std::vector<int32_t> idx;
+  AlignedVector<int32_t> idx;
 
   int64_t RowSize(int32_t r) const { return off[r + 1] - off[r]; }
   const int32_t* RowBegin(int32_t r) const { return idx.data() + off[r]; }
@@ -51,12 +51,14 @@ class Mesh {
   int32_t NumTriangles() const { return static_cast<int32_t>(tri.size() / 3); }
   int32_t NumBoundary() const { return NumVertices() - static_cast<int32_t>(interior.size()); }
 
-  AlignedVector<double> xy;  // 64-byte aligned: traced (see aligned.h)
-  std::vector<int32_t> tri;
+  // Every array the sweep reads is 64-byte aligned (aligned.h): line-level results are the same
+  // in every run.
+  AlignedVector<double> xy;
+  AlignedVector<int32_t> tri;
   std::vector<uint8_t> boundary;  // 1 on the topological boundary
   Csr v2v;                        // distinct neighbours, increasing id
   Csr v2t;                        // incident triangles, increasing id
-  std::vector<int32_t> interior;  // non-boundary vertices, increasing id
+  AlignedVector<int32_t> interior;  // non-boundary vertices, increasing id
 };
 
 struct BuildReport {

@@ -26,4 +26,21 @@ std::vector<uint64_t> AccessesPerSweep(const Mesh& m, int threads) {
   return n;
 }
 
+std::vector<uint64_t> RefsPerSweep(const Mesh& m, int threads, UpdateMode mode) {
+  std::vector<uint64_t> n(threads < 1 ? 1 : threads, 0);
+  const int p = static_cast<int>(n.size());
+  const int64_t ni = static_cast<int64_t>(m.interior.size());
+  for (int64_t k = 0; k < ni; ++k) {
+    const int32_t v = m.interior[k];
+    n[smoother_detail::StaticOwner(k, ni, p)] +=
+        mode == UpdateMode::kGaussSeidel ? 6 + 2 * m.v2v.RowSize(v) + 13 * m.v2t.RowSize(v)
+                                         : 4 + 2 * m.v2v.RowSize(v);
+  }
+  if (mode == UpdateMode::kJacobi) {
+    const int64_t nt = m.NumTriangles();
+    for (int64_t t = 0; t < nt; ++t) n[smoother_detail::StaticOwner(t, nt, p)] += 11;
+  }
+  return n;
+}
+
 }  // namespace meshreuse

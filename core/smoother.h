@@ -10,15 +10,29 @@
 // is the last one, and there are at most `max_iters` sweeps.
 // Tracing is the template parameter: Smooth<NullSink> is the timed, uninstrumented kernel.
 //
-// The access sequence of one Gauss-Seidel visit of interior vertex v (what a tracing sink sees):
-//   1. kAdjacency  v          (&v2v.off[v]: v's adjacency row is read)
-//   2. kCoordRead  u          for each neighbour u of v, in increasing id (&xy[2u])
-//   3. kCoordWrite v          (&xy[2v]: v moves)
-//   4. kCoordRead  a, b, c    for each triangle t of v, in increasing id, its corners in stored
-//                             order (the triangle's quality is recomputed; v is one of them)
-// so 2 + deg(v) + 3 * triangles(v) touches; AccessesPerSweep() sums them. Jacobi visits touch
-// 1-3 (reading the old buffer, writing the new one); then its quality pass touches the three
-// corners of every triangle in triangle order (kCoordRead), split among threads statically.
+// What a tracing sink sees (tracer/sink.h): every load and store of mesh data the compiled sweep
+// makes, in program order, with its array and size; the element touches (the paper's model) ride
+// on the accesses that read or write a vertex record. One Gauss-Seidel visit of interior vertex v
+// (the k-th entry of `interior`), with deg(v) neighbours and tris(v) triangles:
+//   interior[k]                      4 B                 (v)
+//   v2v.off[v], v2v.off[v+1]         8 B each            element kAdjacency v on the first
+//   per neighbour u, increasing id:  v2v.idx[i] 4 B, then xy[2u..2u+1] as one 16 B load
+//                                                        element kCoordRead u
+//   xy[2v..2v+1]                     16 B store          element kCoordWrite v
+//   v2t.off[v], v2t.off[v+1]         8 B each
+//   per triangle t, increasing id:   v2t.idx[i] 4 B; tri[3t], tri[3t+1], tri[3t+2] 4 B each;
+//                                    x then y of each corner in stored order, 8 B each
+//                                    (element kCoordRead c on the x of corner c); tq[t] 8 B;
+//                                    w[t] 8 B; tq[t] 8 B store
+// so 6 + 2 deg(v) + 13 tris(v) accesses, 2 + deg(v) + 3 tris(v) of them element touches.
+// This is what GCC 12 -O3 (x86-64) emits for the NullSink sweep: the coordinate pair of a
+// neighbour is one vector load and the moved vertex one vector store; the array pointers live in
+// registers (the sweep copies them to locals, and -fno-math-errno removes the call to sqrt that
+// would otherwise force reloads). scripts/validate_callgrind.sh checks the count against
+// callgrind's data references for the sweep function. RefsPerSweep() sums it.
+// Jacobi: the same move (reading xy, storing 16 B into the next buffer, kCoordsNext), then a
+// quality pass over the triangles in order: tri[3t..3t+2], the six coordinates (element touches as
+// above), w[t] 8 B, tq[t] 8 B store; split among threads statically.
 // Traced runs (Sink::kEnabled) execute serially and give thread t the iterations that the static
 // schedule gives it, so each thread's stream is exact and in its own program order.
 #pragma once
@@ -43,11 +57,21 @@ const char* UpdateModeName(UpdateMode m);
 // Accepts "gs", "gauss-seidel", "jacobi"; throws std::invalid_argument otherwise.
 UpdateMode ParseUpdateMode(const std::string& s);
 
+// Each thread of a sweep's parallel region calls Enter(thread) before its share of the sweep and
+// Exit(thread) after it: where hardware counters are read (analysis/papi_counters.h). Untraced
+// runs only; the cost is two virtual calls per thread per sweep.
+struct SweepRegion {
+  virtual ~SweepRegion() = default;
+  virtual void Enter(int thread) = 0;
+  virtual void Exit(int thread) = 0;
+};
+
 struct SmoothOptions {
   int max_iters = 100;
   double tol = 5e-6;
   UpdateMode mode = UpdateMode::kGaussSeidel;
   int threads = 1;
+  SweepRegion* region = nullptr;  // optional, not owned
 };
 
 struct SweepRecord {
@@ -81,25 +105,54 @@ inline Arrays ArraysOf(Mesh& m) {
           m.v2t.off.data(), m.v2t.idx.data(), m.tri.data()};
 }
 
-// Moves v to the average of its neighbours read from `src`, writing to `dst` (the same array for
-// Gauss-Seidel). Returns nothing; the caller updates qualities.
+// Reports one access (compiled away for NullSink) and performs it.
 template <class Sink>
-inline void MoveToAverage(const Arrays& a, const double* src, double* dst, int32_t v, int tid,
-                          Sink& sink) {
-  if constexpr (Sink::kEnabled) sink.Touch(tid, AccessKind::kAdjacency, v, a.off + v);
-  const int64_t b = a.off[v], e = a.off[v + 1];
+inline void Report(Sink& sink, int tid, const void* p, uint32_t size, Array array, bool write,
+                   AccessKind kind = AccessKind::kNone, int32_t vertex = -1) {
+  if constexpr (Sink::kEnabled) sink.Access(tid, MemRef{p, size, array, write, kind, vertex});
+}
+template <class Sink, class T>
+inline T Load(Sink& sink, int tid, Array array, const T* p, AccessKind kind = AccessKind::kNone,
+              int32_t vertex = -1) {
+  Report(sink, tid, p, sizeof(T), array, false, kind, vertex);
+  return *p;
+}
+
+// Moves v to the average of its neighbours read from `src`, writing to `dst` (the same array for
+// Gauss-Seidel, `dst_array` says which it is).
+template <class Sink>
+inline void MoveToAverage(const Arrays& a, const double* src, double* dst, Array dst_array,
+                          int32_t v, int tid, Sink& sink) {
+  const int64_t b = Load(sink, tid, Array::kAdjOffsets, a.off + v, AccessKind::kAdjacency, v);
+  const int64_t e = Load(sink, tid, Array::kAdjOffsets, a.off + v + 1);
   double sx = 0.0, sy = 0.0;
   for (int64_t i = b; i < e; ++i) {
-    const int64_t u = a.nbr[i];
-    if constexpr (Sink::kEnabled)
-      sink.Touch(tid, AccessKind::kCoordRead, static_cast<int32_t>(u), src + 2 * u);
+    const int64_t u = Load(sink, tid, Array::kAdjIndex, a.nbr + i);
+    Report(sink, tid, src + 2 * u, 16, Array::kCoords, false, AccessKind::kCoordRead,
+           static_cast<int32_t>(u));
     sx += src[2 * u];
     sy += src[2 * u + 1];
   }
   const double inv = 1.0 / static_cast<double>(e - b);
+  Report(sink, tid, dst + 2 * int64_t{v}, 16, dst_array, true, AccessKind::kCoordWrite, v);
   dst[2 * int64_t{v}] = sx * inv;
   dst[2 * int64_t{v} + 1] = sy * inv;
-  if constexpr (Sink::kEnabled) sink.Touch(tid, AccessKind::kCoordWrite, v, dst + 2 * int64_t{v});
+}
+
+// The quality of triangle t read through the sink: its corners, then x and y of each.
+template <class Sink>
+inline double TracedTriangleQuality(const double* xy, const int32_t* tri, int64_t t, int tid,
+                                    Sink& sink) {
+  const int32_t* c = tri + 3 * t;
+  if constexpr (Sink::kEnabled) {
+    for (int j = 0; j < 3; ++j) Report(sink, tid, c + j, 4, Array::kTriangles, false);
+    for (int j = 0; j < 3; ++j) {
+      const double* p = xy + 2 * int64_t{c[j]};
+      Report(sink, tid, p, 8, Array::kCoords, false, AccessKind::kCoordRead, c[j]);
+      Report(sink, tid, p + 1, 8, Array::kCoords, false);
+    }
+  }
+  return TriangleQuality(xy, c);
 }
 
 // The thread that OpenMP's schedule(static) without a chunk size gives iteration k of n to: P
@@ -110,39 +163,44 @@ inline int StaticOwner(int64_t k, int64_t n, int threads) {
 }
 
 template <class Sink>
-inline double VisitGaussSeidel(const Arrays& a, int32_t v, double* tq, const double* w, int tid,
-                               Sink& sink) {
-  MoveToAverage(a, a.xy, a.xy, v, tid, sink);
+inline double VisitGaussSeidel(const Arrays& a, const int32_t* order, int64_t k, double* tq,
+                               const double* w, int tid, Sink& sink) {
+  const int32_t v = Load(sink, tid, Array::kInterior, order + k);
+  MoveToAverage(a, a.xy, a.xy, Array::kCoords, v, tid, sink);
   double dq = 0.0;
-  for (int64_t i = a.toff[v]; i < a.toff[v + 1]; ++i) {
-    const int64_t t = a.tris[i];
-    const int32_t* c = a.tri + 3 * t;
-    if constexpr (Sink::kEnabled)
-      for (int j = 0; j < 3; ++j)
-        sink.Touch(tid, AccessKind::kCoordRead, c[j], a.xy + 2 * int64_t{c[j]});
-    const double q = TriangleQuality(a.xy, c);
-    dq += w[t] * (q - tq[t]);
+  const int64_t b = Load(sink, tid, Array::kTriOffsets, a.toff + v);
+  const int64_t e = Load(sink, tid, Array::kTriOffsets, a.toff + v + 1);
+  for (int64_t i = b; i < e; ++i) {
+    const int64_t t = Load(sink, tid, Array::kTriIndex, a.tris + i);
+    const double q = TracedTriangleQuality(a.xy, a.tri, t, tid, sink);
+    const double old = Load(sink, tid, Array::kTriQuality, tq + t);
+    const double wt = Load(sink, tid, Array::kWeights, w + t);
+    dq += wt * (q - old);
+    Report(sink, tid, tq + t, 8, Array::kTriQuality, true);
     tq[t] = q;
   }
   return dq;
 }
 
 template <class Sink>
-double GaussSeidelSweep(const Arrays& a, const std::vector<int32_t>& interior, double* tq,
-                        const double* w, int threads, Sink& sink) {
+double GaussSeidelSweep(const Arrays& arrays, const AlignedVector<int32_t>& interior, double* tq,
+                        const double* w, int threads, Sink& sink, SweepRegion* region) {
   const int64_t ni = static_cast<int64_t>(interior.size());
   const int32_t* order = interior.data();
   double dq = 0.0;
   if constexpr (Sink::kEnabled) {  // serial replay of the static schedule, one stream per thread
     for (int64_t k = 0; k < ni; ++k)
-      dq += VisitGaussSeidel(a, order[k], tq, w, StaticOwner(k, ni, threads), sink);
+      dq += VisitGaussSeidel(arrays, order, k, tq, w, StaticOwner(k, ni, threads), sink);
     return dq;
   }
 #pragma omp parallel num_threads(threads) if (threads > 1) reduction(+ : dq)
   {
+    const Arrays a = arrays;  // a private copy keeps the pointers in registers
     const int tid = omp_get_thread_num();
+    if (region) region->Enter(tid);
 #pragma omp for schedule(static)
-    for (int64_t k = 0; k < ni; ++k) dq += VisitGaussSeidel(a, order[k], tq, w, tid, sink);
+    for (int64_t k = 0; k < ni; ++k) dq += VisitGaussSeidel(a, order, k, tq, w, tid, sink);
+    if (region) region->Exit(tid);
   }
   return dq;
 }
@@ -150,8 +208,8 @@ double GaussSeidelSweep(const Arrays& a, const std::vector<int32_t>& interior, d
 // Jacobi: new positions from the old buffer into `next`, swap, then all triangle qualities anew.
 template <class Sink>
 double JacobiSweep(Mesh& m, AlignedVector<double>& next, double* tq, const double* w, int threads,
-                   Sink& sink) {
-  const Arrays a = ArraysOf(m);
+                   Sink& sink, SweepRegion* region) {
+  const Arrays arrays = ArraysOf(m);
   const int64_t ni = static_cast<int64_t>(m.interior.size());
   const int32_t* order = m.interior.data();
   double* dst = next.data();
@@ -159,28 +217,44 @@ double JacobiSweep(Mesh& m, AlignedVector<double>& next, double* tq, const doubl
   const int32_t* tri = m.tri.data();
   double q_new = 0.0;
   if constexpr (Sink::kEnabled) {  // serial replay of the static schedule, one stream per thread
-    for (int64_t k = 0; k < ni; ++k)
-      MoveToAverage(a, a.xy, dst, order[k], StaticOwner(k, ni, threads), sink);
+    for (int64_t k = 0; k < ni; ++k) {
+      const int tid = StaticOwner(k, ni, threads);
+      const int32_t v = Load(sink, tid, Array::kInterior, order + k);
+      MoveToAverage(arrays, arrays.xy, dst, Array::kCoordsNext, v, tid, sink);
+    }
     m.xy.swap(next);
     const double* xy = m.xy.data();
     for (int64_t t = 0; t < nt; ++t) {
       const int tid = StaticOwner(t, nt, threads);
-      for (int j = 0; j < 3; ++j)
-        sink.Touch(tid, AccessKind::kCoordRead, tri[3 * t + j], xy + 2 * int64_t{tri[3 * t + j]});
-      tq[t] = TriangleQuality(xy, tri + 3 * t);
-      q_new += w[t] * tq[t];
+      const double q = TracedTriangleQuality(xy, tri, t, tid, sink);
+      const double wt = Load(sink, tid, Array::kWeights, w + t);
+      Report(sink, tid, tq + t, 8, Array::kTriQuality, true);
+      tq[t] = q;
+      q_new += wt * q;
     }
     return q_new;
   }
-#pragma omp parallel for num_threads(threads) if (threads > 1) schedule(static)
-  for (int64_t k = 0; k < ni; ++k)
-    MoveToAverage(a, a.xy, dst, order[k], omp_get_thread_num(), sink);
+#pragma omp parallel num_threads(threads) if (threads > 1)
+  {
+    const Arrays a = arrays;
+    const int tid = omp_get_thread_num();
+    if (region) region->Enter(tid);
+#pragma omp for schedule(static)
+    for (int64_t k = 0; k < ni; ++k) MoveToAverage(a, a.xy, dst, Array::kCoordsNext, order[k], tid, sink);
+    if (region) region->Exit(tid);
+  }
   m.xy.swap(next);  // boundary entries are equal in both buffers, interior ones are now new
   const double* xy = m.xy.data();
-#pragma omp parallel for num_threads(threads) if (threads > 1) schedule(static) reduction(+ : q_new)
-  for (int64_t t = 0; t < nt; ++t) {
-    tq[t] = TriangleQuality(xy, tri + 3 * t);
-    q_new += w[t] * tq[t];
+#pragma omp parallel num_threads(threads) if (threads > 1) reduction(+ : q_new)
+  {
+    const int tid = omp_get_thread_num();
+    if (region) region->Enter(tid);
+#pragma omp for schedule(static)
+    for (int64_t t = 0; t < nt; ++t) {
+      tq[t] = TriangleQuality(xy, tri + 3 * t);
+      q_new += w[t] * tq[t];
+    }
+    if (region) region->Exit(tid);
   }
   return q_new;
 }
@@ -195,8 +269,13 @@ SmoothResult Smooth(Mesh& mesh, const SmoothOptions& opt, Sink& sink,
   using Clock = std::chrono::steady_clock;
   SmoothResult r;
   r.quality_before = GlobalQuality(mesh);
-  std::vector<double> tq = TriangleQualities(mesh);
-  const std::vector<double> w = GlobalQualityWeights(mesh);
+  // Aligned like the mesh's arrays, so line-level results do not depend on malloc.
+  AlignedVector<double> tq, w;
+  {
+    const std::vector<double> q0 = TriangleQualities(mesh), w0 = GlobalQualityWeights(mesh);
+    tq.assign(q0.begin(), q0.end());
+    w.assign(w0.begin(), w0.end());
+  }
   double q = 0.0;
   for (size_t t = 0; t < tq.size(); ++t) q += w[t] * tq[t];
   AlignedVector<double> next;
@@ -209,9 +288,11 @@ SmoothResult Smooth(Mesh& mesh, const SmoothOptions& opt, Sink& sink,
     double q_new;
     if (opt.mode == UpdateMode::kGaussSeidel) {
       q_new = q + smoother_detail::GaussSeidelSweep(smoother_detail::ArraysOf(mesh), mesh.interior,
-                                                    tq.data(), w.data(), threads, sink);
+                                                    tq.data(), w.data(), threads, sink,
+                                                    opt.region);
     } else {
-      q_new = smoother_detail::JacobiSweep(mesh, next, tq.data(), w.data(), threads, sink);
+      q_new =
+          smoother_detail::JacobiSweep(mesh, next, tq.data(), w.data(), threads, sink, opt.region);
     }
     const double secs = std::chrono::duration<double>(Clock::now() - t0).count();
     SweepRecord rec{it, q_new, q_new - q, secs};
@@ -228,9 +309,14 @@ SmoothResult Smooth(Mesh& mesh, const SmoothOptions& opt, Sink& sink,
   return r;
 }
 
-// Touches per Gauss-Seidel sweep, per thread of the static schedule (see the sequence above):
-// sum over the thread's interior vertices of 2 + deg(v) + 3 * triangles(v).
+// Element touches per Gauss-Seidel sweep, per thread of the static schedule (see the sequence
+// above): sum over the thread's interior vertices of 2 + deg(v) + 3 * triangles(v).
 std::vector<uint64_t> AccessesPerSweep(const Mesh& m, int threads = 1);
+// Loads and stores (the address stream) per sweep, per thread: Gauss-Seidel 6 + 2 deg(v) +
+// 13 triangles(v) per interior vertex; Jacobi 4 + 2 deg(v) per interior vertex plus 11 per
+// triangle of the thread's share of the quality pass.
+std::vector<uint64_t> RefsPerSweep(const Mesh& m, int threads = 1,
+                                   UpdateMode mode = UpdateMode::kGaussSeidel);
 
 // The timed, uninstrumented smoother.
 inline SmoothResult Smooth(Mesh& mesh, const SmoothOptions& opt) {

@@ -1,8 +1,14 @@
 // Access sinks: what the instrumented smoother reports to. The smoother is a template over its sink
 // (Ligra-style), so NullSink -- kEnabled == false -- removes every report at compile time and the
-// timed loop is the uninstrumented loop. A sink receives, in program order and per thread, each
-// touch of a vertex record: which vertex, which kind of touch, and the byte address touched, and
-// BeginSweep(k) before sweep k (1-based). The exact sequence of one vertex visit is in
+// timed loop is the uninstrumented loop.
+//
+// A sink receives, in program order and per thread, every load and store of mesh data that the
+// compiled sweep makes (the *address stream*, DESIGN.md "Access"): its byte address, its size, the
+// array it belongs to, and whether it reads or writes. Some of those accesses are also touches of a
+// vertex record -- the paper's element model (its adjacency row, its coordinates read or written):
+// they carry the element kind and the vertex id, and the subsequence of them is the *element
+// stream*. One report per access, so both streams come from one sequence and never disagree.
+// BeginSweep(k) comes before sweep k (1-based). The exact sequence of one vertex visit is in
 // core/smoother.h. A traced run is serial: with P threads, thread t's stream is what thread t of
 // the static schedule issues, in its order (the interleaving of threads is not modelled).
 #pragma once
@@ -13,38 +19,82 @@
 
 namespace meshreuse {
 
+// The element kind of an access: which touch of a vertex record it is, or none.
 enum class AccessKind : uint8_t {
-  kAdjacency = 0,   // reading the vertex's adjacency row (offsets into the neighbour list)
+  kAdjacency = 0,   // reading the vertex's adjacency row (its offset into the neighbour list)
   kCoordRead = 1,   // reading a vertex's coordinates
   kCoordWrite = 2,  // writing the moved vertex's coordinates
+  kNone = 3,        // an access to mesh data that is not a touch of a vertex record
+};
+inline constexpr int kElementKinds = 3;
+
+// The arrays the sweep reads and writes (core/mesh.h, core/smoother.h).
+enum class Array : uint8_t {
+  kInterior = 0,     // the interior vertex list (the iteration space)
+  kAdjOffsets = 1,   // v2v.off
+  kAdjIndex = 2,     // v2v.idx: neighbour ids
+  kTriOffsets = 3,   // v2t.off
+  kTriIndex = 4,     // v2t.idx: incident triangle ids
+  kTriangles = 5,    // tri: three corners per triangle
+  kTriQuality = 6,   // per-triangle quality kept by the smoother
+  kWeights = 7,      // per-triangle weight in the global quality
+  kCoords = 8,       // xy (Jacobi: the buffer read)
+  kCoordsNext = 9,   // Jacobi only: the buffer written
+};
+inline constexpr int kArrays = 10;
+
+struct MemRef {
+  const void* address;
+  uint32_t size;  // bytes
+  Array array;
+  bool write;
+  AccessKind element = AccessKind::kNone;
+  int32_t vertex = -1;  // the vertex whose record is touched, when element != kNone
 };
 
 const char* AccessKindName(AccessKind k);
+const char* ArrayName(Array a);
 
 struct NullSink {
   static constexpr bool kEnabled = false;
   void BeginSweep(int /*sweep*/) {}
-  void Touch(int /*thread*/, AccessKind, int32_t /*vertex*/, const void* /*address*/) {}
+  void Access(int /*thread*/, const MemRef&) {}
 };
 
-// Counts touches per thread and kind; the reference for AccessesPerSweep and the access tests.
+// Counts accesses per thread: element touches per kind, and all accesses per array and direction.
+// The reference for AccessesPerSweep / RefsPerSweep and the access tests.
 struct CountingSink {
   static constexpr bool kEnabled = true;
-  std::vector<std::array<uint64_t, 3>> per_thread;  // [thread][kind]
+  struct PerThread {
+    std::array<uint64_t, kElementKinds> kind{};
+    std::array<std::array<uint64_t, 2>, kArrays> array{};  // [array][write]
+    uint64_t bytes = 0;
+  };
+  std::vector<PerThread> per_thread;
   int sweeps = 0;
   void BeginSweep(int) { ++sweeps; }
-  void Touch(int thread, AccessKind k, int32_t, const void*) {
-    if (static_cast<size_t>(thread) >= per_thread.size()) per_thread.resize(thread + 1, {0, 0, 0});
-    ++per_thread[thread][static_cast<int>(k)];
+  void Access(int thread, const MemRef& r) {
+    if (static_cast<size_t>(thread) >= per_thread.size()) per_thread.resize(thread + 1);
+    PerThread& p = per_thread[thread];
+    if (r.element != AccessKind::kNone) ++p.kind[static_cast<int>(r.element)];
+    ++p.array[static_cast<int>(r.array)][r.write];
+    p.bytes += r.size;
   }
-  uint64_t Total() const {
+  uint64_t Elements() const {  // element touches, all threads
     uint64_t s = 0;
-    for (const auto& a : per_thread) s += a[0] + a[1] + a[2];
+    for (const PerThread& p : per_thread)
+      for (uint64_t n : p.kind) s += n;
+    return s;
+  }
+  uint64_t Refs() const {  // loads and stores, all threads
+    uint64_t s = 0;
+    for (const PerThread& p : per_thread)
+      for (const auto& a : p.array) s += a[0] + a[1];
     return s;
   }
 };
 
-// Records every touch; for tests on tiny meshes.
+// Records every access; for tests on tiny meshes. `touches` is the element stream.
 struct RecordingSink {
   static constexpr bool kEnabled = true;
   struct Touched {
@@ -56,11 +106,21 @@ struct RecordingSink {
       return thread == o.thread && kind == o.kind && vertex == o.vertex && address == o.address;
     }
   };
+  struct Ref {
+    int thread;
+    MemRef ref;
+  };
   std::vector<Touched> touches;
-  std::vector<size_t> sweep_starts;  // index into touches where each sweep begins
-  void BeginSweep(int) { sweep_starts.push_back(touches.size()); }
-  void Touch(int thread, AccessKind k, int32_t v, const void* a) {
-    touches.push_back({thread, k, v, a});
+  std::vector<Ref> refs;
+  std::vector<size_t> sweep_starts;      // index into touches where each sweep begins
+  std::vector<size_t> ref_sweep_starts;  // index into refs where each sweep begins
+  void BeginSweep(int) {
+    sweep_starts.push_back(touches.size());
+    ref_sweep_starts.push_back(refs.size());
+  }
+  void Access(int thread, const MemRef& r) {
+    refs.push_back({thread, r});
+    if (r.element != AccessKind::kNone) touches.push_back({thread, r.element, r.vertex, r.address});
   }
 };
 
@@ -72,8 +132,18 @@ inline const char* AccessKindName(AccessKind k) {
       return "coord-read";
     case AccessKind::kCoordWrite:
       return "coord-write";
+    case AccessKind::kNone:
+      return "none";
   }
   return "?";
+}
+
+inline const char* ArrayName(Array a) {
+  static constexpr const char* kNames[kArrays] = {
+      "interior", "v2v.off", "v2v.idx", "v2t.off", "v2t.idx",
+      "tri",      "tq",      "w",       "xy",      "xy.next"};
+  const int i = static_cast<int>(a);
+  return i >= 0 && i < kArrays ? kNames[i] : "?";
 }
 
 }  // namespace meshreuse

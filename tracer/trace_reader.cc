@@ -53,10 +53,12 @@ TraceReader::TraceReader(std::string path) : path_(std::move(path)) {
   if (got < fixed.size()) throw InputError(path_, 0, "truncated trace header");
   Cursor c{fixed, 8, path_};
   header_.version = c.Get<uint32_t>();
-  if (header_.version != kTraceVersion)
+  if (header_.version != 1 && header_.version != kTraceVersion)
     throw InputError(path_, 0,
                      "unknown trace version " + std::to_string(header_.version) +
-                         " (this reader knows version " + std::to_string(kTraceVersion) + ")");
+                         " (this reader knows versions 1 and " + std::to_string(kTraceVersion) +
+                         ")");
+  const uint64_t tables = header_.version >= 2 ? 2 : 1;
   const uint32_t header_bytes = c.Get<uint32_t>();
   header_.granularity = c.Get<uint32_t>();
   header_.element_bytes = c.Get<uint32_t>();
@@ -67,7 +69,7 @@ TraceReader::TraceReader(std::string path) : path_(std::move(path)) {
   header_.records = c.Get<uint64_t>();
   if (header_bytes < 48 || header_bytes > (1u << 26) || iterations > slots ||
       header_.threads == 0 || header_.threads > 256 ||
-      48 + 8ull * slots * (1 + header_.threads) > header_bytes)
+      48 + 8ull * slots * (1 + tables * header_.threads) > header_bytes)
     throw InputError(path_, 0, "corrupt trace header");
   std::vector<char> all(header_bytes);
   std::memcpy(all.data(), fixed.data(), 48);
@@ -78,11 +80,18 @@ TraceReader::TraceReader(std::string path) : path_(std::move(path)) {
     const uint64_t v = h.Get<uint64_t>();
     if (i < iterations) header_.iteration_starts.push_back(v);
   }
-  for (uint32_t i = 0; i < slots; ++i) {
-    std::vector<uint64_t> per_thread(header_.threads);
-    for (uint64_t& n : per_thread) n = h.Get<uint64_t>();
-    if (i < iterations) header_.sweep_records.push_back(std::move(per_thread));
-  }
+  auto table = [&](std::vector<std::vector<uint64_t>>* per_sweep) {
+    for (uint32_t i = 0; i < slots; ++i) {
+      std::vector<uint64_t> per_thread(header_.threads);
+      for (uint64_t& n : per_thread) n = h.Get<uint64_t>();
+      if (i < iterations) per_sweep->push_back(std::move(per_thread));
+    }
+  };
+  table(&header_.sweep_records);
+  if (tables == 2)
+    table(&header_.sweep_elements);
+  else
+    header_.sweep_elements = header_.sweep_records;  // version 1: every record is a touch
   header_.mesh = h.GetString();
   header_.ordering = h.GetString();
   struct stat st {};

@@ -36,11 +36,14 @@ std::vector<char> EncodeTraceHeader(const TraceHeader& h, int reserve_iterations
   Put(b, h.records);
   for (int i = 0; i < reserve_iterations; ++i)
     Put(b, i < static_cast<int>(h.iteration_starts.size()) ? h.iteration_starts[i] : uint64_t{0});
-  for (int i = 0; i < reserve_iterations; ++i)
-    for (uint32_t t = 0; t < h.threads; ++t)
-      Put(b, i < static_cast<int>(h.sweep_records.size()) && t < h.sweep_records[i].size()
-                 ? h.sweep_records[i][t]
-                 : uint64_t{0});
+  auto table = [&](const std::vector<std::vector<uint64_t>>& per_sweep) {
+    for (int i = 0; i < reserve_iterations; ++i)
+      for (uint32_t t = 0; t < h.threads; ++t)
+        Put(b, i < static_cast<int>(per_sweep.size()) && t < per_sweep[i].size() ? per_sweep[i][t]
+                                                                                 : uint64_t{0});
+  };
+  table(h.sweep_records);
+  if (h.version >= 2) table(h.sweep_elements);
   PutString(b, h.mesh);
   PutString(b, h.ordering);
   while (b.size() % 16) b.push_back(0);  // records start 16-byte aligned
@@ -70,6 +73,7 @@ void TraceWriter::BeginSweep(int sweep) {
   if (sweep > max_iterations_) return;  // only the sweeps the header has room for are marked
   header_.iteration_starts.push_back(records());
   header_.sweep_records.emplace_back(header_.threads, 0);
+  header_.sweep_elements.emplace_back(header_.threads, 0);
 }
 
 void TraceWriter::Flush() {

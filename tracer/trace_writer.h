@@ -24,14 +24,26 @@ class TraceWriter {
   TraceWriter& operator=(const TraceWriter&) = delete;
 
   void BeginSweep(int sweep);
-  void Touch(int thread, AccessKind kind, int32_t vertex, const void* address) {
+  void Access(int thread, const MemRef& r) {
     if (buf_.size() == buf_.capacity()) Flush();
-    if (!header_.sweep_records.empty()) ++header_.sweep_records.back()[thread];
-    buf_.push_back(TraceRecord{reinterpret_cast<uintptr_t>(address), static_cast<uint32_t>(vertex),
-                               static_cast<uint8_t>(kind), static_cast<uint8_t>(thread), 0});
+    if (!header_.sweep_records.empty()) {
+      ++header_.sweep_records.back()[thread];
+      if (r.element != AccessKind::kNone) ++header_.sweep_elements.back()[thread];
+    }
+    buf_.push_back(TraceRecord{reinterpret_cast<uintptr_t>(r.address),
+                               static_cast<uint32_t>(r.vertex), static_cast<uint8_t>(r.element),
+                               static_cast<uint8_t>(thread), static_cast<uint8_t>(r.size),
+                               static_cast<uint8_t>(static_cast<uint8_t>(r.array) |
+                                                    (r.write ? kStoreBit : 0))});
   }
   void Close();  // throws InputError on an I/O failure
   uint64_t records() const { return records_ + buf_.size(); }
+  uint64_t elements() const {  // element touches among the records (of the marked sweeps)
+    uint64_t n = 0;
+    for (const auto& sweep : header_.sweep_elements)
+      for (uint64_t e : sweep) n += e;
+    return n;
+  }
 
  private:
   void Flush();

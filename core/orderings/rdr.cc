@@ -28,7 +28,7 @@ Permutation RdrOrder(const Mesh& m, const std::vector<double>& quality) {
   // Each neighbour row sorted once by (quality, id): then "unprocessed neighbours of v by
   // increasing quality" is row v with the processed ones skipped, and no sort runs in the chain.
   // Rows are short and in increasing id, so an insertion sort on quality keeps ties by id.
-  std::vector<int32_t> nbr(m.v2v.idx);
+  std::vector<int32_t> nbr(m.v2v.idx.begin(), m.v2v.idx.end());
   const int64_t* off = m.v2v.off.data();
   for (int32_t v = 0; v < n; ++v) {
     int32_t* b = nbr.data() + off[v];
@@ -45,7 +45,7 @@ Permutation RdrOrder(const Mesh& m, const std::vector<double>& quality) {
   std::vector<uint8_t> processed(n, 0), sorted(n, 0);
   std::vector<int32_t> order;
   order.reserve(n);
-  for (const int32_t i : orderings::StableSortByKey(m.interior, quality)) {
+  for (const int32_t i : orderings::StableSortByKey({m.interior.begin(), m.interior.end()}, quality)) {
     if (processed[i]) continue;
     if (!sorted[i]) {
       order.push_back(i);

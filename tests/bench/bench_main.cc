@@ -55,7 +55,9 @@ struct ElementTrace {
   static constexpr bool kEnabled = true;
   std::vector<uint32_t> ids;
   void BeginSweep(int) {}
-  void Touch(int, AccessKind, int32_t v, const void*) { ids.push_back(static_cast<uint32_t>(v)); }
+  void Access(int, const MemRef& r) {
+    if (r.element != AccessKind::kNone) ids.push_back(static_cast<uint32_t>(r.vertex));
+  }
 };
 
 const std::vector<uint32_t>& FirstSweepTrace(const std::string& ordering) {

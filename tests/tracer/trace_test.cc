@@ -1,9 +1,11 @@
-// The access sequence of a sweep on the tiny mesh (spelled out), accesses per sweep, the static
-// split against OpenMP's own, and the binary trace: round trip, and rejection of a wrong magic, an
-// unknown version and a truncated file.
+// The access sequence of a sweep on the tiny mesh (element stream and address stream spelled out),
+// per-array access counts against closed forms on every test mesh, the static split against
+// OpenMP's own, and the binary trace: round trip, version-1 files, and rejection of a wrong magic,
+// an unknown version and a truncated file.
 #include <gtest/gtest.h>
 #include <omp.h>
 
+#include <array>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -55,6 +57,162 @@ TEST(AccessSequence, OneGaussSeidelSweepOnTheTinyMesh) {
   EXPECT_EQ(AccessesPerSweep(m, 2), (std::vector<uint64_t>{22, 22}));
 }
 
+// The address stream of the same sweep, every load and store with its array, size and direction.
+TEST(AccessSequence, AddressStreamOfOneGaussSeidelSweepOnTheTinyMesh) {
+  Mesh m = testing::TwoInterior();
+  RecordingSink sink;
+  Smooth(m, OneSweep(2), sink);
+  struct Want {
+    int thread;
+    Array array;
+    const void* address;
+    uint32_t size;
+    bool write;
+    AccessKind kind;
+    int32_t vertex;
+  };
+  std::vector<Want> want;
+  const double* xy = m.xy.data();
+  auto add = [&](int th, Array a, const void* p, uint32_t size, bool write,
+                 AccessKind k = K::kNone, int32_t v = -1) {
+    want.push_back({th, a, p, size, write, k, v});
+  };
+  // Triangles of the tiny mesh (two_interior.ele, 0-based).
+  const std::vector<std::vector<int>> tri = {{0, 1, 6}, {1, 7, 6}, {6, 7, 4}, {6, 4, 5},
+                                             {6, 5, 0}, {1, 2, 7}, {2, 3, 7}, {7, 3, 4}};
+  auto visit = [&](int th, int k, int v, std::vector<int> nbrs, std::vector<int> tris) {
+    add(th, Array::kInterior, m.interior.data() + k, 4, false);
+    add(th, Array::kAdjOffsets, m.v2v.off.data() + v, 8, false, K::kAdjacency, v);
+    add(th, Array::kAdjOffsets, m.v2v.off.data() + v + 1, 8, false);
+    for (size_t i = 0; i < nbrs.size(); ++i) {
+      add(th, Array::kAdjIndex, m.v2v.idx.data() + m.v2v.off[v] + i, 4, false);
+      add(th, Array::kCoords, xy + 2 * nbrs[i], 16, false, K::kCoordRead, nbrs[i]);
+    }
+    add(th, Array::kCoords, xy + 2 * v, 16, true, K::kCoordWrite, v);
+    add(th, Array::kTriOffsets, m.v2t.off.data() + v, 8, false);
+    add(th, Array::kTriOffsets, m.v2t.off.data() + v + 1, 8, false);
+    for (size_t i = 0; i < tris.size(); ++i) {
+      const int t = tris[i];
+      add(th, Array::kTriIndex, m.v2t.idx.data() + m.v2t.off[v] + i, 4, false);
+      for (int j = 0; j < 3; ++j) add(th, Array::kTriangles, m.tri.data() + 3 * t + j, 4, false);
+      for (int c : tri[t]) {
+        add(th, Array::kCoords, xy + 2 * c, 8, false, K::kCoordRead, c);
+        add(th, Array::kCoords, xy + 2 * c + 1, 8, false);
+      }
+      add(th, Array::kTriQuality, nullptr, 8, false);  // tq and w live inside Smooth:
+      add(th, Array::kWeights, nullptr, 8, false);     // their addresses are checked below
+      add(th, Array::kTriQuality, nullptr, 8, true);
+    }
+  };
+  visit(0, 0, 6, {0, 1, 4, 5, 7}, {0, 1, 2, 3, 4});
+  visit(1, 1, 7, {1, 2, 3, 4, 6}, {1, 2, 5, 6, 7});
+  ASSERT_EQ(sink.refs.size(), want.size());
+  ASSERT_EQ(want.size(), 2u * (6 + 2 * 5 + 13 * 5));
+  // tq[t] and w[t]: one base each, 8 bytes per triangle, the same tq address read then written.
+  const char* tq0 = nullptr;
+  const char* w0 = nullptr;
+  for (size_t i = 0; i < want.size(); ++i) {
+    const Want& e = want[i];
+    const RecordingSink::Ref& g = sink.refs[i];
+    SCOPED_TRACE("access " + std::to_string(i));
+    EXPECT_EQ(g.thread, e.thread);
+    EXPECT_EQ(g.ref.array, e.array);
+    EXPECT_EQ(g.ref.size, e.size);
+    EXPECT_EQ(g.ref.write, e.write);
+    EXPECT_EQ(g.ref.element, e.kind);
+    if (e.kind != K::kNone) {
+      EXPECT_EQ(g.ref.vertex, e.vertex);
+    }
+    if (e.address) {
+      EXPECT_EQ(g.ref.address, e.address);
+      continue;
+    }
+    // Which triangle: the v2t.idx entry 6 accesses back names it.
+    const int t = *static_cast<const int32_t*>(sink.refs[i - (e.array == Array::kTriQuality
+                                                                   ? (e.write ? 12 : 10)
+                                                                   : 11)]
+                                                     .ref.address);
+    const char* base = static_cast<const char*>(g.ref.address) - 8 * t;
+    const char*& b = e.array == Array::kWeights ? w0 : tq0;
+    if (!b) b = base;
+    EXPECT_EQ(base, b) << "array " << ArrayName(e.array) << " triangle " << t;
+  }
+  EXPECT_NE(tq0, w0);
+  EXPECT_EQ(reinterpret_cast<uintptr_t>(tq0) % 64, 0u);  // aligned: reproducible line numbers
+  EXPECT_EQ(reinterpret_cast<uintptr_t>(w0) % 64, 0u);
+  EXPECT_EQ(RefsPerSweep(m, 2), (std::vector<uint64_t>{81, 81}));
+}
+
+// Per array and direction, one sweep's accesses equal closed forms in the mesh's degrees, on every
+// test mesh, for both update modes and several thread counts.
+TEST(AccessSequence, PerArrayCountsEqualClosedForms) {
+  std::vector<std::pair<std::string, Mesh>> meshes;
+  for (const char* f : {"two_interior.node", "two_components.node", "two_interior41.msh",
+                        "two_interior22.msh", "two_interior0.node"})
+    meshes.emplace_back(f, ReadMesh(testing::DataPath(f)));
+  for (int variant = 0; variant < 6; ++variant) {
+    SyntheticOptions so;
+    so.nx = 12 + 5 * variant, so.ny = 9 + 3 * variant, so.holes = variant % 3;
+    so.seed = 11 + variant;
+    meshes.emplace_back("synthetic " + std::to_string(variant), BuildMesh(MakeSyntheticMesh(so)));
+  }
+  for (auto& [name, m0] : meshes)
+    for (UpdateMode mode : {UpdateMode::kGaussSeidel, UpdateMode::kJacobi})
+      for (int threads : {1, 3}) {
+        SCOPED_TRACE(name + " " + UpdateModeName(mode) + " threads " + std::to_string(threads));
+        Mesh m = m0.Clone();
+        uint64_t ni = m.interior.size(), deg = 0, tris = 0;
+        for (int32_t v : m.interior) deg += m.v2v.RowSize(v), tris += m.v2t.RowSize(v);
+        const uint64_t nt = static_cast<uint64_t>(m.NumTriangles());
+        std::array<std::array<uint64_t, 2>, kArrays> want{};  // [array][write]
+        auto at = [&](Array a, bool w) -> uint64_t& { return want[static_cast<int>(a)][w]; };
+        at(Array::kInterior, false) = ni;
+        at(Array::kAdjOffsets, false) = 2 * ni;
+        at(Array::kAdjIndex, false) = deg;
+        if (mode == UpdateMode::kGaussSeidel) {
+          at(Array::kCoords, false) = deg + 6 * tris;
+          at(Array::kCoords, true) = ni;
+          at(Array::kTriOffsets, false) = 2 * ni;
+          at(Array::kTriIndex, false) = tris;
+          at(Array::kTriangles, false) = 3 * tris;
+          at(Array::kTriQuality, false) = tris;
+          at(Array::kTriQuality, true) = tris;
+          at(Array::kWeights, false) = tris;
+        } else {
+          at(Array::kCoords, false) = deg + 6 * nt;
+          at(Array::kCoordsNext, true) = ni;
+          at(Array::kTriangles, false) = 3 * nt;
+          at(Array::kTriQuality, true) = nt;
+          at(Array::kWeights, false) = nt;
+        }
+        SmoothOptions o = OneSweep(threads);
+        o.mode = mode;
+        CountingSink c;
+        Smooth(m, o, c);
+        std::array<std::array<uint64_t, 2>, kArrays> got{};
+        uint64_t total = 0;
+        for (const auto& p : c.per_thread)
+          for (int a = 0; a < kArrays; ++a)
+            for (int w = 0; w < 2; ++w) got[a][w] += p.array[a][w], total += p.array[a][w];
+        for (int a = 0; a < kArrays; ++a)
+          for (int w = 0; w < 2; ++w)
+            EXPECT_EQ(got[a][w], want[a][w])
+                << ArrayName(static_cast<Array>(a)) << (w ? " stores" : " loads");
+        const std::vector<uint64_t> per = RefsPerSweep(m, threads, mode);
+        ASSERT_LE(c.per_thread.size(), per.size());
+        c.per_thread.resize(per.size());  // threads with no work reported nothing
+        for (int t = 0; t < threads; ++t) {
+          uint64_t n = 0;
+          for (const auto& a : c.per_thread[t].array) n += a[0] + a[1];
+          EXPECT_EQ(n, per[t]) << "thread " << t;
+        }
+        // Element touches: 2 + deg + 3 tris per visit (Gauss-Seidel).
+        if (mode == UpdateMode::kGaussSeidel) {
+          EXPECT_EQ(c.Elements(), 2 * ni + deg + 3 * tris);
+        }
+      }
+}
+
 TEST(AccessSequence, TracedAndUntracedSmoothingAgree) {
   SyntheticOptions so;
   so.nx = 30, so.ny = 20, so.holes = 2, so.seed = 9;
@@ -67,7 +225,8 @@ TEST(AccessSequence, TracedAndUntracedSmoothingAgree) {
   Smooth(b, o);
   EXPECT_EQ(a.xy, b.xy);  // tracing observes, it does not change the computation
   EXPECT_EQ(counts.sweeps, 5);
-  EXPECT_EQ(counts.Total(), 5 * AccessesPerSweep(a)[0]);
+  EXPECT_EQ(counts.Elements(), 5 * AccessesPerSweep(a)[0]);
+  EXPECT_EQ(counts.Refs(), 5 * RefsPerSweep(a)[0]);
 }
 
 TEST(AccessSequence, PerSweepCountMatchesACountingSinkForEveryThreadCount) {
@@ -80,7 +239,8 @@ TEST(AccessSequence, PerSweepCountMatchesACountingSinkForEveryThreadCount) {
     const std::vector<uint64_t> want = AccessesPerSweep(m, threads);
     ASSERT_EQ(c.per_thread.size(), want.size());
     for (int t = 0; t < threads; ++t)
-      EXPECT_EQ(c.per_thread[t][0] + c.per_thread[t][1] + c.per_thread[t][2], want[t]);
+      EXPECT_EQ(c.per_thread[t].kind[0] + c.per_thread[t].kind[1] + c.per_thread[t].kind[2],
+                want[t]);
   }
 }
 
@@ -143,20 +303,28 @@ TEST_F(TraceFile, RoundTrip) {
   EXPECT_EQ(r.header().version, kTraceVersion);
   EXPECT_EQ(r.header().threads, 2u);
   EXPECT_EQ(r.header().element_bytes, 66u);
-  EXPECT_EQ(r.header().records, 3u * 44);
-  EXPECT_EQ(r.header().iteration_starts, (std::vector<uint64_t>{0, 44, 88}));
+  EXPECT_EQ(r.header().records, 3u * 162);
+  EXPECT_EQ(r.header().iteration_starts, (std::vector<uint64_t>{0, 162, 324}));
   EXPECT_EQ(r.header().vertices, 8u);
-  // Each of the 3 sweeps: thread 0 visits vertex 6, thread 1 vertex 7, 22 touches each.
-  EXPECT_EQ(r.header().sweep_records, (std::vector<std::vector<uint64_t>>(3, {22, 22})));
+  // Each of the 3 sweeps: thread 0 visits vertex 6, thread 1 vertex 7, 81 accesses each, 22 of
+  // them element touches.
+  EXPECT_EQ(r.header().sweep_records, (std::vector<std::vector<uint64_t>>(3, {81, 81})));
+  EXPECT_EQ(r.header().sweep_elements, (std::vector<std::vector<uint64_t>>(3, {22, 22})));
   EXPECT_EQ(r.header().mesh, "two_interior");
   EXPECT_EQ(r.header().ordering, "ori");
   std::vector<TraceRecord> batch, all;
   while (r.Next(&batch, 10)) all.insert(all.end(), batch.begin(), batch.end());
-  ASSERT_EQ(all.size(), rec.touches.size());
+  ASSERT_EQ(all.size(), rec.refs.size());
   for (size_t i = 0; i < all.size(); ++i) {
-    EXPECT_EQ(all[i].vertex, static_cast<uint32_t>(rec.touches[i].vertex));
-    EXPECT_EQ(all[i].kind, static_cast<uint8_t>(rec.touches[i].kind));
-    EXPECT_EQ(all[i].thread, rec.touches[i].thread);
+    const MemRef& e = rec.refs[i].ref;
+    EXPECT_EQ(all[i].kind, static_cast<uint8_t>(e.element));
+    if (e.element != K::kNone) {
+      EXPECT_EQ(all[i].vertex, static_cast<uint32_t>(e.vertex));
+    }
+    EXPECT_EQ(all[i].thread, rec.refs[i].thread);
+    EXPECT_EQ(all[i].size, e.size);
+    EXPECT_EQ(all[i].array & 0x7f, static_cast<uint8_t>(e.array));
+    EXPECT_EQ((all[i].array & kStoreBit) != 0, e.write);
   }
   EXPECT_TRUE(TraceReader::LooksLikeTrace(Path("t.trace")));
   EXPECT_FALSE(fs::exists(Path("t.trace") + ".tmp." + std::to_string(::getpid())));
@@ -175,9 +343,10 @@ TEST_F(TraceFile, Rejections) {
   ExpectRejected(write("magic", bad), "not a meshreuse trace (wrong magic");
   bad = bytes;
   bad[8] = 7;
-  ExpectRejected(write("version", bad), "unknown trace version 7 (this reader knows version 1)");
+  ExpectRejected(write("version", bad),
+                 "unknown trace version 7 (this reader knows versions 1 and 2)");
   ExpectRejected(write("cut", bytes.substr(0, bytes.size() - 5)),
-                 "truncated trace: the header says 88 records (1408 bytes), the file holds 1403");
+                 "truncated trace: the header says 324 records (5184 bytes), the file holds 5179");
   ExpectRejected(write("header", bytes.substr(0, 20)), "truncated trace header");
   ExpectRejected(write("empty", ""), "not a meshreuse trace");
   ExpectRejected(Path("missing"), "cannot open");
@@ -192,7 +361,10 @@ TEST_F(TraceFile, AnalysisFromFileEqualsStreaming) {
   TraceReader r(Path("t"));
   std::vector<TraceRecord> batch;
   while (r.Next(&batch))
-    for (const TraceRecord& rec : batch) from_file.Add(rec.thread, rec.vertex, rec.address);
+    for (const TraceRecord& rec : batch) {
+      if (rec.kind < kElementKinds) from_file.AddElement(rec.thread, rec.vertex);
+      from_file.AddAccess(rec.thread, rec.address, rec.size);
+    }
   Mesh m = testing::TwoInterior();
   SmoothOptions so;
   so.max_iters = 2;
@@ -204,7 +376,39 @@ TEST_F(TraceFile, AnalysisFromFileEqualsStreaming) {
     EXPECT_EQ(from_file.element(t)->hist.counts(), streamed.element(t)->hist.counts());
     EXPECT_EQ(from_file.line(t)->hist.counts(), streamed.line(t)->hist.counts());
     EXPECT_EQ(from_file.element(t)->hist.accesses(), 44u);
+    EXPECT_EQ(from_file.line(t)->hist.accesses(), 162u);
   }
+}
+
+// A version-1 file (element touches only, written by earlier releases) still reads: its records
+// are the element stream and their addresses the line stream.
+TEST_F(TraceFile, VersionOneStillReads) {
+  TraceHeader h;
+  h.version = 1;
+  h.threads = 1;
+  h.vertices = 4;
+  h.records = 3;
+  h.iteration_starts = {0};
+  h.sweep_records = {{3}};
+  h.mesh = "old";
+  h.ordering = "ori";
+  std::vector<char> b = EncodeTraceHeader(h, 1);
+  const TraceRecord recs[3] = {{64, 1, 0, 0, 0, 0}, {128, 2, 1, 0, 0, 0}, {64, 1, 2, 0, 0, 0}};
+  const char* p = reinterpret_cast<const char*>(recs);
+  b.insert(b.end(), p, p + sizeof recs);
+  std::ofstream(Path("v1"), std::ios::binary).write(b.data(), static_cast<std::streamsize>(b.size()));
+  TraceReader r(Path("v1"));
+  EXPECT_EQ(r.header().version, 1u);
+  EXPECT_EQ(r.header().sweep_records, (std::vector<std::vector<uint64_t>>{{3}}));
+  EXPECT_EQ(r.header().sweep_elements, (std::vector<std::vector<uint64_t>>{{3}}));
+  EXPECT_EQ(r.header().mesh, "old");
+  std::vector<TraceRecord> got;
+  ASSERT_TRUE(r.Next(&got));
+  ASSERT_EQ(got.size(), 3u);
+  EXPECT_EQ(got[1].vertex, 2u);
+  EXPECT_EQ(got[1].address, 128u);
+  EXPECT_EQ(got[2].kind, 2);
+  EXPECT_EQ(got[2].size, 0);
 }
 
 TEST(ExternalTrace, TextAndBinary) {

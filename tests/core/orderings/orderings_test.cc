@@ -149,7 +149,7 @@ TEST(Rdr, HandWorkedUnreachedVerticesGoLast) {
   // wheel, centre 3 (the only interior vertex), rim 4 5 6 7 with 4:{3,5,7} 5:{3,4,6} 6:{3,5,7}
   // 7:{3,4,6}.
   const Mesh m = ReadMesh(testing::DataPath("two_components.node"));
-  ASSERT_EQ(m.interior, (std::vector<int32_t>{3}));
+  ASSERT_EQ(std::vector<int32_t>(m.interior.begin(), m.interior.end()), (std::vector<int32_t>{3}));
   const std::vector<double> q = {0.2, 0.2, 0.2, 0.5, 0.4, 0.4, 0.1, 0.4};
   // 3: append 3; l = 6 (.1), 4 5 7 (.4, by id) -> append 6 4 5 7; process 6.
   // 6: l = 5, 7 -> process 5.  5: l = 4 -> process 4.  4: l = 7 -> process 7.  7: l = {}.
