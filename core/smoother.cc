@@ -33,12 +33,14 @@ std::vector<uint64_t> RefsPerSweep(const Mesh& m, int threads, UpdateMode mode) 
   for (int64_t k = 0; k < ni; ++k) {
     const int32_t v = m.interior[k];
     n[smoother_detail::StaticOwner(k, ni, p)] +=
-        mode == UpdateMode::kGaussSeidel ? 6 + 2 * m.v2v.RowSize(v) + 13 * m.v2t.RowSize(v)
-                                         : 4 + 2 * m.v2v.RowSize(v);
+        mode == UpdateMode::kGaussSeidel ? 7 + 2 * m.v2v.RowSize(v) + 13 * m.v2t.RowSize(v)
+                                         : 5 + 2 * m.v2v.RowSize(v);
   }
+  for (uint64_t& c : n) c += 1;  // the loop bound's last test
   if (mode == UpdateMode::kJacobi) {
     const int64_t nt = m.NumTriangles();
-    for (int64_t t = 0; t < nt; ++t) n[smoother_detail::StaticOwner(t, nt, p)] += 11;
+    for (int64_t t = 0; t < nt; ++t) n[smoother_detail::StaticOwner(t, nt, p)] += 12;
+    for (uint64_t& c : n) c += 1;
   }
   return n;
 }

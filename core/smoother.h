@@ -22,9 +22,12 @@
 //   v2t.off[v], v2t.off[v+1]         8 B each
 //   per triangle t, increasing id:   v2t.idx[i] 4 B; tri[3t], tri[3t+1], tri[3t+2] 4 B each;
 //                                    x then y of each corner in stored order, 8 B each
-//                                    (element kCoordRead c on the x of corner c); tq[t] 8 B;
-//                                    w[t] 8 B; tq[t] 8 B store
-// so 6 + 2 deg(v) + 13 tris(v) accesses, 2 + deg(v) + 3 tris(v) of them element touches.
+//                                    (element kCoordRead c on the x of corner c); its quality
+//                                    8 B, its weight 8 B, its quality 8 B store (weight and
+//                                    quality of t are interleaved: wq[2t], wq[2t+1])
+// so 6 + 2 deg(v) + 13 tris(v) accesses, 2 + deg(v) + 3 tris(v) of them element touches; before
+// each visit, and once after a thread's last, the loop reads its end bound (8 B, kLoopBound: a
+// local on the stack, see ForStatic) -- the one access that is not mesh data.
 // This is what GCC 12 -O3 (x86-64) emits for the NullSink sweep: the coordinate pair of a
 // neighbour is one vector load and the moved vertex one vector store; the array pointers live in
 // registers (the sweep copies them to locals, and -fno-math-errno removes the call to sqrt that
@@ -32,7 +35,7 @@
 // callgrind's data references for the sweep function. RefsPerSweep() sums it.
 // Jacobi: the same move (reading xy, storing 16 B into the next buffer, kCoordsNext), then a
 // quality pass over the triangles in order: tri[3t..3t+2], the six coordinates (element touches as
-// above), w[t] 8 B, tq[t] 8 B store; split among threads statically.
+// above), the weight 8 B, the quality 8 B store; split among threads statically.
 // Traced runs (Sink::kEnabled) execute serially and give thread t the iterations that the static
 // schedule gives it, so each thread's stream is exact and in its own program order.
 #pragma once
@@ -161,11 +164,57 @@ inline int StaticOwner(int64_t k, int64_t n, int threads) {
   const int64_t q = n / threads, r = n % threads;
   return static_cast<int>(k < r * (q + 1) ? k / (q + 1) : r + (k - r * (q + 1)) / (q > 0 ? q : 1));
 }
+// The same split as a range: thread t of P gets [*b, *e).
+inline void StaticRange(int64_t n, int threads, int t, int64_t* b, int64_t* e) {
+  const int64_t q = n / threads, r = n % threads;
+  *b = t < r ? t * (q + 1) : r * (q + 1) + (t - r) * q;
+  *e = *b + (t < r ? q + 1 : q);
+}
+
+// Sums body(p, thread) over p = items + k * stride for k in [0, n), split as schedule(static) among
+// `threads` threads: in parallel for NullSink (each thread calls region->Enter/Exit around its
+// share), serially for a tracing sink (thread 0's share, then thread 1's, ...: each stream exact,
+// in its own order). The loop's end pointer is a volatile local, read from memory at each test of
+// the loop condition: the Gauss-Seidel visit needs every register, and GCC 12 keeps the bound on
+// the stack anyway; making it explicit gives every compiler the same loads, which the trace
+// reports (array kLoopBound), so the address stream is exact by construction: one bound read per
+// iteration plus one per thread's share. (A cursor pointer, not an index: an index would need the
+// base pointer in one more register.)
+template <int64_t stride, class Sink, class T, class Body>
+inline double ForStatic(T* items, int64_t n, int threads, Sink& sink, SweepRegion* region,
+                        const Body& body) {
+  double sum = 0.0;
+  if constexpr (Sink::kEnabled) {
+    for (int t = 0; t < threads; ++t) {
+      int64_t b, e;
+      StaticRange(n, threads, t, &b, &e);
+      T* volatile end = items + e * stride;
+      for (T* p = items + b * stride;; p += stride) {
+        Report(sink, t, const_cast<T* const*>(&end), sizeof(T*), Array::kLoopBound, false);
+        if (!(p < end)) break;
+        sum += body(p, t);
+      }
+    }
+    return sum;
+  }
+#pragma omp parallel num_threads(threads) if (threads > 1) reduction(+ : sum)
+  {
+    const Body local = body;  // private: its captured pointers stay in registers
+    const int tid = omp_get_thread_num();
+    int64_t b, e;
+    StaticRange(n, omp_get_num_threads(), tid, &b, &e);
+    if (region) region->Enter(tid);
+    T* volatile end = items + e * stride;
+    for (T* p = items + b * stride; p < end; p += stride) sum += local(p, tid);
+    if (region) region->Exit(tid);
+  }
+  return sum;
+}
 
 template <class Sink>
-inline double VisitGaussSeidel(const Arrays& a, const int32_t* order, int64_t k, double* tq,
-                               const double* w, int tid, Sink& sink) {
-  const int32_t v = Load(sink, tid, Array::kInterior, order + k);
+inline double VisitGaussSeidel(const Arrays& a, const int32_t* item, double* wq, int tid,
+                               Sink& sink) {
+  const int32_t v = Load(sink, tid, Array::kInterior, item);
   MoveToAverage(a, a.xy, a.xy, Array::kCoords, v, tid, sink);
   double dq = 0.0;
   const int64_t b = Load(sink, tid, Array::kTriOffsets, a.toff + v);
@@ -173,90 +222,48 @@ inline double VisitGaussSeidel(const Arrays& a, const int32_t* order, int64_t k,
   for (int64_t i = b; i < e; ++i) {
     const int64_t t = Load(sink, tid, Array::kTriIndex, a.tris + i);
     const double q = TracedTriangleQuality(a.xy, a.tri, t, tid, sink);
-    const double old = Load(sink, tid, Array::kTriQuality, tq + t);
-    const double wt = Load(sink, tid, Array::kWeights, w + t);
+    const double old = Load(sink, tid, Array::kTriQuality, wq + 2 * t + 1);
+    const double wt = Load(sink, tid, Array::kWeights, wq + 2 * t);
     dq += wt * (q - old);
-    Report(sink, tid, tq + t, 8, Array::kTriQuality, true);
-    tq[t] = q;
+    Report(sink, tid, wq + 2 * t + 1, 8, Array::kTriQuality, true);
+    wq[2 * t + 1] = q;
   }
   return dq;
 }
 
 template <class Sink>
-double GaussSeidelSweep(const Arrays& arrays, const AlignedVector<int32_t>& interior, double* tq,
-                        const double* w, int threads, Sink& sink, SweepRegion* region) {
-  const int64_t ni = static_cast<int64_t>(interior.size());
-  const int32_t* order = interior.data();
-  double dq = 0.0;
-  if constexpr (Sink::kEnabled) {  // serial replay of the static schedule, one stream per thread
-    for (int64_t k = 0; k < ni; ++k)
-      dq += VisitGaussSeidel(arrays, order, k, tq, w, StaticOwner(k, ni, threads), sink);
-    return dq;
-  }
-#pragma omp parallel num_threads(threads) if (threads > 1) reduction(+ : dq)
-  {
-    const Arrays a = arrays;  // a private copy keeps the pointers in registers
-    const int tid = omp_get_thread_num();
-    if (region) region->Enter(tid);
-#pragma omp for schedule(static)
-    for (int64_t k = 0; k < ni; ++k) dq += VisitGaussSeidel(a, order, k, tq, w, tid, sink);
-    if (region) region->Exit(tid);
-  }
-  return dq;
+double GaussSeidelSweep(const Arrays& a, const AlignedVector<int32_t>& interior, double* wq,
+                        int threads, Sink& sink, SweepRegion* region) {
+  return ForStatic<1>(interior.data(), static_cast<int64_t>(interior.size()), threads, sink, region,
+                   [a, wq, &sink](const int32_t* item, int tid) {
+                     return VisitGaussSeidel(a, item, wq, tid, sink);
+                   });
 }
 
 // Jacobi: new positions from the old buffer into `next`, swap, then all triangle qualities anew.
 template <class Sink>
-double JacobiSweep(Mesh& m, AlignedVector<double>& next, double* tq, const double* w, int threads,
-                   Sink& sink, SweepRegion* region) {
-  const Arrays arrays = ArraysOf(m);
-  const int64_t ni = static_cast<int64_t>(m.interior.size());
-  const int32_t* order = m.interior.data();
+double JacobiSweep(Mesh& m, AlignedVector<double>& next, double* wq, int threads, Sink& sink,
+                   SweepRegion* region) {
+  const Arrays a = ArraysOf(m);
   double* dst = next.data();
-  const int64_t nt = m.NumTriangles();
-  const int32_t* tri = m.tri.data();
-  double q_new = 0.0;
-  if constexpr (Sink::kEnabled) {  // serial replay of the static schedule, one stream per thread
-    for (int64_t k = 0; k < ni; ++k) {
-      const int tid = StaticOwner(k, ni, threads);
-      const int32_t v = Load(sink, tid, Array::kInterior, order + k);
-      MoveToAverage(arrays, arrays.xy, dst, Array::kCoordsNext, v, tid, sink);
-    }
-    m.xy.swap(next);
-    const double* xy = m.xy.data();
-    for (int64_t t = 0; t < nt; ++t) {
-      const int tid = StaticOwner(t, nt, threads);
-      const double q = TracedTriangleQuality(xy, tri, t, tid, sink);
-      const double wt = Load(sink, tid, Array::kWeights, w + t);
-      Report(sink, tid, tq + t, 8, Array::kTriQuality, true);
-      tq[t] = q;
-      q_new += wt * q;
-    }
-    return q_new;
-  }
-#pragma omp parallel num_threads(threads) if (threads > 1)
-  {
-    const Arrays a = arrays;
-    const int tid = omp_get_thread_num();
-    if (region) region->Enter(tid);
-#pragma omp for schedule(static)
-    for (int64_t k = 0; k < ni; ++k) MoveToAverage(a, a.xy, dst, Array::kCoordsNext, order[k], tid, sink);
-    if (region) region->Exit(tid);
-  }
+  ForStatic<1>(m.interior.data(), static_cast<int64_t>(m.interior.size()), threads, sink, region,
+            [a, dst, &sink](const int32_t* item, int tid) {
+              const int32_t v = Load(sink, tid, Array::kInterior, item);
+              MoveToAverage(a, a.xy, dst, Array::kCoordsNext, v, tid, sink);
+              return 0.0;
+            });
   m.xy.swap(next);  // boundary entries are equal in both buffers, interior ones are now new
   const double* xy = m.xy.data();
-#pragma omp parallel num_threads(threads) if (threads > 1) reduction(+ : q_new)
-  {
-    const int tid = omp_get_thread_num();
-    if (region) region->Enter(tid);
-#pragma omp for schedule(static)
-    for (int64_t t = 0; t < nt; ++t) {
-      tq[t] = TriangleQuality(xy, tri + 3 * t);
-      q_new += w[t] * tq[t];
-    }
-    if (region) region->Exit(tid);
-  }
-  return q_new;
+  const int32_t* tri = m.tri.data();
+  return ForStatic<3>(tri, m.NumTriangles(), threads, sink, region,
+                   [xy, tri, wq, &sink](const int32_t* c, int tid) {
+                     const int64_t t = (c - tri) / 3;
+                     const double q = TracedTriangleQuality(xy, tri, t, tid, sink);
+                     const double wt = Load(sink, tid, Array::kWeights, wq + 2 * t);
+                     Report(sink, tid, wq + 2 * t + 1, 8, Array::kTriQuality, true);
+                     wq[2 * t + 1] = q;
+                     return wt * q;
+                   });
 }
 
 }  // namespace smoother_detail
@@ -269,15 +276,20 @@ SmoothResult Smooth(Mesh& mesh, const SmoothOptions& opt, Sink& sink,
   using Clock = std::chrono::steady_clock;
   SmoothResult r;
   r.quality_before = GlobalQuality(mesh);
-  // Aligned like the mesh's arrays, so line-level results do not depend on malloc.
-  AlignedVector<double> tq, w;
+  // Per triangle its weight and its quality side by side (wq[2t], wq[2t+1]): one line holds both,
+  // and the sweep needs one pointer less (without it GCC spills two to the stack). Aligned like the
+  // mesh's arrays, so line-level results do not depend on malloc.
+  AlignedVector<double> wq;
+  double q = 0.0;
   {
     const std::vector<double> q0 = TriangleQualities(mesh), w0 = GlobalQualityWeights(mesh);
-    tq.assign(q0.begin(), q0.end());
-    w.assign(w0.begin(), w0.end());
+    wq.resize(2 * q0.size());
+    for (size_t t = 0; t < q0.size(); ++t) {
+      wq[2 * t] = w0[t];
+      wq[2 * t + 1] = q0[t];
+      q += w0[t] * q0[t];
+    }
   }
-  double q = 0.0;
-  for (size_t t = 0; t < tq.size(); ++t) q += w[t] * tq[t];
   AlignedVector<double> next;
   if (opt.mode == UpdateMode::kJacobi) next = mesh.xy;
   const int threads = opt.threads < 1 ? 1 : opt.threads;
@@ -288,11 +300,10 @@ SmoothResult Smooth(Mesh& mesh, const SmoothOptions& opt, Sink& sink,
     double q_new;
     if (opt.mode == UpdateMode::kGaussSeidel) {
       q_new = q + smoother_detail::GaussSeidelSweep(smoother_detail::ArraysOf(mesh), mesh.interior,
-                                                    tq.data(), w.data(), threads, sink,
-                                                    opt.region);
+                                                    wq.data(), threads, sink, opt.region);
     } else {
       q_new =
-          smoother_detail::JacobiSweep(mesh, next, tq.data(), w.data(), threads, sink, opt.region);
+          smoother_detail::JacobiSweep(mesh, next, wq.data(), threads, sink, opt.region);
     }
     const double secs = std::chrono::duration<double>(Clock::now() - t0).count();
     SweepRecord rec{it, q_new, q_new - q, secs};
@@ -312,9 +323,9 @@ SmoothResult Smooth(Mesh& mesh, const SmoothOptions& opt, Sink& sink,
 // Element touches per Gauss-Seidel sweep, per thread of the static schedule (see the sequence
 // above): sum over the thread's interior vertices of 2 + deg(v) + 3 * triangles(v).
 std::vector<uint64_t> AccessesPerSweep(const Mesh& m, int threads = 1);
-// Loads and stores (the address stream) per sweep, per thread: Gauss-Seidel 6 + 2 deg(v) +
-// 13 triangles(v) per interior vertex; Jacobi 4 + 2 deg(v) per interior vertex plus 11 per
-// triangle of the thread's share of the quality pass.
+// Loads and stores (the address stream) per sweep, per thread: Gauss-Seidel 7 + 2 deg(v) +
+// 13 triangles(v) per interior vertex (the 7th: the loop bound) plus 1; Jacobi 5 + 2 deg(v) per
+// interior vertex plus 12 per triangle of the thread's share of the quality pass, plus 2.
 std::vector<uint64_t> RefsPerSweep(const Mesh& m, int threads = 1,
                                    UpdateMode mode = UpdateMode::kGaussSeidel);
 

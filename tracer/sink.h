@@ -40,8 +40,9 @@ enum class Array : uint8_t {
   kWeights = 7,      // per-triangle weight in the global quality
   kCoords = 8,       // xy (Jacobi: the buffer read)
   kCoordsNext = 9,   // Jacobi only: the buffer written
+  kLoopBound = 10,   // the sweep loop's end bound, a local read once per iteration (smoother.h)
 };
-inline constexpr int kArrays = 10;
+inline constexpr int kArrays = 11;
 
 struct MemRef {
   const void* address;
@@ -141,7 +142,7 @@ inline const char* AccessKindName(AccessKind k) {
 inline const char* ArrayName(Array a) {
   static constexpr const char* kNames[kArrays] = {
       "interior", "v2v.off", "v2v.idx", "v2t.off", "v2t.idx",
-      "tri",      "tq",      "w",       "xy",      "xy.next"};
+      "tri",      "tq",      "w",       "xy",      "xy.next", "bound"};
   const int i = static_cast<int>(a);
   return i >= 0 && i < kArrays ? kNames[i] : "?";
 }

@@ -120,7 +120,7 @@ check "compare unknown ordering" 2 "$bin" compare "$data/two_interior.node" --or
 
 # Traces and reuse distances: a trace file and the streamed mesh give the same numbers.
 check "trace" 0 "$bin" trace "$data/two_interior.node" --ordering rdr --iterations 3 --threads 2 -o "$tmp/t.trace" --quiet
-contains "trace" "486 accesses (20.25 per vertex per sweep), 132 element touches (5.50), 3 sweep(s), 2 stream(s)"
+contains "trace" "498 accesses (20.75 per vertex per sweep), 132 element touches (5.50), 3 sweep(s), 2 stream(s)"
 check "analyze trace" 0 "$bin" analyze "$tmp/t.trace" --csv --quiet
 cp "$tmp/out" "$tmp/from_file.csv"
 check "analyze mesh" 0 "$bin" analyze "$data/two_interior.node" --orderings rdr --iterations 3 --threads 2 --csv --quiet

@@ -104,13 +104,17 @@ TEST(AccessSequence, AddressStreamOfOneGaussSeidelSweepOnTheTinyMesh) {
       add(th, Array::kTriQuality, nullptr, 8, true);
     }
   };
+  auto bound = [&](int th) { add(th, Array::kLoopBound, nullptr, 8, false); };
+  bound(0);
   visit(0, 0, 6, {0, 1, 4, 5, 7}, {0, 1, 2, 3, 4});
+  bound(0);  // the last test of thread 0's loop
+  bound(1);
   visit(1, 1, 7, {1, 2, 3, 4, 6}, {1, 2, 5, 6, 7});
+  bound(1);
   ASSERT_EQ(sink.refs.size(), want.size());
-  ASSERT_EQ(want.size(), 2u * (6 + 2 * 5 + 13 * 5));
-  // tq[t] and w[t]: one base each, 8 bytes per triangle, the same tq address read then written.
-  const char* tq0 = nullptr;
-  const char* w0 = nullptr;
+  ASSERT_EQ(want.size(), 2u * (6 + 2 * 5 + 13 * 5 + 2));
+  // Weight and quality of triangle t at wq[2t] and wq[2t+1]: one base, 16 bytes per triangle.
+  const char* wq0 = nullptr;
   for (size_t i = 0; i < want.size(); ++i) {
     const Want& e = want[i];
     const RecordingSink::Ref& g = sink.refs[i];
@@ -127,20 +131,19 @@ TEST(AccessSequence, AddressStreamOfOneGaussSeidelSweepOnTheTinyMesh) {
       EXPECT_EQ(g.ref.address, e.address);
       continue;
     }
+    if (e.array == Array::kLoopBound) continue;  // a local: any stack address
     // Which triangle: the v2t.idx entry 6 accesses back names it.
     const int t = *static_cast<const int32_t*>(sink.refs[i - (e.array == Array::kTriQuality
                                                                    ? (e.write ? 12 : 10)
                                                                    : 11)]
                                                      .ref.address);
-    const char* base = static_cast<const char*>(g.ref.address) - 8 * t;
-    const char*& b = e.array == Array::kWeights ? w0 : tq0;
-    if (!b) b = base;
-    EXPECT_EQ(base, b) << "array " << ArrayName(e.array) << " triangle " << t;
+    const char* base = static_cast<const char*>(g.ref.address) - 16 * t -
+                       (e.array == Array::kTriQuality ? 8 : 0);
+    if (!wq0) wq0 = base;
+    EXPECT_EQ(base, wq0) << "array " << ArrayName(e.array) << " triangle " << t;
   }
-  EXPECT_NE(tq0, w0);
-  EXPECT_EQ(reinterpret_cast<uintptr_t>(tq0) % 64, 0u);  // aligned: reproducible line numbers
-  EXPECT_EQ(reinterpret_cast<uintptr_t>(w0) % 64, 0u);
-  EXPECT_EQ(RefsPerSweep(m, 2), (std::vector<uint64_t>{81, 81}));
+  EXPECT_EQ(reinterpret_cast<uintptr_t>(wq0) % 64, 0u);  // aligned: reproducible line numbers
+  EXPECT_EQ(RefsPerSweep(m, 2), (std::vector<uint64_t>{83, 83}));
 }
 
 // Per array and direction, one sweep's accesses equal closed forms in the mesh's degrees, on every
@@ -167,6 +170,8 @@ TEST(AccessSequence, PerArrayCountsEqualClosedForms) {
         std::array<std::array<uint64_t, 2>, kArrays> want{};  // [array][write]
         auto at = [&](Array a, bool w) -> uint64_t& { return want[static_cast<int>(a)][w]; };
         at(Array::kInterior, false) = ni;
+        at(Array::kLoopBound, false) =
+            mode == UpdateMode::kGaussSeidel ? ni + threads : ni + nt + 2 * threads;
         at(Array::kAdjOffsets, false) = 2 * ni;
         at(Array::kAdjIndex, false) = deg;
         if (mode == UpdateMode::kGaussSeidel) {
@@ -303,12 +308,12 @@ TEST_F(TraceFile, RoundTrip) {
   EXPECT_EQ(r.header().version, kTraceVersion);
   EXPECT_EQ(r.header().threads, 2u);
   EXPECT_EQ(r.header().element_bytes, 66u);
-  EXPECT_EQ(r.header().records, 3u * 162);
-  EXPECT_EQ(r.header().iteration_starts, (std::vector<uint64_t>{0, 162, 324}));
+  EXPECT_EQ(r.header().records, 3u * 166);
+  EXPECT_EQ(r.header().iteration_starts, (std::vector<uint64_t>{0, 166, 332}));
   EXPECT_EQ(r.header().vertices, 8u);
-  // Each of the 3 sweeps: thread 0 visits vertex 6, thread 1 vertex 7, 81 accesses each, 22 of
+  // Each of the 3 sweeps: thread 0 visits vertex 6, thread 1 vertex 7, 83 accesses each, 22 of
   // them element touches.
-  EXPECT_EQ(r.header().sweep_records, (std::vector<std::vector<uint64_t>>(3, {81, 81})));
+  EXPECT_EQ(r.header().sweep_records, (std::vector<std::vector<uint64_t>>(3, {83, 83})));
   EXPECT_EQ(r.header().sweep_elements, (std::vector<std::vector<uint64_t>>(3, {22, 22})));
   EXPECT_EQ(r.header().mesh, "two_interior");
   EXPECT_EQ(r.header().ordering, "ori");
@@ -346,7 +351,7 @@ TEST_F(TraceFile, Rejections) {
   ExpectRejected(write("version", bad),
                  "unknown trace version 7 (this reader knows versions 1 and 2)");
   ExpectRejected(write("cut", bytes.substr(0, bytes.size() - 5)),
-                 "truncated trace: the header says 324 records (5184 bytes), the file holds 5179");
+                 "truncated trace: the header says 332 records (5312 bytes), the file holds 5307");
   ExpectRejected(write("header", bytes.substr(0, 20)), "truncated trace header");
   ExpectRejected(write("empty", ""), "not a meshreuse trace");
   ExpectRejected(Path("missing"), "cannot open");
@@ -376,7 +381,7 @@ TEST_F(TraceFile, AnalysisFromFileEqualsStreaming) {
     EXPECT_EQ(from_file.element(t)->hist.counts(), streamed.element(t)->hist.counts());
     EXPECT_EQ(from_file.line(t)->hist.counts(), streamed.line(t)->hist.counts());
     EXPECT_EQ(from_file.element(t)->hist.accesses(), 44u);
-    EXPECT_EQ(from_file.line(t)->hist.accesses(), 162u);
+    EXPECT_EQ(from_file.line(t)->hist.accesses(), 166u);
   }
 }
 
