@@ -9,7 +9,7 @@ namespace meshreuse {
 
 std::vector<CacheLevel> ParseCacheSpec(const std::string& spec) {
   if (spec == "westmere-ex" || spec == "westmere")
-    return {{"L1", 32 << 10}, {"L2", 256 << 10}, {"L3", 24 << 20}};
+    return {{"L1", 32 << 10, 8}, {"L2", 256 << 10, 8}, {"L3", 24 << 20, 24}};
   std::vector<CacheLevel> levels;
   std::stringstream ss(spec);
   for (std::string part; std::getline(ss, part, ',');) {
@@ -17,18 +17,30 @@ std::vector<CacheLevel> ParseCacheSpec(const std::string& spec) {
     if (eq == std::string::npos || eq == 0 || eq + 1 == part.size())
       throw std::invalid_argument("cache level '" + part + "' should read NAME=SIZE, e.g. L1=32K");
     std::string size = part.substr(eq + 1);
+    uint32_t ways = 0;
+    if (const size_t slash = size.find('/'); slash != std::string::npos) {
+      const std::string w = size.substr(slash + 1);
+      if (w.empty() || w.size() > 6 || w.find_first_not_of("0123456789") != std::string::npos ||
+          std::stoul(w) == 0)
+        throw std::invalid_argument("associativity '" + w + "' in '" + part +
+                                    "' is not a positive number of ways");
+      ways = static_cast<uint32_t>(std::stoul(w));
+      size = size.substr(0, slash);
+      if (size.empty()) throw std::invalid_argument("cache level '" + part + "' has no size");
+    }
     uint64_t mult = 1;
     const char u = static_cast<char>(std::toupper(static_cast<unsigned char>(size.back())));
     if (u == 'K' || u == 'M' || u == 'G') {
       mult = u == 'K' ? 1ull << 10 : u == 'M' ? 1ull << 20 : 1ull << 30;
       size.pop_back();
     }
-    if (size.empty() || size.find_first_not_of("0123456789") != std::string::npos)
+    if (size.empty() || size.size() > 12 ||
+        size.find_first_not_of("0123456789") != std::string::npos)
       throw std::invalid_argument("cache size '" + part.substr(eq + 1) +
                                   "' is not a number with K, M or G");
     const uint64_t bytes = std::stoull(size) * mult;
     if (bytes == 0) throw std::invalid_argument("cache level '" + part + "' has size 0");
-    levels.push_back({part.substr(0, eq), bytes});
+    levels.push_back({part.substr(0, eq), bytes, ways});
   }
   if (levels.empty()) throw std::invalid_argument("empty cache specification");
   return levels;
@@ -47,8 +59,9 @@ std::vector<LevelMisses> ModelMisses(const ReuseHistogram& h, const std::vector<
   return out;
 }
 
-uint64_t CapacityForMisses(const ReuseHistogram& h, uint64_t n) {
-  if (n == 0) return h.finite() ? h.max() + 1 : 0;  // no miss: anything above the largest distance
+uint64_t CapacityForMisses(const ReuseHistogram& h, uint64_t n, bool exclude_cold) {
+  if (n == 0 || (exclude_cold && n <= h.cold()))  // anything above the largest distance
+    return h.finite() ? h.max() + 1 : 0;
   if (n <= h.cold()) return kInfiniteCapacity;
   if (n > h.accesses()) return 0;
   uint64_t seen = h.cold();

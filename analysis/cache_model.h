@@ -19,10 +19,13 @@ namespace meshreuse {
 struct CacheLevel {
   std::string name;
   uint64_t bytes;
+  uint32_t ways = 0;  // associativity for the simulator (cache_sim.h); 0: not given
 };
 
-// "westmere-ex" (the paper's machine: L1=32K,L2=256K,L3=24M) or "L1=32K,L2=256K,L3=24M" (K, M, G
-// are powers of 1024). Throws std::invalid_argument naming the bad part.
+// "westmere-ex" (the paper's machine: L1=32K/8,L2=256K/8,L3=24M/24) or a list such as
+// "L1=32K,L2=256K,L3=24M" or "L1=32K/8,L2=256K/8,L3=24M/24" (K, M, G are powers of 1024; /W the
+// ways, which the fully associative model ignores and the simulator needs). Throws
+// std::invalid_argument naming the bad part.
 std::vector<CacheLevel> ParseCacheSpec(const std::string& spec);
 
 struct LevelMisses {
@@ -39,7 +42,11 @@ std::vector<LevelMisses> ModelMisses(const ReuseHistogram& h, const std::vector<
 // The capacity (in elements or lines) that n misses imply; kInfinite when n <= cold accesses,
 // 0 when n exceeds all accesses.
 inline constexpr uint64_t kInfiniteCapacity = ~uint64_t{0};
-uint64_t CapacityForMisses(const ReuseHistogram& h, uint64_t n);
+// exclude_cold: the cold accesses are compulsory misses at any capacity, so n misses leave n - cold
+// to explain by capacity; n <= cold then means every reuse hits (the largest distance + 1) instead
+// of kInfiniteCapacity. (The paper subtracts the misses it attributes to other causes before it
+// inverts; cold misses are the part our traces can name.)
+uint64_t CapacityForMisses(const ReuseHistogram& h, uint64_t n, bool exclude_cold = false);
 
 struct Latencies {  // cycles; the paper's Westmere-EX (Molka et al. 2009)
   double l2 = 10, l3_low = 38, l3_high = 170, mem_low = 175, mem_high = 290;

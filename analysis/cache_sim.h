@@ -110,13 +110,16 @@ class CacheSimulation {
 };
 
 // The sink the smoother streams into.
+// The sink the smoother streams into; addresses are canonical (sink.h), so the numbers are the
+// same in every run and equal to a simulation of the trace file.
 struct CacheSimSink {
   static constexpr bool kEnabled = true;
+  explicit CacheSimSink(CacheSimulation* s) : sim(s) {}
   CacheSimulation* sim;
+  AddressCanonicalizer canon;
+  void Bind(const ArrayLayout& l) { canon = AddressCanonicalizer(l); }
   void BeginSweep(int) { sim->BeginSweep(); }
-  void Access(int thread, const MemRef& r) {
-    sim->Access(thread, reinterpret_cast<uintptr_t>(r.address), r.size, r.write);
-  }
+  void Access(int thread, const MemRef& r) { sim->Access(thread, canon(thread, r), r.size, r.write); }
 };
 
 }  // namespace meshreuse

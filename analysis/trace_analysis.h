@@ -72,11 +72,14 @@ class TraceAnalysis {
 
 struct AnalysisSink {
   static constexpr bool kEnabled = true;
+  explicit AnalysisSink(TraceAnalysis* a) : analysis(a) {}
   TraceAnalysis* analysis;
+  AddressCanonicalizer canon;  // line numbers independent of this run's heap (sink.h)
+  void Bind(const ArrayLayout& l) { canon = AddressCanonicalizer(l); }
   void BeginSweep(int) {}
   void Access(int thread, const MemRef& r) {
     if (r.element != AccessKind::kNone) analysis->AddElement(thread, static_cast<uint32_t>(r.vertex));
-    analysis->AddAccess(thread, reinterpret_cast<uintptr_t>(r.address), r.size);
+    analysis->AddAccess(thread, canon(thread, r), r.size);
   }
 };
 

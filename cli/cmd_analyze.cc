@@ -41,17 +41,6 @@ bool IsMesh(const std::string& p) {
 
 std::string Base(const std::string& p) { return std::filesystem::path(p).filename().string(); }
 
-// Reorders (unless ori) and checks the ordering name first, so a typo fails before any work.
-Mesh Prepare(const std::string& path, const std::string& ordering, uint64_t seed,
-             const Progress& progress) {
-  Mesh m = LoadMesh(path, progress);
-  if (ordering != "ori") {
-    progress.Say("reordering with " + ordering);
-    m = ApplyPermutation(m, ComputeOrdering(ordering, m, seed));
-  }
-  return m;
-}
-
 SmoothOptions TraceSweeps(int iterations, int threads, const std::string& mode) {
   SmoothOptions o;
   o.max_iters = iterations;
@@ -78,7 +67,7 @@ std::string Cap(uint64_t c) { return c == kInfiniteCapacity ? "inf" : std::to_st
 
 int TraceCommand(const Args& args) {
   po::options_description desc("options");
-  std::string mesh, ordering = "ori", out, mode = "gauss-seidel";
+  std::string mesh, ordering = "ori", out, mode = "gauss-seidel", triangle_order;
   int iterations = 1, threads = 1;
   uint32_t element_bytes = 66;
   uint64_t seed = 1;
@@ -92,6 +81,7 @@ int TraceCommand(const Args& args) {
       "element-bytes", po::value(&element_bytes)->default_value(66),
       "element size recorded in the header")("output,o", po::value(&out)->required(), "trace file")(
       "quiet,q", "no progress on stderr");
+  AddTriangleOrderOption(desc, &triangle_order);
   po::positional_options_description pos;
   pos.add("mesh", 1);
   po::variables_map vm;
@@ -106,8 +96,9 @@ int TraceCommand(const Args& args) {
   if (threads < 1 || threads > 255) throw po::error("--threads must be 1..255");
   CheckOrderings({ordering});
   const SmoothOptions so = TraceSweeps(iterations, threads, mode);
+  const TriangleOrder tri_order = TriangleOrderOption(triangle_order);
   const Progress progress(vm.count("quiet") > 0);
-  Mesh m = Prepare(mesh, ordering, seed, progress);
+  Mesh m = LayOut(mesh, ordering, seed, tri_order, progress);
   TraceHeader h;
   h.threads = static_cast<uint32_t>(threads);
   h.vertices = static_cast<uint32_t>(m.NumVertices());
@@ -140,7 +131,8 @@ int AnalyzeCommand(const Args& args) {
   po::options_description desc("options");
   std::vector<std::string> inputs;
   std::string orderings = "ori", format, granularity = "both", quantiles = "50,75,90,100",
-              cache = "westmere-ex", mode = "gauss-seidel", hist_csv, prof_csv, out_dir, measured;
+              cache = "westmere-ex", mode = "gauss-seidel", hist_csv, prof_csv, out_dir, measured,
+              triangle_order;
   int iterations = 1, threads = 1;
   uint32_t element_bytes = 66, line_bytes = 64;
   uint64_t seed = 1;
@@ -171,6 +163,7 @@ int AnalyzeCommand(const Args& args) {
       "profile-csv", po::value(&prof_csv), "write the profiles (each sweep in 100 steps)")(
       "out", po::value(&out_dir), "write analyze.{csv,json}, histogram.csv, profile.csv, run.json")(
       "quiet,q", "no progress on stderr");
+  AddTriangleOrderOption(desc, &triangle_order);
   po::positional_options_description pos;
   pos.add("input", -1);
   po::variables_map vm;
@@ -208,13 +201,14 @@ int AnalyzeCommand(const Args& args) {
   if (element_bytes == 0) throw po::error("--element-bytes must be positive");
   const std::vector<std::string> ords = SplitList(orderings);
   CheckOrderings(ords);
+  const TriangleOrder tri_order = TriangleOrderOption(triangle_order);
   const Progress progress(vm.count("quiet") > 0);
 
   std::vector<Job> jobs;
   for (const std::string& in : inputs) {
     if (format.empty() && in != "-" && IsMesh(in)) {
       for (const std::string& ord : ords) {
-        Mesh m = Prepare(in, ord, seed, progress);
+        Mesh m = LayOut(in, ord, seed, tri_order, progress);
         const SmoothOptions so = TraceSweeps(iterations, threads, mode);
         TraceAnalysisOptions o;
         o.threads = threads;
@@ -362,7 +356,8 @@ int AnalyzeCommand(const Args& args) {
                   std::to_string(threads) + ", \"granularity\": " + JsonString(granularity) +
                   ", \"cache\": " + JsonString(cache) +
                   ", \"element_bytes\": " + std::to_string(element_bytes) +
-                  ", \"line_bytes\": " + std::to_string(line_bytes) + "}\n}\n");
+                  ", \"line_bytes\": " + std::to_string(line_bytes) +
+                  ", \"triangle_order\": " + JsonString(triangle_order) + "}\n}\n");
     progress.Say("wrote " + out_dir +
                  "/{analyze.csv,analyze.json,histogram.csv,profile.csv,run.json}");
   }

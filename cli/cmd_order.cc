@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "analysis/papi_counters.h"
 #include "cli/common.h"
 #include "cli/options.h"
 #include "core/mesh_io.h"
@@ -33,7 +34,7 @@ int OrderingsCommand(const Args& args) {
 
 int ReorderCommand(const Args& args) {
   po::options_description desc("options");
-  std::string mesh, ordering, out;
+  std::string mesh, ordering, out, triangle_order;
   uint64_t seed = 1;
   desc.add_options()("mesh", po::value(&mesh)->required(), "input mesh")(
       "ordering", po::value(&ordering)->required(), ("one of: " + OrderingNames()).c_str())(
@@ -41,6 +42,7 @@ int ReorderCommand(const Args& args) {
       "output,o", po::value(&out)->required(),
       "prefix: writes PREFIX.node, PREFIX.ele and PREFIX.perm (the permutation, file: format)")(
       "quiet,q", "no progress on stderr");
+  AddTriangleOrderOption(desc, &triangle_order);
   po::positional_options_description pos;
   pos.add("mesh", 1);
   po::variables_map vm;
@@ -58,7 +60,7 @@ int ReorderCommand(const Args& args) {
   const double order_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   t0 = std::chrono::steady_clock::now();
-  const Mesh r = ApplyPermutation(m, p);
+  const Mesh r = ApplyPermutation(m, p, TriangleOrderOption(triangle_order));
   const double apply_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   for (const std::string& f : WriteMesh(r, out)) std::printf("wrote %s\n", f.c_str());
@@ -73,7 +75,8 @@ int ReorderCommand(const Args& args) {
 
 int CompareCommand(const Args& args) {
   po::options_description desc("options");
-  std::string orderings = "ori,bfs,rdr,random", threads = "1", out_dir, mode_name = "gauss-seidel";
+  std::string orderings = "ori,bfs,rdr,random", threads = "1", out_dir, mode_name = "gauss-seidel",
+              triangle_order, counters;
   CompareConfig cfg;
   desc.add_options()("mesh", po::value(&cfg.meshes)->required()->multitoken(), "mesh file(s)")(
       "orderings", po::value(&orderings)->default_value(orderings), "comma-separated orderings")(
@@ -85,8 +88,11 @@ int CompareCommand(const Args& args) {
       "at most this many sweeps")("mode", po::value(&mode_name)->default_value("gauss-seidel"),
                                   "gauss-seidel or jacobi")(
       "out", po::value(&out_dir),
-      "write compare.{csv,md,json}, summary.{csv,md} and run.json here")("quiet,q",
-                                                                         "no progress on stderr");
+      "write compare.{csv,md,json}, summary.{csv,md} and run.json here")(
+      "counters", po::value(&counters)->implicit_value("default"),
+      "hardware counters (PAPI) around every run's sweeps, as for smooth; median over rounds")(
+      "quiet,q", "no progress on stderr");
+  AddTriangleOrderOption(desc, &triangle_order);
   po::positional_options_description pos;
   pos.add("mesh", -1);
   po::variables_map vm;
@@ -119,6 +125,14 @@ int CompareCommand(const Args& args) {
   } catch (const std::invalid_argument& e) {
     throw po::error(e.what());
   }
+  cfg.triangle_order = TriangleOrderOption(triangle_order);
+  if (!counters.empty()) {
+    cfg.counter_events = counters == "default" ? DefaultCounterEvents() : SplitList(counters);
+    const CounterNote note = ProbeCounters(cfg.counter_events);
+    if (!note.note.empty())
+      std::fprintf(stderr, "meshreuse: note: counters: %s%s\n", note.note.c_str(),
+                   note.available ? "" : "; no counter is recorded");
+  }
   const Progress progress(vm.count("quiet") > 0);
   const std::vector<CompareRow> rows = RunCompare(
       cfg, [&](const std::string& s) { progress.Say(s); },
@@ -146,6 +160,8 @@ int CompareCommand(const Args& args) {
               "{\n" + RunJsonHeader("meshreuse compare") + "  \"config\": {\"orderings\": [" + ord +
                   "], \"threads\": [" + th + "], \"repeat\": " + std::to_string(cfg.repeat) +
                   ", \"seed\": " + std::to_string(cfg.seed) +
+                  ", \"triangle_order\": " + JsonString(triangle_order) +
+                  ", \"counters\": " + JsonString(counters) +
                   ", \"mode\": " + JsonString(UpdateModeName(cfg.smooth.mode)) +
                   ", \"tol\": " + JsonNumber(cfg.smooth.tol) +
                   ", \"max_iters\": " + std::to_string(cfg.smooth.max_iters) + "},\n" +

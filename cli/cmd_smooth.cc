@@ -11,6 +11,10 @@
 #include <string>
 #include <vector>
 
+#include <memory>
+#include <stdexcept>
+
+#include "analysis/papi_counters.h"
 #include "cli/common.h"
 #include "cli/options.h"
 #include "core/mesh_io.h"
@@ -25,7 +29,8 @@ namespace meshreuse::cli {
 int SmoothCommand(const Args& args) {
   po::options_description desc("options");
   std::vector<std::string> meshes;
-  std::string mode_name = "gauss-seidel", out_mesh, out_dir, ordering = "ori";
+  std::string mode_name = "gauss-seidel", out_mesh, out_dir, ordering = "ori", triangle_order,
+              counters;
   uint64_t seed = 1;
   SmoothOptions opt;
   desc.add_options()("mesh", po::value(&meshes)->required()->multitoken(), "mesh file(s)")(
@@ -40,7 +45,14 @@ int SmoothCommand(const Args& args) {
       "output,o", po::value(&out_mesh),
       "write the smoothed mesh (PATH.vtk or a .node/.ele prefix)")(
       "out", po::value(&out_dir), "write summary.csv, summary.md, sweeps.csv and run.json here")(
+      "counters", po::value(&counters)->implicit_value("default"),
+      "hardware counters (PAPI) around the sweeps, per thread and summed: a comma list of PAPI "
+      "events, or none for PAPI_L1_DCM,PAPI_L2_DCM,PAPI_L3_TCM,PAPI_TOT_CYC,PAPI_TOT_INS; events "
+      "this machine cannot count are dropped with PAPI's reason")(
+      "flush-caches", "before the first sweep, stream 64 MiB through the caches (cold start, as "
+      "the simulator's empty caches; scripts/validate_callgrind.sh)")(
       "quiet,q", "no progress on stderr");
+  AddTriangleOrderOption(desc, &triangle_order);
   po::positional_options_description pos;
   pos.add("mesh", -1);
   po::variables_map vm;
@@ -62,20 +74,35 @@ int SmoothCommand(const Args& args) {
   if (std::isnan(opt.tol)) throw po::error("--tol must be a number (negative: never stop early)");
   if (!out_mesh.empty() && meshes.size() != 1) throw po::error("-o takes a single input mesh");
   CheckOrderings({ordering});
+  const TriangleOrder tri_order = TriangleOrderOption(triangle_order);
+  if (vm.count("flush-caches")) opt.flush_bytes = uint64_t{64} << 20;
   const Progress progress(vm.count("quiet") > 0);
+  std::unique_ptr<PapiCounters> papi;
+  std::string counters_json = "null";
+  if (!counters.empty()) {
+    papi = std::make_unique<PapiCounters>(
+        counters == "default" ? DefaultCounterEvents() : SplitList(counters), opt.threads);
+    if (!papi->reason().empty())
+      std::fprintf(stderr, "meshreuse: note: counters: %s%s\n", papi->reason().c_str(),
+                   papi->available() ? "" : "; no counter is recorded");
+    if (papi->available()) opt.region = papi.get();
+  }
 
   Table summary({"mesh", "ordering", "vertices", "triangles", "threads", "mode", "sweeps",
                  "converged", "quality_before", "quality_after", "reorder_ms",
                  "median_ms_per_sweep", "total_s"});
   Table sweeps({"mesh", "sweep", "quality", "improvement", "ms"});
   std::string results_json;
+  if (meshes.size() > 1 && papi && papi->available())
+    throw po::error("--counters takes a single input mesh");
   for (const std::string& path : meshes) {
     Mesh m = LoadMesh(path, progress);
     double reorder_s = 0;
-    if (ordering != "ori") {
-      progress.Say("reordering with " + ordering);
+    if (ordering != "ori" || tri_order == TriangleOrder::kSorted) {
+      progress.Say("laying out in " + ordering + " order, triangles " +
+                   TriangleOrderName(tri_order));
       const auto t0 = std::chrono::steady_clock::now();
-      m = ApplyPermutation(m, ComputeOrdering(ordering, m, seed));
+      m = ApplyPermutation(m, ComputeOrdering(ordering, m, seed), tri_order);
       reorder_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     }
     std::printf("== %s: %s vertices, %s triangles, ordering %s%s, %d thread%s, %s\n", path.c_str(),
@@ -100,9 +127,30 @@ int SmoothCommand(const Args& args) {
                      Fixed(1e3 * s.seconds, 3)});
     }
     const double med = Median(times);
-    std::printf("sweeps %zu (%s), quality %.6f -> %.6f, median %.3f ms/sweep, total %.3f s\n\n",
+    std::printf("sweeps %zu (%s), quality %.6f -> %.6f, median %.3f ms/sweep, total %.3f s\n",
                 r.sweeps.size(), r.converged ? "converged" : "max-iters reached", r.quality_before,
                 r.quality_after, 1e3 * med, r.seconds);
+    if (papi && papi->available()) {
+      if (!papi->error().empty())
+        throw std::runtime_error("counters failed: " + papi->error());
+      const std::vector<long long> sum = papi->Sum();
+      std::string per_thread;
+      counters_json = "{";
+      for (size_t e = 0; e < papi->events().size(); ++e) {
+        std::printf("counter %-16s %16s (all sweeps, all threads", papi->events()[e].c_str(),
+                    Grouped(sum[e]).c_str());
+        std::string th = "[";
+        for (size_t t = 0; t < papi->per_thread().size(); ++t) {
+          if (opt.threads > 1) std::printf("; thread %zu %s", t, Grouped(papi->per_thread()[t][e]).c_str());
+          th += (t ? ", " : "") + std::to_string(papi->per_thread()[t][e]);
+        }
+        std::printf(")\n");
+        counters_json += std::string(e ? ", " : "") + JsonString(papi->events()[e]) +
+                         ": {\"sum\": " + std::to_string(sum[e]) + ", \"per_thread\": " + th + "]}";
+      }
+      counters_json += "}";
+    }
+    std::printf("\n");
     summary.AddRow(
         {path, ordering, std::to_string(m.NumVertices()), std::to_string(m.NumTriangles()),
          std::to_string(opt.threads), UpdateModeName(opt.mode), std::to_string(r.sweeps.size()),
@@ -119,7 +167,8 @@ int SmoothCommand(const Args& args) {
                     ", \"quality_after\": " + JsonNumber(r.quality_after) +
                     ", \"reorder_seconds\": " + JsonNumber(reorder_s) +
                     ", \"median_seconds_per_sweep\": " + JsonNumber(med) +
-                    ", \"total_seconds\": " + JsonNumber(r.seconds) + "}";
+                    ", \"total_seconds\": " + JsonNumber(r.seconds) +
+                    ", \"counters\": " + counters_json + "}";
     if (!out_mesh.empty())
       for (const std::string& f : WriteMesh(m, out_mesh)) progress.Say("wrote " + f);
   }
@@ -132,6 +181,12 @@ int SmoothCommand(const Args& args) {
     WriteText(out_dir + "/run.json",
               "{\n" + RunJsonHeader("meshreuse smooth") + "  \"config\": {\"ordering\": " +
                   JsonString(ordering) + ", \"seed\": " + std::to_string(seed) +
+                  ", \"triangle_order\": " + JsonString(triangle_order) +
+                  ", \"counters\": " +
+                  (papi ? std::string("{\"version\": ") + JsonString(PapiCounters::Version()) +
+                              ", \"recorded\": " + (papi->available() ? "true" : "false") +
+                              ", \"note\": " + JsonString(papi->reason()) + "}"
+                        : std::string("null")) +
                   ", \"threads\": " + std::to_string(opt.threads) + ", \"mode\": " +
                   JsonString(UpdateModeName(opt.mode)) + ", \"tol\": " + JsonNumber(opt.tol) +
                   ", \"max_iters\": " + std::to_string(opt.max_iters) +

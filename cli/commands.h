@@ -19,6 +19,8 @@ int ReorderCommand(const Args& args);
 int CompareCommand(const Args& args);
 int TraceCommand(const Args& args);
 int AnalyzeCommand(const Args& args);
+int SimulateCommand(const Args& args);
+int ValidateCommand(const Args& args);
 
 // The full command line, for run.json.
 const std::vector<std::string>& FullCommandLine();

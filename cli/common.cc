@@ -51,4 +51,27 @@ std::string RunJsonHeader(const std::string& tool) {
          ",\n";
 }
 
+void AddTriangleOrderOption(po::options_description& desc, std::string* value) {
+  desc.add_options()("triangle-order", po::value(value)->default_value("sorted"),
+                     "sorted: triangles follow the new vertex order (every ordering alike, ori "
+                     "too); file: the file's triangle order (with ori: the file as is, the "
+                     "paper's ORI)");
+}
+
+TriangleOrder TriangleOrderOption(const std::string& value) {
+  try {
+    return ParseTriangleOrder(value);
+  } catch (const std::invalid_argument& e) {
+    throw po::error(e.what());
+  }
+}
+
+Mesh LayOut(const std::string& path, const std::string& ordering, uint64_t seed,
+            TriangleOrder triangles, const Progress& progress) {
+  Mesh m = LoadMesh(path, progress);
+  if (ordering == "ori" && triangles == TriangleOrder::kFile) return m;
+  progress.Say("laying out in " + ordering + " order, triangles " + TriangleOrderName(triangles));
+  return ApplyPermutation(m, ComputeOrdering(ordering, m, seed), triangles);
+}
+
 }  // namespace meshreuse::cli

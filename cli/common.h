@@ -5,8 +5,10 @@
 #include <string>
 #include <vector>
 
+#include "cli/options.h"
 #include "cli/progress.h"
 #include "core/mesh.h"
+#include "core/permutation.h"
 
 namespace meshreuse::cli {
 
@@ -16,6 +18,14 @@ std::vector<std::string> SplitList(const std::string& s);  // "a,b,,c" -> {a, b,
 // Throws a usage error (exit 2) for an empty list or a name the ordering registry does not know,
 // before any work is done.
 void CheckOrderings(const std::vector<std::string>& specs);
+// --triangle-order sorted|file, the same text on every command that lays a mesh out.
+void AddTriangleOrderOption(po::options_description& desc, std::string* value);
+TriangleOrder TriangleOrderOption(const std::string& value);  // po::error on a bad name
+// The mesh at `path` laid out in `ordering` (ori included) with the triangle policy; the ordering
+// name must have been checked (CheckOrderings).
+Mesh LayOut(const std::string& path, const std::string& ordering, uint64_t seed,
+            TriangleOrder triangles, const Progress& progress);
+
 // The fields every run.json starts with: tool, command, git revision, time, machine.
 std::string RunJsonHeader(const std::string& tool);
 

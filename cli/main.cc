@@ -32,6 +32,9 @@ const Command kCommands[] = {
     {"trace", "write the smoother's access trace to a binary file", TraceCommand},
     {"analyze", "reuse distances, quantiles, histograms, profiles and modelled misses",
      AnalyzeCommand},
+    {"simulate", "set-associative cache simulation of every load and store", SimulateCommand},
+    {"validate", "the miss model against the simulator and hardware counters; Table 3",
+     ValidateCommand},
 };
 
 std::vector<std::string> g_argv;

@@ -48,7 +48,17 @@ Permutation Permutation::Inverse() const {
   return p;
 }
 
-Mesh ApplyPermutation(const Mesh& m, const Permutation& p) {
+TriangleOrder ParseTriangleOrder(const std::string& s) {
+  if (s == "sorted") return TriangleOrder::kSorted;
+  if (s == "file") return TriangleOrder::kFile;
+  throw std::invalid_argument("unknown triangle order '" + s + "' (sorted or file)");
+}
+
+const char* TriangleOrderName(TriangleOrder t) {
+  return t == TriangleOrder::kFile ? "file" : "sorted";
+}
+
+Mesh ApplyPermutation(const Mesh& m, const Permutation& p, TriangleOrder order) {
   const int32_t nv = m.NumVertices(), nt = m.NumTriangles();
   if (p.size() != nv)
     throw std::invalid_argument("the permutation has " + std::to_string(p.size()) +
@@ -59,6 +69,11 @@ Mesh ApplyPermutation(const Mesh& m, const Permutation& p) {
   for (int32_t i = 0; i < nv; ++i) {
     raw.xy[2 * int64_t{i}] = m.xy[2 * int64_t{p.OldOf(i)}];
     raw.xy[2 * int64_t{i} + 1] = m.xy[2 * int64_t{p.OldOf(i)} + 1];
+  }
+  if (order == TriangleOrder::kFile) {
+    raw.tri.resize(m.tri.size());
+    for (size_t i = 0; i < m.tri.size(); ++i) raw.tri[i] = p.NewOf(m.tri[i]);
+    return BuildMesh(std::move(raw));
   }
   // Counting sort of triangles by smallest new corner; ties keep the old triangle order.
   std::vector<int64_t> start(static_cast<size_t>(nv) + 1, 0);

@@ -36,10 +36,21 @@ class Permutation {
   std::vector<int32_t> new_to_old_, old_to_new_;
 };
 
+// Where the triangles go when a mesh is laid out in an ordering: one policy for every ordering
+// alike, ori included, so comparisons are like for like (DESIGN.md "Orderings").
+//   kSorted (default): stably sorted by their smallest new corner, so the triangles of early
+//                      vertices come first (storage follows the traversal);
+//   kFile:             the file's triangle order, corners renumbered (ori + kFile = the file as
+//                      is, the paper's ORI).
+enum class TriangleOrder { kSorted, kFile };
+TriangleOrder ParseTriangleOrder(const std::string& s);  // sorted | file; std::invalid_argument
+const char* TriangleOrderName(TriangleOrder t);
+
 // The reordered mesh: vertex new_id is old vertex p.OldOf(new_id). Triangles are renumbered
-// (corner order, hence orientation, kept) and stably sorted by their smallest new corner, so the
-// triangles of early vertices come first. Throws std::invalid_argument if sizes differ.
-Mesh ApplyPermutation(const Mesh& m, const Permutation& p);
+// (corner order, hence orientation, kept) and placed by `order`. Throws std::invalid_argument if
+// sizes differ.
+Mesh ApplyPermutation(const Mesh& m, const Permutation& p,
+                      TriangleOrder order = TriangleOrder::kSorted);
 
 // How far apart in memory the two ends of each mesh edge are under `p`: |new(u) - new(v)| over all
 // edges. A cheap locality diagnostic (the paper's "span of accesses", its Figure 4): a sweep reads

@@ -26,6 +26,15 @@ std::vector<uint64_t> AccessesPerSweep(const Mesh& m, int threads) {
   return n;
 }
 
+void FlushCaches(uint64_t bytes) {
+  std::vector<uint64_t> buf(bytes / 8 + 8);
+  for (size_t i = 0; i < buf.size(); i += 8) buf[i] = i;
+  uint64_t sum = 0;
+  for (size_t i = 0; i < buf.size(); i += 8) sum += buf[i];
+  volatile uint64_t keep = sum;  // the reads must happen
+  (void)keep;
+}
+
 std::vector<uint64_t> RefsPerSweep(const Mesh& m, int threads, UpdateMode mode) {
   std::vector<uint64_t> n(threads < 1 ? 1 : threads, 0);
   const int p = static_cast<int>(n.size());

@@ -75,7 +75,14 @@ struct SmoothOptions {
   UpdateMode mode = UpdateMode::kGaussSeidel;
   int threads = 1;
   SweepRegion* region = nullptr;  // optional, not owned
+  // Before the first sweep (after the setup, outside the timed region) write and read this many
+  // bytes of a scratch buffer: the caches then hold nothing of the mesh, like a simulator's empty
+  // caches (scripts/validate_callgrind.sh). 0: no flush.
+  uint64_t flush_bytes = 0;
 };
+
+// Writes and reads `bytes` of a scratch buffer, one access per 64 bytes (see flush_bytes).
+void FlushCaches(uint64_t bytes);
 
 struct SweepRecord {
   int sweep = 0;           // 1-based
@@ -294,6 +301,25 @@ SmoothResult Smooth(Mesh& mesh, const SmoothOptions& opt, Sink& sink,
   if (opt.mode == UpdateMode::kJacobi) next = mesh.xy;
   const int threads = opt.threads < 1 ? 1 : opt.threads;
 
+  if constexpr (Sink::kEnabled) {
+    ArrayLayout l;
+    auto put = [&](Array a, const auto& v) {
+      l.base[static_cast<int>(a)] = reinterpret_cast<uintptr_t>(v.data());
+      l.bytes[static_cast<int>(a)] = v.size() * sizeof(v[0]);
+    };
+    put(Array::kInterior, mesh.interior);
+    put(Array::kAdjOffsets, mesh.v2v.off);
+    put(Array::kAdjIndex, mesh.v2v.idx);
+    put(Array::kTriOffsets, mesh.v2t.off);
+    put(Array::kTriIndex, mesh.v2t.idx);
+    put(Array::kTriangles, mesh.tri);
+    put(Array::kTriQuality, wq);  // weights and qualities share one array (interleaved)
+    put(Array::kWeights, wq);
+    put(Array::kCoords, mesh.xy);
+    put(Array::kCoordsNext, next);
+    sink.Bind(l);
+  }
+  if (opt.flush_bytes) FlushCaches(opt.flush_bytes);
   for (int it = 1; it <= opt.max_iters; ++it) {
     if constexpr (Sink::kEnabled) sink.BeginSweep(it);
     const auto t0 = Clock::now();

@@ -1,6 +1,11 @@
 // RunCompare and its tables; see compare.h.
 #include "reports/compare.h"
 
+#include <memory>
+#include <stdexcept>
+
+#include "analysis/papi_counters.h"
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -65,7 +70,7 @@ std::vector<CompareRow> RunCompare(const CompareConfig& cfg,
       const double order_s = Since(t0);
       const EdgeSpan span = MeasureEdgeSpan(base, p);
       t0 = Clock::now();
-      reordered.push_back(ApplyPermutation(base, p));
+      reordered.push_back(ApplyPermutation(base, p, cfg.triangle_order));
       const double apply_s = Since(t0);
       say("  " + spec + ": ordering " + Fixed(1e3 * order_s, 1) + " ms, apply " +
           Fixed(1e3 * apply_s, 1) + " ms");
@@ -86,7 +91,18 @@ std::vector<CompareRow> RunCompare(const CompareConfig& cfg,
           Mesh m = reordered[oi].Clone();
           SmoothOptions o = cfg.smooth;
           o.threads = t;
+          std::unique_ptr<PapiCounters> papi;
+          if (!cfg.counter_events.empty()) {
+            papi = std::make_unique<PapiCounters>(cfg.counter_events, t);
+            if (papi->available()) o.region = papi.get();
+          }
           const SmoothResult res = Smooth(m, o);
+          if (papi && papi->available()) {
+            if (!papi->error().empty())
+              throw std::runtime_error("counters failed: " + papi->error());
+            r.counter_events = papi->events();
+            r.counters.push_back(papi->Sum());
+          }
           r.sweeps.push_back(static_cast<int>(res.sweeps.size()));
           r.total_seconds.push_back(res.seconds);
           for (const SweepRecord& s : res.sweeps) r.sweep_seconds.push_back(s.seconds);
@@ -103,6 +119,12 @@ std::vector<CompareRow> RunCompare(const CompareConfig& cfg,
     // Medians and the paper's ratios, within this mesh.
     std::map<std::pair<std::string, int>, double> t_of;
     for (size_t i = first_row; i < rows.size(); ++i) {
+      CompareRow& r = rows[i];
+      for (size_t e = 0; e < r.counter_events.size(); ++e) {
+        std::vector<double> v;
+        for (const auto& round : r.counters) v.push_back(static_cast<double>(round[e]));
+        r.counter_medians.push_back(Median(v));
+      }
       rows[i].median_total = Median(rows[i].total_seconds);
       rows[i].median_sweep = Median(rows[i].sweep_seconds);
       t_of[{rows[i].ordering, rows[i].threads}] = rows[i].median_total;
@@ -127,16 +149,38 @@ std::string OrDash(double v, int decimals) { return std::isfinite(v) ? Fixed(v, 
 }  // namespace
 
 Table CompareTable(const std::vector<CompareRow>& rows) {
-  Table t({"mesh", "ordering", "threads", "sweeps", "final_quality", "order_ms", "apply_ms",
-           "span_median", "span_p90", "median_ms_per_sweep", "median_total_s", "speedup_vs_ori1",
-           "gain_vs_bfs_%"});
+  std::vector<std::string> head = {"mesh",          "ordering",     "threads",
+                                   "sweeps",        "final_quality", "order_ms",
+                                   "apply_ms",      "span_median",  "span_p90",
+                                   "median_ms_per_sweep", "median_total_s", "speedup_vs_ori1",
+                                   "gain_vs_bfs_%"};
+  std::vector<std::string> events;  // counters recorded in any row, in first-seen order
   for (const CompareRow& r : rows)
-    t.AddRow({r.mesh, r.ordering, std::to_string(r.threads), SweepRange(r.sweeps),
-              Fixed(r.final_quality, 6), Fixed(1e3 * r.order_seconds, 1),
-              Fixed(1e3 * r.apply_seconds, 1), std::to_string(r.span.median),
-              std::to_string(r.span.p90), Fixed(1e3 * r.median_sweep, 3), Fixed(r.median_total, 3),
-              OrDash(r.speedup_vs_ori1, 3), OrDash(100 * r.gain_vs_bfs, 1)});
+    for (const std::string& e : r.counter_events)
+      if (std::find(events.begin(), events.end(), e) == events.end()) events.push_back(e);
+  for (const std::string& e : events) head.push_back(e);
+  Table t(head);
+  for (const CompareRow& r : rows) {
+    std::vector<std::string> row = {
+        r.mesh, r.ordering, std::to_string(r.threads), SweepRange(r.sweeps),
+        Fixed(r.final_quality, 6), Fixed(1e3 * r.order_seconds, 1),
+        Fixed(1e3 * r.apply_seconds, 1), std::to_string(r.span.median),
+        std::to_string(r.span.p90), Fixed(1e3 * r.median_sweep, 3), Fixed(r.median_total, 3),
+        OrDash(r.speedup_vs_ori1, 3), OrDash(100 * r.gain_vs_bfs, 1)};
+    for (const std::string& e : events) {
+      const auto it = std::find(r.counter_events.begin(), r.counter_events.end(), e);
+      row.push_back(it == r.counter_events.end()
+                        ? "-"
+                        : Fixed(r.counter_medians[it - r.counter_events.begin()], 0));
+    }
+    t.AddRow(row);
+  }
   return t;
+}
+
+CounterNote ProbeCounters(const std::vector<std::string>& events) {
+  const PapiCounters probe(events, 1);
+  return {probe.available(), probe.reason()};
 }
 
 Table CompareSummaryTable(const std::vector<CompareRow>& rows) {
@@ -201,7 +245,20 @@ std::string CompareJson(const std::vector<CompareRow>& rows) {
          ", \"median_seconds_per_sweep\": " + JsonNumber(r.median_sweep) +
          ", \"final_quality\": " + JsonNumber(r.final_quality) +
          ", \"speedup_vs_ori1\": " + JsonNumber(r.speedup_vs_ori1) +
-         ", \"gain_vs_bfs\": " + JsonNumber(r.gain_vs_bfs) + "}";
+         ", \"gain_vs_bfs\": " + JsonNumber(r.gain_vs_bfs) + ", \"counters\": " +
+         [&] {
+           if (r.counter_events.empty()) return std::string("null");
+           std::string c = "{";
+           for (size_t e = 0; e < r.counter_events.size(); ++e) {
+             std::vector<long long> per;
+             for (const auto& round : r.counters) per.push_back(round[e]);
+             c += std::string(e ? ", " : "") + JsonString(r.counter_events[e]) +
+                  ": {\"median\": " + JsonNumber(r.counter_medians[e]) +
+                  ", \"per_round\": " + list(per) + "}";
+           }
+           return c + "}";
+         }() +
+         "}";
   }
   return s + "\n  ]";
 }

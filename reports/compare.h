@@ -25,6 +25,10 @@ struct CompareConfig {
   int repeat = 5;
   uint64_t seed = 1;
   SmoothOptions smooth;  // tol, max_iters, mode; threads are taken from `threads`
+  TriangleOrder triangle_order = TriangleOrder::kSorted;
+  // PAPI events to count around the sweeps of every run (empty: none). Events this machine
+  // cannot count are dropped; `counter_note` then says why (counters_available: any left).
+  std::vector<std::string> counter_events;
 };
 
 struct CompareRow {
@@ -40,7 +44,19 @@ struct CompareRow {
   double median_total = 0, median_sweep = 0;
   double speedup_vs_ori1 = 0;  // NaN when the run has no ori on one thread
   double gain_vs_bfs = 0;      // NaN when the run has no bfs at this thread count
+  // Counters (CompareConfig::counter_events that count here): per event, the sum over threads
+  // and sweeps of each round, and its median over the rounds.
+  std::vector<std::string> counter_events;
+  std::vector<std::vector<long long>> counters;  // [round][event]
+  std::vector<double> counter_medians;           // [event]
 };
+
+// Why configured counters are not (all) recorded here, empty if they are; and whether any is.
+struct CounterNote {
+  bool available = false;
+  std::string note;
+};
+CounterNote ProbeCounters(const std::vector<std::string>& events);
 
 // `progress` gets progress lines; `warn` the readers' warnings (dropped vertices, skipped
 // elements), which a caller should show even when progress is silenced.

@@ -8,7 +8,8 @@ set -euo pipefail
 want_plots=0
 for a in "$@"; do [[ $a == --with-plots ]] && want_plots=1; done
 
-pkgs=(build-essential cmake libgtest-dev libbenchmark-dev libboost-program-options-dev triangle-bin)
+pkgs=(build-essential cmake pkg-config libgtest-dev libbenchmark-dev libboost-program-options-dev
+      libpapi-dev triangle-bin)
 ((want_plots)) && pkgs+=(python3-matplotlib python3-numpy)
 
 missing=()

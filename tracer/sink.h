@@ -56,8 +56,56 @@ struct MemRef {
 const char* AccessKindName(AccessKind k);
 const char* ArrayName(Array a);
 
+// Where the swept arrays live in this run; the smoother hands it to its sink (Bind) before the
+// first sweep.
+struct ArrayLayout {
+  std::array<uintptr_t, kArrays> base{};
+  std::array<uint64_t, kArrays> bytes{};
+};
+
+// Canonical addresses: each array moved to a fixed place (in Array order from 2^32, each starting
+// on a fresh 4 KiB page one page after the previous array ends; the loop bound at one fixed slot
+// per thread), keeping its offset within the array. Which accesses share a line or a cache set,
+// and so every line-level and simulated number, then depends on the mesh and the ordering alone,
+// not on where malloc and ASLR put the arrays in this process: traces are byte for byte the same
+// in every run, and a trace file and a streamed run give the same results. Every array is 64-byte
+// aligned (core/aligned.h), so line sharing is the same as in the real run; the relative
+// placement of arrays modulo a cache's set span is the one thing that differs from a given run.
+class AddressCanonicalizer {
+ public:
+  AddressCanonicalizer() = default;
+  explicit AddressCanonicalizer(const ArrayLayout& l) : layout_(l) {
+    uint64_t next = uint64_t{1} << 32;
+    for (int i = 0; i < kArrays; ++i) {
+      int same = -1;  // two tags on one array (weights and qualities): one place
+      for (int j = 0; j < i && same < 0; ++j)
+        if (layout_.bytes[i] && layout_.base[j] == layout_.base[i]) same = j;
+      if (same >= 0) {
+        canon_[i] = canon_[same];
+        continue;
+      }
+      canon_[i] = next;
+      next = (next + layout_.bytes[i] + 4095) / 4096 * 4096 + 4096;
+    }
+  }
+  uint64_t operator()(int thread, const MemRef& r) const {
+    const uintptr_t a = reinterpret_cast<uintptr_t>(r.address);
+    const int t = static_cast<int>(r.array);
+    if (r.array == Array::kLoopBound) return canon_[t] + 64 * static_cast<uint64_t>(thread);
+    if (a - layout_.base[t] < layout_.bytes[t]) return canon_[t] + (a - layout_.base[t]);
+    for (int i = 0; i < kArrays; ++i)  // a swapped buffer (Jacobi) carries the other's tag
+      if (a - layout_.base[i] < layout_.bytes[i]) return canon_[i] + (a - layout_.base[i]);
+    return a;  // not a swept array (a sink fed by hand): as is
+  }
+
+ private:
+  ArrayLayout layout_;
+  std::array<uint64_t, kArrays> canon_{};
+};
+
 struct NullSink {
   static constexpr bool kEnabled = false;
+  void Bind(const ArrayLayout&) {}
   void BeginSweep(int /*sweep*/) {}
   void Access(int /*thread*/, const MemRef&) {}
 };
@@ -73,6 +121,7 @@ struct CountingSink {
   };
   std::vector<PerThread> per_thread;
   int sweeps = 0;
+  void Bind(const ArrayLayout&) {}
   void BeginSweep(int) { ++sweeps; }
   void Access(int thread, const MemRef& r) {
     if (static_cast<size_t>(thread) >= per_thread.size()) per_thread.resize(thread + 1);
@@ -92,6 +141,26 @@ struct CountingSink {
     for (const PerThread& p : per_thread)
       for (const auto& a : p.array) s += a[0] + a[1];
     return s;
+  }
+};
+
+// Sends every report to two sinks (e.g. the reuse analysis and the cache simulator in one pass).
+template <class A, class B>
+struct FanOutSink {
+  static constexpr bool kEnabled = A::kEnabled || B::kEnabled;
+  A& a;
+  B& b;
+  void Bind(const ArrayLayout& l) {
+    a.Bind(l);
+    b.Bind(l);
+  }
+  void BeginSweep(int s) {
+    a.BeginSweep(s);
+    b.BeginSweep(s);
+  }
+  void Access(int thread, const MemRef& r) {
+    a.Access(thread, r);
+    b.Access(thread, r);
   }
 };
 
@@ -115,6 +184,8 @@ struct RecordingSink {
   std::vector<Ref> refs;
   std::vector<size_t> sweep_starts;      // index into touches where each sweep begins
   std::vector<size_t> ref_sweep_starts;  // index into refs where each sweep begins
+  ArrayLayout layout;
+  void Bind(const ArrayLayout& l) { layout = l; }
   void BeginSweep(int) {
     sweep_starts.push_back(touches.size());
     ref_sweep_starts.push_back(refs.size());

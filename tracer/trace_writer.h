@@ -2,7 +2,8 @@
 // written in 1 MiB blocks to PATH.tmp.PID; Close() writes the final header and renames the file
 // into place, so an interrupted run leaves no trace file behind. The header reserves room for
 // `max_iterations` sweeps (the sweep count is known only at the end); each thread's records per
-// sweep are counted as they come, so readers need no pass of their own to find them.
+// sweep are counted as they come, so readers need no pass of their own to find them. Addresses are
+// written canonical (sink.h, AddressCanonicalizer): the same trace in every run.
 #pragma once
 
 #include <cstdio>
@@ -23,6 +24,7 @@ class TraceWriter {
   TraceWriter(const TraceWriter&) = delete;
   TraceWriter& operator=(const TraceWriter&) = delete;
 
+  void Bind(const ArrayLayout& l) { canon_ = AddressCanonicalizer(l); }
   void BeginSweep(int sweep);
   void Access(int thread, const MemRef& r) {
     if (buf_.size() == buf_.capacity()) Flush();
@@ -30,7 +32,7 @@ class TraceWriter {
       ++header_.sweep_records.back()[thread];
       if (r.element != AccessKind::kNone) ++header_.sweep_elements.back()[thread];
     }
-    buf_.push_back(TraceRecord{reinterpret_cast<uintptr_t>(r.address),
+    buf_.push_back(TraceRecord{canon_(thread, r),
                                static_cast<uint32_t>(r.vertex), static_cast<uint8_t>(r.element),
                                static_cast<uint8_t>(thread), static_cast<uint8_t>(r.size),
                                static_cast<uint8_t>(static_cast<uint8_t>(r.array) |
@@ -55,6 +57,7 @@ class TraceWriter {
   std::vector<TraceRecord> buf_;
   uint64_t records_ = 0;
   bool closed_ = false;
+  AddressCanonicalizer canon_;
 };
 
 // The header bytes, with room for `reserve_iterations` sweeps (TraceReader decodes them).

@@ -58,6 +58,19 @@ TEST(InverseModel, CapacityOfTheNthLargest) {
     EXPECT_GE(h.cold() + h.CountAtLeast(CapacityForMisses(h, n)), n);
 }
 
+TEST(InverseModel, ExcludeColdTakesColdMissesAsCompulsory) {
+  ReuseHistogram h;
+  for (uint64_t d : {1, 2, 2, 3, 50, 70}) h.Add(d);
+  h.Add(StackDistance::kCold);
+  h.Add(StackDistance::kCold);
+  // Two misses are the two cold accesses: no reuse needs to miss, any capacity above 70 does.
+  EXPECT_EQ(CapacityForMisses(h, 2, true), 71u);
+  EXPECT_EQ(CapacityForMisses(h, 1, true), 71u);
+  // Beyond the cold ones the answer is the forward model's, with or without the option.
+  EXPECT_EQ(CapacityForMisses(h, 3, true), 70u);
+  EXPECT_EQ(CapacityForMisses(h, 5, true), CapacityForMisses(h, 5));
+}
+
 TEST(CostModel, EquationTwo) {
   const std::vector<LevelMisses> l = {{"L1", 0, 1000, 0}, {"L2", 0, 100, 0}, {"L3", 0, 10, 0}};
   const CostRange c = AdditionalCycles(l);

@@ -55,6 +55,7 @@ struct ElementTrace {
   static constexpr bool kEnabled = true;
   std::vector<uint32_t> ids;
   void BeginSweep(int) {}
+  void Bind(const ArrayLayout&) {}
   void Access(int, const MemRef& r) {
     if (r.element != AccessKind::kNone) ids.push_back(static_cast<uint32_t>(r.vertex));
   }

@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <map>
 #include <set>
 
@@ -33,6 +34,39 @@ TEST(Permutation, BothDirectionsAndInverse) {
   EXPECT_EQ(q.new_to_old(), p.old_to_new());
   EXPECT_EQ(q.old_to_new(), p.new_to_old());
   EXPECT_EQ(Permutation::Identity(3).new_to_old(), (std::vector<int32_t>{0, 1, 2}));
+}
+
+// One triangle policy for every ordering: kFile keeps the file's triangle order (identity + kFile
+// = the mesh as read), kSorted sorts by smallest new corner for the identity too.
+TEST(ApplyPermutation, TriangleOrderPolicy) {
+  SyntheticOptions so;
+  so.nx = 9, so.ny = 7, so.seed = 3;
+  RawMesh raw = MakeSyntheticMesh(so);
+  // Shuffle the triangles so the file's order is not already sorted.
+  const int32_t nt = static_cast<int32_t>(raw.tri.size() / 3);
+  for (int32_t t = 0; t + 1 < nt; t += 2)
+    for (int k = 0; k < 3; ++k) std::swap(raw.tri[3 * t + k], raw.tri[3 * (nt - 1 - t) + k]);
+  const Mesh m = BuildMesh(std::move(raw));
+  const Permutation id = Permutation::Identity(m.NumVertices());
+  const Mesh file = ApplyPermutation(m, id, TriangleOrder::kFile);
+  EXPECT_TRUE(std::equal(file.tri.begin(), file.tri.end(), m.tri.begin(), m.tri.end()));
+  const Mesh sorted = ApplyPermutation(m, id, TriangleOrder::kSorted);
+  EXPECT_FALSE(std::equal(sorted.tri.begin(), sorted.tri.end(), m.tri.begin(), m.tri.end()));
+  int32_t prev = -1;
+  for (int32_t t = 0; t < sorted.NumTriangles(); ++t) {
+    const int32_t lo = std::min({sorted.tri[3 * t], sorted.tri[3 * t + 1], sorted.tri[3 * t + 2]});
+    EXPECT_GE(lo, prev);
+    prev = lo;
+  }
+  // kFile under a real permutation: the same triangles, in the file's positions, renumbered.
+  std::vector<int32_t> rev(m.NumVertices());
+  for (int32_t i = 0; i < m.NumVertices(); ++i) rev[i] = m.NumVertices() - 1 - i;
+  const Permutation p = Permutation::FromNewToOld(rev);
+  const Mesh pf = ApplyPermutation(m, p, TriangleOrder::kFile);
+  for (size_t i = 0; i < m.tri.size(); ++i) EXPECT_EQ(pf.tri[i], p.NewOf(m.tri[i]));
+  EXPECT_EQ(ParseTriangleOrder("file"), TriangleOrder::kFile);
+  EXPECT_EQ(ParseTriangleOrder("sorted"), TriangleOrder::kSorted);
+  EXPECT_THROW(ParseTriangleOrder("random"), std::invalid_argument);
 }
 
 TEST(ApplyPermutation, MovesVerticesRenumbersAndResortsTriangles) {

@@ -1,0 +1,267 @@
+// The model's validation; see validation.h.
+#include "reports/validation.h"
+
+#include <array>
+#include <cmath>
+#include <filesystem>
+#include <limits>
+#include <map>
+#include <memory>
+#include <stdexcept>
+
+#include "analysis/papi_counters.h"
+#include "analysis/trace_analysis.h"
+#include "core/orderings/registry.h"
+
+namespace meshreuse {
+
+namespace {
+
+SmoothOptions Sweeps(const ValidationConfig& cfg) {
+  SmoothOptions o;
+  o.max_iters = cfg.iterations;
+  o.tol = -std::numeric_limits<double>::infinity();  // exactly `iterations` sweeps
+  o.threads = cfg.threads;
+  o.mode = cfg.mode;
+  return o;
+}
+
+std::string Cap(uint64_t c, double scale = 1.0) {
+  if (c == kInfiniteCapacity) return "inf";
+  return scale == 1.0 ? std::to_string(c) : Fixed(static_cast<double>(c) * scale, 2);
+}
+std::string Ratio(double a, double b) { return b > 0 ? Fixed(a / b, 3) : "-"; }
+
+// The paper's Table 3 (x10^3): misses L1, L2, L3, then the estimated elements L1, L2, L3.
+const std::map<std::pair<std::string, std::string>, std::array<double, 6>>& PaperTable3() {
+  static const std::map<std::pair<std::string, std::string>, std::array<double, 6>> t = {
+      {{"carabiner", "ori"}, {106, 50.6, 19.9, 13.2, 21.3, 330}},
+      {{"carabiner", "bfs"}, {84, 30.2, 7.94, 10.2, 21.2, 1060}},
+      {{"carabiner", "rdr"}, {73.9, 4.82, 0, 1.6, 1.88, 1.94}},
+      {{"crake", "ori"}, {95.3, 43.4, 17.4, 24.6, 40.9, 198}},
+      {{"crake", "bfs"}, {72.6, 26.7, 7.07, 18.3, 39.2, 986}},
+      {{"crake", "rdr"}, {68.3, 9.3, 0, 3.4, 3.77, 3.9}},
+      {{"dialog", "ori"}, {91.7, 31.9, 16.3, 59, 87.7, 108}},
+      {{"dialog", "bfs"}, {74.1, 16.2, 4.55, 53.2, 89.3, 157}},
+      {{"dialog", "rdr"}, {74, 14.3, 0, 5.84, 6.05, 6.2}},
+      {{"lake", "ori"}, {111, 44.7, 20.7, 62.2, 95.9, 143}},
+      {{"lake", "bfs"}, {89.8, 22.7, 6.72, 56.1, 96.1, 219}},
+      {{"lake", "rdr"}, {94.7, 10.9, 0, 8.42, 8.65, 8.77}},
+      {{"riverflow", "ori"}, {99.8, 51.4, 19.8, 30.4, 66.8, 863}},
+      {{"riverflow", "bfs"}, {81.6, 31.8, 8.08, 20.3, 67.6, 1290}},
+      {{"riverflow", "rdr"}, {75.4, 11.5, 0, 4.73, 5.27, 5.43}},
+      {{"ocean", "ori"}, {131, 41.3, 21.9, 63.3, 300, 1050}},
+      {{"ocean", "bfs"}, {102, 21, 6.57, 41.6, 770, 1830}},
+      {{"ocean", "rdr"}, {89.8, 10.6, 0, 5.83, 5.99, 6.12}},
+      {{"stress", "ori"}, {96.6, 54.6, 19.4, 71.5, 91.7, 130}},
+      {{"stress", "bfs"}, {76.7, 35.3, 8.42, 59.1, 87.6, 137}},
+      {{"stress", "rdr"}, {72.2, 12.3, 0, 4.36, 4.66, 4.81}},
+      {{"valve", "ori"}, {92.6, 31.9, 16.9, 37.3, 77.6, 186}},
+      {{"valve", "bfs"}, {76.3, 15.4, 5.17, 28.6, 110, 1040}},
+      {{"valve", "rdr"}, {67, 10.1, 0, 6.68, 7.17, 7.26}},
+      {{"wrench", "ori"}, {117, 57.1, 21.8, 75.3, 105, 148}},
+      {{"wrench", "bfs"}, {93.8, 35.1, 8.38, 62.9, 103, 170}},
+      {{"wrench", "rdr"}, {86, 12.7, 0, 5.69, 6.31, 6.49}},
+  };
+  return t;
+}
+
+std::string ShortName(const std::string& path) {
+  return std::filesystem::path(path).stem().string();
+}
+
+}  // namespace
+
+std::vector<OrderingValidation> RunValidation(
+    const Mesh& base, const ValidationConfig& cfg,
+    const std::function<void(const std::string&)>& progress) {
+  auto say = [&](const std::string& s) {
+    if (progress) progress(s);
+  };
+  if (cfg.levels.empty()) throw std::invalid_argument("no cache levels");
+  const SmoothOptions sweeps = Sweeps(cfg);
+  std::vector<OrderingValidation> out;
+  for (const std::string& ord : cfg.orderings) {
+    say("validate: laying out " + cfg.mesh_name + " in " + ord + " order");
+    const Mesh laid =
+        ApplyPermutation(base, ComputeOrdering(ord, base, cfg.seed), cfg.triangle_order);
+    OrderingValidation v;
+    v.mesh = cfg.mesh_name, v.ordering = ord, v.vertices = laid.NumVertices();
+    v.iterations = cfg.iterations, v.threads = cfg.threads;
+
+    // One traced pass into both the reuse analysis and the simulator.
+    TraceAnalysisOptions ao;
+    ao.threads = cfg.threads;
+    ao.line_bytes = cfg.line_bytes;
+    ao.dense_elements = static_cast<uint64_t>(laid.NumVertices());
+    TraceAnalysis analysis(ao);
+    CacheSimulation sim(cfg.levels, cfg.line_bytes, cfg.threads);
+    {
+      say("validate: " + ord + ": " + std::to_string(cfg.iterations) +
+          " traced sweep(s) into the analyzer and the simulator");
+      Mesh m = laid.Clone();
+      AnalysisSink a{&analysis};
+      CacheSimSink c{&sim};
+      FanOutSink<AnalysisSink, CacheSimSink> both{a, c};
+      Smooth(m, sweeps, both);
+    }
+    ReuseHistogram eh, lh;
+    for (int t = 0; t < cfg.threads; ++t) {
+      eh.Merge(analysis.element(t)->hist);
+      lh.Merge(analysis.line(t)->hist);
+    }
+    v.element_accesses = eh.accesses(), v.line_accesses = lh.accesses();
+    v.element_cold = eh.cold(), v.line_cold = lh.cold();
+    for (size_t s = 0; s < sim.sweeps(); ++s) {
+      std::vector<std::vector<LevelStats>> per;
+      for (int t = 0; t < cfg.threads; ++t) per.push_back(sim.SweepStats(t, s));
+      v.sweeps.push_back(std::move(per));
+    }
+
+    // Counters: an untraced run of the same sweeps, where PAPI counts.
+    std::vector<double> counted(cfg.levels.size(), -1);
+    if (!cfg.counter_events.empty()) {
+      std::vector<std::string> wanted;
+      for (size_t i = 0; i < cfg.levels.size() && i < cfg.counter_events.size(); ++i)
+        wanted.push_back(cfg.counter_events[i]);
+      PapiCounters papi(wanted, cfg.threads);
+      if (papi.available()) {
+        say("validate: " + ord + ": " + std::to_string(cfg.iterations) +
+            " untraced sweep(s) with counters");
+        Mesh m = laid.Clone();
+        SmoothOptions o = sweeps;
+        o.region = &papi;
+        Smooth(m, o);
+        if (!papi.error().empty()) throw std::runtime_error("counters failed: " + papi.error());
+        const std::vector<long long> sum = papi.Sum();
+        for (size_t i = 0; i < wanted.size(); ++i)
+          for (size_t e = 0; e < papi.events().size(); ++e)
+            if (papi.events()[e] == wanted[i]) counted[i] = static_cast<double>(sum[e]);
+        v.counters = "measured (" + PapiCounters::Version() + ")";
+      } else {
+        v.counters = "simulated";
+      }
+    } else {
+      v.counters = "simulated (no counters asked for)";
+    }
+
+    const std::vector<LevelMisses> me = ModelMisses(eh, cfg.levels, cfg.element_bytes);
+    const std::vector<LevelMisses> ml = ModelMisses(lh, cfg.levels, cfg.line_bytes);
+    for (size_t i = 0; i < cfg.levels.size(); ++i) {
+      LevelValidation l;
+      l.level = cfg.levels[i];
+      l.element_capacity = me[i].capacity, l.line_capacity = ml[i].capacity;
+      l.model_element = me[i].misses, l.model_line = ml[i].misses;
+      for (int t = 0; t < cfg.threads; ++t) l.simulated += sim.Stats(t)[i];
+      l.measured = counted[i] >= 0;
+      l.counter = l.measured ? counted[i] : 0;
+      l.table3_misses = l.measured ? static_cast<uint64_t>(l.counter) : l.simulated.misses;
+      l.capacity_elements = CapacityForMisses(eh, l.table3_misses, cfg.exclude_cold);
+      l.capacity_lines = CapacityForMisses(lh, l.table3_misses, cfg.exclude_cold);
+      v.levels.push_back(l);
+    }
+    if (cfg.levels.size() == 3) {
+      v.cost_model = AdditionalCycles(ml);
+      std::vector<LevelMisses> sm = ml;
+      for (size_t i = 0; i < 3; ++i) sm[i].misses = v.levels[i].simulated.misses;
+      v.cost_simulated = AdditionalCycles(sm);
+    }
+    out.push_back(std::move(v));
+  }
+  return out;
+}
+
+Table ValidationTable(const std::vector<OrderingValidation>& r) {
+  Table t({"mesh", "ordering", "level", "size", "ways", "accesses", "model_element_misses",
+           "model_line_misses", "simulated_misses", "simulated_cold", "simulated_excess",
+           "counter_misses", "model_line/simulated", "simulated/counter", "local_miss_rate",
+           "global_miss_rate", "counters"});
+  for (const OrderingValidation& v : r)
+    for (const LevelValidation& l : v.levels) {
+      const LevelStats& s = l.simulated;
+      t.AddRow({v.mesh, v.ordering, l.level.name, std::to_string(l.level.bytes),
+                std::to_string(l.level.ways), std::to_string(s.accesses),
+                std::to_string(l.model_element), std::to_string(l.model_line),
+                std::to_string(s.misses), std::to_string(s.cold), std::to_string(s.misses - s.cold),
+                l.measured ? Fixed(l.counter, 0) : "-",
+                Ratio(static_cast<double>(l.model_line), static_cast<double>(s.misses)),
+                l.measured ? Ratio(static_cast<double>(s.misses), l.counter) : "-",
+                Fixed(s.MissRate(), 6),
+                v.line_accesses ? Fixed(static_cast<double>(s.misses) / v.line_accesses, 6) : "-",
+                l.measured ? "measured" : "simulated"});
+    }
+  return t;
+}
+
+Table ValidationSweepTable(const std::vector<OrderingValidation>& r) {
+  Table t({"mesh", "ordering", "sweep", "level", "accesses", "simulated_misses", "simulated_cold"});
+  for (const OrderingValidation& v : r)
+    for (size_t s = 0; s < v.sweeps.size(); ++s)
+      for (size_t i = 0; i < v.levels.size(); ++i) {
+        LevelStats sum;
+        for (const auto& th : v.sweeps[s]) sum += th[i];
+        t.AddRow({v.mesh, v.ordering, std::to_string(s + 1), v.levels[i].level.name,
+                  std::to_string(sum.accesses), std::to_string(sum.misses),
+                  std::to_string(sum.cold)});
+      }
+  return t;
+}
+
+Table Table3(const std::vector<OrderingValidation>& r, bool exclude_cold) {
+  std::vector<std::string> head = {"mesh", "ordering", "source"};
+  const size_t n = r.empty() ? 0 : r[0].levels.size();
+  auto names = [&](const std::string& prefix, const std::string& suffix) {
+    for (size_t i = 0; i < n; ++i) head.push_back(prefix + r[0].levels[i].level.name + suffix);
+  };
+  names("", "_misses_k_per_sweep");
+  if (n == 3) names("paper_", "_misses_k");
+  names("", "_capacity_k_elements");
+  if (n == 3) names("paper_", "_capacity_k_elements");
+  names("", "_capacity_lines");
+  Table t(head);
+  for (const OrderingValidation& v : r) {
+    const auto paper = PaperTable3().find({ShortName(v.mesh), v.ordering});
+    const bool has_paper = n == 3 && paper != PaperTable3().end();
+    std::vector<std::string> row = {v.mesh, v.ordering,
+                                    v.levels.empty() || !v.levels[0].measured
+                                        ? std::string("simulated")
+                                        : std::string("measured")};
+    for (const LevelValidation& l : v.levels)
+      row.push_back(Fixed(static_cast<double>(l.table3_misses) / 1e3 / v.iterations, 2));
+    if (n == 3)
+      for (int i = 0; i < 3; ++i) row.push_back(has_paper ? Fixed(paper->second[i], 2) : "-");
+    for (const LevelValidation& l : v.levels) row.push_back(Cap(l.capacity_elements, 1e-3));
+    if (n == 3)
+      for (int i = 3; i < 6; ++i) row.push_back(has_paper ? Fixed(paper->second[i], 2) : "-");
+    for (const LevelValidation& l : v.levels) row.push_back(Cap(l.capacity_lines));
+    t.AddRow(row);
+  }
+  (void)exclude_cold;
+  return t;
+}
+
+std::vector<std::string> Table3Notes(const std::vector<OrderingValidation>& r,
+                                     bool exclude_cold) {
+  std::vector<std::string> notes;
+  notes.push_back(
+      "Table 3: misses are per sweep (over the sweeps run); capacities from the inverse model "
+      "(n misses -> the distance of the n-th largest access, cold accesses counting as the "
+      "largest" +
+      std::string(exclude_cold ? "; --exclude-cold: cold accesses taken as compulsory, the rest "
+                                 "inverted"
+                               : "") +
+      ") over the element stream (66-byte nodes, as the paper) and over the line stream.");
+  for (const OrderingValidation& v : r)
+    for (const LevelValidation& l : v.levels)
+      if (l.capacity_elements == kInfiniteCapacity || l.capacity_lines == kInfiniteCapacity)
+        notes.push_back(
+            "inf (" + v.mesh + " " + v.ordering + " " + l.level.name + "): its " +
+            std::to_string(l.table3_misses) + " misses are no more than the cold (first-touch) "
+            "accesses (" + std::to_string(v.element_cold) + " elements, " +
+            std::to_string(v.line_cold) +
+            " lines), which miss at any capacity, so no finite capacity explains them; "
+            "--exclude-cold counts the cold accesses as compulsory and inverts the rest.");
+  return notes;
+}
+
+}  // namespace meshreuse

@@ -1,0 +1,82 @@
+// The model's validation (meshreuse validate, DESIGN.md "Miss model", "Set-associative
+// simulation"): for one mesh and each ordering, K traced sweeps streamed at once into the exact
+// reuse-distance analysis (element and line) and the set-associative simulator, plus -- where PAPI
+// counts here -- an untraced run of the same K sweeps with hardware counters. Per cache level, side
+// by side: the fully associative model on elements (the paper's 66-byte nodes) and on lines, the
+// simulation, the counters, their ratios, miss rates and the equation-2 cost. Then the paper's
+// Table 3: misses per level (measured where counters exist, else simulated, and labelled so) and
+// the inverse model's capacity for them, in elements and in lines.
+// Sums over thread streams (each stream has private caches, as in the analyzer).
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "analysis/cache_model.h"
+#include "analysis/cache_sim.h"
+#include "analysis/reuse_histogram.h"
+#include "core/mesh.h"
+#include "core/permutation.h"
+#include "core/smoother.h"
+#include "reports/table.h"
+
+namespace meshreuse {
+
+struct ValidationConfig {
+  std::string mesh_name;  // for the tables
+  std::vector<std::string> orderings = {"ori", "bfs", "rdr"};
+  uint64_t seed = 1;
+  int iterations = 2;
+  int threads = 1;
+  UpdateMode mode = UpdateMode::kGaussSeidel;
+  TriangleOrder triangle_order = TriangleOrder::kSorted;
+  std::vector<CacheLevel> levels;  // with associativity (the simulator needs it)
+  uint32_t element_bytes = 66, line_bytes = 64;
+  // PAPI events for the levels, in level order (empty: no counters). Missing ones are simulated.
+  std::vector<std::string> counter_events = {"PAPI_L1_DCM", "PAPI_L2_DCM", "PAPI_L3_TCM"};
+  bool exclude_cold = false;  // Table 3's inverse model (cache_model.h)
+};
+
+struct LevelValidation {
+  CacheLevel level;
+  uint64_t element_capacity = 0, line_capacity = 0;  // of the model
+  uint64_t model_element = 0, model_line = 0;         // fully associative LRU misses
+  LevelStats simulated;
+  bool measured = false;  // counters counted this level
+  double counter = 0;     // their misses (sum over threads)
+  // Table 3: the misses inverted (counter if measured, else simulated) and the capacities.
+  uint64_t table3_misses = 0;
+  uint64_t capacity_elements = 0, capacity_lines = 0;
+};
+
+struct OrderingValidation {
+  std::string mesh, ordering;
+  int32_t vertices = 0;
+  int iterations = 0, threads = 1;
+  uint64_t element_accesses = 0, line_accesses = 0, element_cold = 0, line_cold = 0;
+  std::vector<LevelValidation> levels;
+  std::vector<std::vector<std::vector<LevelStats>>> sweeps;  // simulated: [sweep][thread][level]
+  CostRange cost_model{0, 0}, cost_simulated{0, 0};          // three levels only
+  std::string counters;  // "measured (PAPI ...)" or why not
+};
+
+std::vector<OrderingValidation> RunValidation(
+    const Mesh& base, const ValidationConfig& cfg,
+    const std::function<void(const std::string&)>& progress = {});
+
+// One row per ordering x level: accesses reaching the level, misses of the element model, the line
+// model, the simulator and the counters, cold misses, excess (simulated - cold), the ratios
+// model_line / simulated and simulated / counter, local and global miss rates.
+Table ValidationTable(const std::vector<OrderingValidation>& r);
+// Simulated misses per sweep: one row per ordering x sweep x level (sum over threads).
+Table ValidationSweepTable(const std::vector<OrderingValidation>& r);
+// The paper's Table 3: per ordering, misses per level (x10^3, per sweep) and the capacity the
+// inverse model gives for them (x10^3 elements; lines too), with the paper's values beside ours
+// for its nine meshes (carabiner ... wrench, ori/bfs/rdr), "-" elsewhere.
+Table Table3(const std::vector<OrderingValidation>& r, bool exclude_cold);
+// Notes for the tables: where an inverse capacity is infinite, why.
+std::vector<std::string> Table3Notes(const std::vector<OrderingValidation>& r, bool exclude_cold);
+
+}  // namespace meshreuse

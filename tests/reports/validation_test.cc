@@ -1,0 +1,86 @@
+// The validation runner on a small mesh: the fully associative levels of the simulator equal the
+// line model exactly (a level with ways = lines is fully associative LRU), the element model counts
+// the element stream, Table 3 carries the paper's values for the paper's meshes and explains an
+// infinite capacity, and counters that cannot count leave every number labelled simulated.
+#include "reports/validation.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+
+#include "core/synthetic.h"
+
+namespace meshreuse {
+namespace {
+
+Mesh Small() {
+  SyntheticOptions so;
+  so.nx = 40, so.ny = 30, so.holes = 1, so.seed = 8;
+  return BuildMesh(MakeSyntheticMesh(so));
+}
+
+TEST(Validation, FullyAssociativeL1EqualsTheLineModelAndCountsAddUp) {
+  const Mesh m = Small();
+  ValidationConfig cfg;
+  cfg.mesh_name = "carabiner.node";  // to pick up the paper's row
+  cfg.orderings = {"ori", "bfs"};
+  cfg.iterations = 2;
+  // L1: 2 KiB fully associative (32 lines, 32 ways); L2/L3 set-associative.
+  cfg.levels = {{"L1", 2048, 32}, {"L2", 16384, 4}, {"L3", 65536, 8}};
+  cfg.counter_events = {"NO_SUCH_EVENT"};
+  const std::vector<OrderingValidation> r = RunValidation(m, cfg);
+  ASSERT_EQ(r.size(), 2u);
+  for (const OrderingValidation& v : r) {
+    SCOPED_TRACE(v.ordering);
+    ASSERT_EQ(v.levels.size(), 3u);
+    EXPECT_EQ(v.levels[0].simulated.misses, v.levels[0].model_line);  // exact: same LRU
+    EXPECT_EQ(v.levels[0].simulated.accesses, v.line_accesses);
+    EXPECT_EQ(v.levels[1].simulated.accesses, v.levels[0].simulated.misses);
+    EXPECT_EQ(v.line_accesses, 2 * RefsPerSweep(m)[0]);
+    EXPECT_EQ(v.element_accesses, 2 * AccessesPerSweep(m)[0]);
+    // Cold element touches: the vertices a sweep touches (interior ones and their neighbours).
+    std::vector<char> touched(m.NumVertices(), 0);
+    for (int32_t u : m.interior) {
+      touched[u] = 1;
+      for (const int32_t* p = m.v2v.RowBegin(u); p != m.v2v.RowEnd(u); ++p) touched[*p] = 1;
+    }
+    EXPECT_EQ(v.element_cold, static_cast<uint64_t>(std::count(touched.begin(), touched.end(), 1)));
+    EXPECT_FALSE(v.levels[0].measured);
+    EXPECT_EQ(v.counters, "simulated");
+    EXPECT_EQ(v.sweeps.size(), 2u);
+    for (const LevelValidation& l : v.levels) EXPECT_EQ(l.table3_misses, l.simulated.misses);
+  }
+  const Table t3 = Table3(r, false);
+  ASSERT_EQ(t3.Rows(), 2u);
+  const std::string csv = t3.Csv();
+  EXPECT_NE(csv.find("106.00"), std::string::npos) << csv;  // the paper's carabiner ORI L1
+  EXPECT_NE(csv.find("1060.00"), std::string::npos) << csv;  // its BFS L3 capacity
+  EXPECT_EQ(ValidationTable(r).Rows(), 6u);
+  EXPECT_EQ(ValidationSweepTable(r).Rows(), 12u);
+}
+
+TEST(Validation, InfiniteCapacityIsExplained) {
+  const Mesh m = Small();
+  ValidationConfig cfg;
+  cfg.mesh_name = "small";
+  cfg.orderings = {"ori"};
+  cfg.iterations = 1;
+  // A huge L2: only cold misses, exactly the line stream's cold accesses, which miss at any
+  // capacity: no finite line capacity explains them.
+  cfg.levels = {{"L1", 1024, 4}, {"L2", 64 << 20, 16}};
+  cfg.counter_events = {};
+  std::vector<OrderingValidation> r = RunValidation(m, cfg);
+  ASSERT_EQ(r[0].levels[1].simulated.misses, r[0].levels[1].simulated.cold);
+  EXPECT_EQ(r[0].levels[1].capacity_lines, kInfiniteCapacity);
+  const std::vector<std::string> notes = Table3Notes(r, false);
+  ASSERT_EQ(notes.size(), 2u);
+  EXPECT_NE(notes[1].find("no finite capacity explains them"), std::string::npos);
+  EXPECT_NE(notes[1].find("--exclude-cold"), std::string::npos);
+  cfg.exclude_cold = true;
+  r = RunValidation(m, cfg);
+  EXPECT_NE(r[0].levels[1].capacity_lines, kInfiniteCapacity);
+  EXPECT_EQ(Table3Notes(r, true).size(), 1u);
+}
+
+}  // namespace
+}  // namespace meshreuse
