@@ -60,6 +60,9 @@ class TraceAnalysis {
     if (last != first) line_[thread]->Add(last);
   }
   int threads() const { return static_cast<int>(element_.size()); }
+  bool has_lines() const {
+    return static_cast<int>(opt_.granularity) & static_cast<int>(Granularity::kLine);
+  }
   const StreamAnalysis* element(int t) const { return element_[t].get(); }
   const StreamAnalysis* line(int t) const { return line_[t].get(); }
   const TraceAnalysisOptions& options() const { return opt_; }
@@ -79,7 +82,7 @@ struct AnalysisSink {
   void BeginSweep(int) {}
   void Access(int thread, const MemRef& r) {
     if (r.element != AccessKind::kNone) analysis->AddElement(thread, static_cast<uint32_t>(r.vertex));
-    analysis->AddAccess(thread, canon(thread, r), r.size);
+    if (analysis->has_lines()) analysis->AddAccess(thread, canon(thread, r), r.size);
   }
 };
 

@@ -5,8 +5,11 @@
 #      the paper's averaged Speedup and Gain;
 #   2. the paper's Table 2: reuse-distance quantiles and accesses of the first sweep
 #      (`meshreuse analyze`), with modelled misses;
-#   3. the paper's reuse-distance profile figure (carabiner, 8 sweeps) and histograms, as PNG+PDF.
-# Results: results/reproduce-<UTC time>/ (compare/, table2/, profile/, each with its run.json).
+#   3. the paper's Table 3 (`meshreuse validate`, 2 sweeps per mesh and ordering): misses per
+#      level -- hardware counters where the machine has them, else the set-associative simulator,
+#      labelled so -- and the inverse model's capacities, beside the paper's values;
+#   4. the paper's reuse-distance profile figure (carabiner, 8 sweeps) and histograms, as PNG+PDF.
+# Results: results/reproduce-<UTC time>/ (compare/, table2/, table3/, profile/, each with run.json).
 # Usage: scripts/reproduce.sh [--orderings ori,bfs,rdr] [--threads 1,2] [--repeat 3]
 #                             [--vertices N] [--shapes a,b,...] [--quiet]
 set -euo pipefail
@@ -22,7 +25,7 @@ while (($#)); do
     --repeat) repeat=$2; shift 2 ;;
     --shapes) shapes=$2; shift 2 ;;
     --quiet) quiet=--quiet; shift ;;
-    -h|--help) sed -n '2,9p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    -h|--help) sed -n '2,12p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
     *) echo "reproduce.sh: unknown argument '$1' (see --help)" >&2; exit 2 ;;
   esac
 done
@@ -54,16 +57,30 @@ done
 
 out=results/reproduce-$(date -u +%Y%m%dT%H%M%SZ)
 mkdir -p "$out"
-say "1/3 timing the smoother on ${#files[@]} meshes: orderings $orderings, threads $threads, $repeat rounds"
+say "1/4 timing the smoother on ${#files[@]} meshes: orderings $orderings, threads $threads, $repeat rounds"
 "$bin" compare "${files[@]}" --orderings "$orderings" --threads "$threads" --repeat "$repeat" \
   --out "$out/compare" $quiet >"$out/compare.txt"
-say "2/3 Table 2: reuse distances of the first sweep, ${#files[@]} meshes x $orderings"
+say "2/4 Table 2: reuse distances of the first sweep, ${#files[@]} meshes x $orderings"
 "$bin" analyze "${files[@]}" --orderings "$orderings" --iterations 1 --granularity element \
   --out "$out/table2" $quiet >"$out/table2.txt"
+say "3/4 Table 3: misses per level and the inverse model, ${#files[@]} meshes x $orderings, 2 sweeps"
+mkdir -p "$out/table3"
+i=0
+for f in "${files[@]}"; do
+  i=$((i + 1))
+  name=$(basename "$f" .node)
+  say "  [$i/${#files[@]}] $name"
+  "$bin" validate "$f" --orderings "$orderings" --iterations 2 --out "$out/table3/$name" $quiet \
+    >"$out/table3/$name.txt"
+done
+{ head -n 1 "$out/table3/${names[0]}/table3.csv"; for n in "${names[@]}"; do tail -n +2 "$out/table3/$n/table3.csv"; done; } \
+  >"$out/table3/table3.csv"
+{ head -n 1 "$out/table3/${names[0]}/validate.csv"; for n in "${names[@]}"; do tail -n +2 "$out/table3/$n/validate.csv"; done; } \
+  >"$out/table3/validate.csv"
 carabiner=""
 for f in "${files[@]}"; do [[ $f == */carabiner.node ]] && carabiner=$f; done
 if [[ -n $carabiner ]]; then
-  say "3/3 reuse-distance profile of carabiner, 8 sweeps x $orderings"
+  say "4/4 reuse-distance profile of carabiner, 8 sweeps x $orderings"
   "$bin" analyze "$carabiner" --orderings "$orderings" --iterations 8 --granularity both \
     --out "$out/profile" $quiet >"$out/profile.txt"
   /usr/bin/python3 scripts/plot_reuse.py profile "$out/profile/profile.csv" "$out/profile/carabiner-profile" >&2
@@ -76,4 +93,7 @@ cat "$out/compare.txt"
 echo
 echo "== Table 2: reuse distances (distinct vertices) of the first sweep ($out/table2)"
 cut -d, -f1,2,5,10-13 "$out/table2/analyze.csv" | sed 's|^[^,]*/||; s|\.node,|,|' | column -s, -t
+echo
+echo "== Table 3: misses per sweep (x10^3) and inverse-model capacities (x10^3 elements), ours | paper ($out/table3)"
+cut -d, -f1-15 "$out/table3/table3.csv" | sed 's|\.node,|,|' | column -s, -t
 [[ -n $carabiner ]] && echo && echo "== Profile and histogram figures: $out/profile/carabiner-{profile,histogram}.{png,pdf}"
