@@ -119,7 +119,9 @@ struct CacheSimSink {
   AddressCanonicalizer canon;
   void Bind(const ArrayLayout& l) { canon = AddressCanonicalizer(l); }
   void BeginSweep(int) { sim->BeginSweep(); }
-  void Access(int thread, const MemRef& r) { sim->Access(thread, canon(thread, r), r.size, r.write); }
+  void Access(int thread, const MemRef& r) {
+    sim->Access(thread, canon(thread, r), r.size, r.write);
+  }
 };
 
 }  // namespace meshreuse

@@ -96,8 +96,8 @@ PapiCounters::PapiCounters(const std::vector<std::string>& events, int threads) 
     int presets = 0;
     for (int i = 0; i < PAPI_MAX_PRESET_EVENTS; ++i)
       if (PAPI_query_event(static_cast<int>(i | PAPI_PRESET_MASK)) == PAPI_OK) ++presets;
-    reason_ = Version() + where + ", " + std::to_string(presets) +
-              " preset events available: " + why;
+    reason_ =
+        Version() + where + ", " + std::to_string(presets) + " preset events available: " + why;
   }
   sets_.assign(threads < 1 ? 1 : threads, PAPI_NULL);
   values_.assign(sets_.size(), std::vector<long long>(events_.size(), 0));

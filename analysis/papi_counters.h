@@ -32,7 +32,7 @@ class PapiCounters : public SweepRegion {
   PapiCounters& operator=(const PapiCounters&) = delete;
 
   bool available() const { return !events_.empty(); }
-  const std::string& reason() const { return reason_; }        // why events were dropped
+  const std::string& reason() const { return reason_; }               // why events were dropped
   const std::vector<std::string>& events() const { return events_; }  // those that count
   const std::vector<std::string>& dropped() const { return dropped_; }
 

@@ -81,7 +81,8 @@ struct AnalysisSink {
   void Bind(const ArrayLayout& l) { canon = AddressCanonicalizer(l); }
   void BeginSweep(int) {}
   void Access(int thread, const MemRef& r) {
-    if (r.element != AccessKind::kNone) analysis->AddElement(thread, static_cast<uint32_t>(r.vertex));
+    if (r.element != AccessKind::kNone)
+      analysis->AddElement(thread, static_cast<uint32_t>(r.vertex));
     if (analysis->has_lines()) analysis->AddAccess(thread, canon(thread, r), r.size);
   }
 };

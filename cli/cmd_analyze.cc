@@ -30,15 +30,6 @@ double Since(Clock::time_point t0) {
   return std::chrono::duration<double>(Clock::now() - t0).count();
 }
 
-bool EndsWith(const std::string& s, const std::string& x) {
-  return s.size() >= x.size() && s.compare(s.size() - x.size(), x.size(), x) == 0;
-}
-
-bool IsMesh(const std::string& p) {
-  return EndsWith(p, ".node") || EndsWith(p, ".ele") || EndsWith(p, ".msh") ||
-         std::filesystem::exists(p + ".node");
-}
-
 std::string Base(const std::string& p) { return std::filesystem::path(p).filename().string(); }
 
 SmoothOptions TraceSweeps(int iterations, int threads, const std::string& mode) {
@@ -122,8 +113,8 @@ int TraceCommand(const Args& args) {
       out.c_str(), Grouped(static_cast<long long>(n)).c_str(),
       Fixed(static_cast<double>(n) / per, 2).c_str(),
       Grouped(static_cast<long long>(elements)).c_str(),
-      Fixed(static_cast<double>(elements) / per, 2).c_str(),
-      iterations, threads, (static_cast<double>(n) * sizeof(TraceRecord)) / 1e6, Since(t0));
+      Fixed(static_cast<double>(elements) / per, 2).c_str(), iterations, threads,
+      (static_cast<double>(n) * sizeof(TraceRecord)) / 1e6, Since(t0));
   return 0;
 }
 

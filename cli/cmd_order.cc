@@ -159,9 +159,8 @@ int CompareCommand(const Args& args) {
     WriteText(out_dir + "/run.json",
               "{\n" + RunJsonHeader("meshreuse compare") + "  \"config\": {\"orderings\": [" + ord +
                   "], \"threads\": [" + th + "], \"repeat\": " + std::to_string(cfg.repeat) +
-                  ", \"seed\": " + std::to_string(cfg.seed) +
-                  ", \"triangle_order\": " + JsonString(triangle_order) +
-                  ", \"counters\": " + JsonString(counters) +
+                  ", \"seed\": " + std::to_string(cfg.seed) + ", \"triangle_order\": " +
+                  JsonString(triangle_order) + ", \"counters\": " + JsonString(counters) +
                   ", \"mode\": " + JsonString(UpdateModeName(cfg.smooth.mode)) +
                   ", \"tol\": " + JsonNumber(cfg.smooth.tol) +
                   ", \"max_iters\": " + std::to_string(cfg.smooth.max_iters) + "},\n" +

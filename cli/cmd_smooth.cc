@@ -8,11 +8,10 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <string>
-#include <vector>
-
 #include <memory>
 #include <stdexcept>
+#include <string>
+#include <vector>
 
 #include "analysis/papi_counters.h"
 #include "cli/common.h"
@@ -49,9 +48,10 @@ int SmoothCommand(const Args& args) {
       "hardware counters (PAPI) around the sweeps, per thread and summed: a comma list of PAPI "
       "events, or none for PAPI_L1_DCM,PAPI_L2_DCM,PAPI_L3_TCM,PAPI_TOT_CYC,PAPI_TOT_INS; events "
       "this machine cannot count are dropped with PAPI's reason")(
-      "flush-caches", "before the first sweep, stream 64 MiB through the caches (cold start, as "
-      "the simulator's empty caches; scripts/validate_callgrind.sh)")(
-      "quiet,q", "no progress on stderr");
+      "flush-caches",
+      "before the first sweep, stream 64 MiB through the caches (cold start, as "
+      "the simulator's empty caches; scripts/validate_callgrind.sh)")("quiet,q",
+                                                                      "no progress on stderr");
   AddTriangleOrderOption(desc, &triangle_order);
   po::positional_options_description pos;
   pos.add("mesh", -1);
@@ -131,8 +131,7 @@ int SmoothCommand(const Args& args) {
                 r.sweeps.size(), r.converged ? "converged" : "max-iters reached", r.quality_before,
                 r.quality_after, 1e3 * med, r.seconds);
     if (papi && papi->available()) {
-      if (!papi->error().empty())
-        throw std::runtime_error("counters failed: " + papi->error());
+      if (!papi->error().empty()) throw std::runtime_error("counters failed: " + papi->error());
       const std::vector<long long> sum = papi->Sum();
       std::string per_thread;
       counters_json = "{";
@@ -141,7 +140,8 @@ int SmoothCommand(const Args& args) {
                     Grouped(sum[e]).c_str());
         std::string th = "[";
         for (size_t t = 0; t < papi->per_thread().size(); ++t) {
-          if (opt.threads > 1) std::printf("; thread %zu %s", t, Grouped(papi->per_thread()[t][e]).c_str());
+          if (opt.threads > 1)
+            std::printf("; thread %zu %s", t, Grouped(papi->per_thread()[t][e]).c_str());
           th += (t ? ", " : "") + std::to_string(papi->per_thread()[t][e]);
         }
         std::printf(")\n");
@@ -156,19 +156,18 @@ int SmoothCommand(const Args& args) {
          std::to_string(opt.threads), UpdateModeName(opt.mode), std::to_string(r.sweeps.size()),
          r.converged ? "yes" : "no", Fixed(r.quality_before, 6), Fixed(r.quality_after, 6),
          Fixed(1e3 * reorder_s, 3), Fixed(1e3 * med, 3), Fixed(r.seconds, 3)});
-    results_json += std::string(results_json.empty() ? "" : ",\n") +
-                    "    {\"mesh\": " + JsonString(path) +
-                    ", \"ordering\": " + JsonString(ordering) +
-                    ", \"vertices\": " + std::to_string(m.NumVertices()) +
-                    ", \"triangles\": " + std::to_string(m.NumTriangles()) +
-                    ", \"sweeps\": " + std::to_string(r.sweeps.size()) +
-                    ", \"converged\": " + (r.converged ? "true" : "false") +
-                    ", \"quality_before\": " + JsonNumber(r.quality_before) +
-                    ", \"quality_after\": " + JsonNumber(r.quality_after) +
-                    ", \"reorder_seconds\": " + JsonNumber(reorder_s) +
-                    ", \"median_seconds_per_sweep\": " + JsonNumber(med) +
-                    ", \"total_seconds\": " + JsonNumber(r.seconds) +
-                    ", \"counters\": " + counters_json + "}";
+    results_json +=
+        std::string(results_json.empty() ? "" : ",\n") + "    {\"mesh\": " + JsonString(path) +
+        ", \"ordering\": " + JsonString(ordering) +
+        ", \"vertices\": " + std::to_string(m.NumVertices()) +
+        ", \"triangles\": " + std::to_string(m.NumTriangles()) +
+        ", \"sweeps\": " + std::to_string(r.sweeps.size()) +
+        ", \"converged\": " + (r.converged ? "true" : "false") +
+        ", \"quality_before\": " + JsonNumber(r.quality_before) +
+        ", \"quality_after\": " + JsonNumber(r.quality_after) +
+        ", \"reorder_seconds\": " + JsonNumber(reorder_s) +
+        ", \"median_seconds_per_sweep\": " + JsonNumber(med) +
+        ", \"total_seconds\": " + JsonNumber(r.seconds) + ", \"counters\": " + counters_json + "}";
     if (!out_mesh.empty())
       for (const std::string& f : WriteMesh(m, out_mesh)) progress.Say("wrote " + f);
   }
@@ -181,8 +180,7 @@ int SmoothCommand(const Args& args) {
     WriteText(out_dir + "/run.json",
               "{\n" + RunJsonHeader("meshreuse smooth") + "  \"config\": {\"ordering\": " +
                   JsonString(ordering) + ", \"seed\": " + std::to_string(seed) +
-                  ", \"triangle_order\": " + JsonString(triangle_order) +
-                  ", \"counters\": " +
+                  ", \"triangle_order\": " + JsonString(triangle_order) + ", \"counters\": " +
                   (papi ? std::string("{\"version\": ") + JsonString(PapiCounters::Version()) +
                               ", \"recorded\": " + (papi->available() ? "true" : "false") +
                               ", \"note\": " + JsonString(papi->reason()) + "}"

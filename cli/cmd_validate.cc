@@ -25,14 +25,6 @@ namespace meshreuse::cli {
 
 namespace {
 
-bool EndsWith(const std::string& s, const std::string& x) {
-  return s.size() >= x.size() && s.compare(s.size() - x.size(), x.size(), x) == 0;
-}
-bool IsMesh(const std::string& p) {
-  return EndsWith(p, ".node") || EndsWith(p, ".ele") || EndsWith(p, ".msh") ||
-         std::filesystem::exists(p + ".node");
-}
-
 std::vector<CacheLevel> SimulatedLevels(const std::string& spec) {
   try {
     std::vector<CacheLevel> l = ParseCacheSpec(spec);
@@ -83,7 +75,8 @@ int SimulateCommand(const Args& args) {
                                                "seed of randomised orderings")(
       "iterations,k", po::value(&iterations)->default_value(1), "for meshes: sweeps to simulate")(
       "threads,t", po::value(&threads)->default_value(1), "for meshes: streams (static schedule)")(
-      "mode", po::value(&mode)->default_value("gauss-seidel"), "for meshes: gauss-seidel or jacobi")(
+      "mode", po::value(&mode)->default_value("gauss-seidel"),
+      "for meshes: gauss-seidel or jacobi")(
       "format", po::value(&format),
       "other tools' traces: text, u32, u64 (each value a byte address, a 1-byte access)")(
       "cache", po::value(&cache)->default_value("westmere-ex"),
@@ -125,8 +118,7 @@ int SimulateCommand(const Args& args) {
            "hits", "misses", "cold", "excess", "miss_rate", "read_misses", "write_misses"});
   auto rows = [&](const std::string& in, const std::string& ord, const CacheSimulation& sim) {
     for (int th = 0; th < sim.threads(); ++th) {
-      std::vector<std::pair<std::string, std::vector<LevelStats>>> parts = {
-          {"all", sim.Stats(th)}};
+      std::vector<std::pair<std::string, std::vector<LevelStats>>> parts = {{"all", sim.Stats(th)}};
       if (per_sweep)
         for (size_t s = 0; s < sim.sweeps(); ++s)
           parts.emplace_back(std::to_string(s + 1), sim.SweepStats(th, s));
@@ -196,9 +188,10 @@ int SimulateCommand(const Args& args) {
   }
   Print(t, vm.count("json") > 0, vm.count("csv") > 0);
   if (!vm.count("json") && !vm.count("csv"))
-    std::printf("(simulated: set-associative LRU, write-allocate, %u B lines; each thread stream "
-                "has private caches)\n",
-                line_bytes);
+    std::printf(
+        "(simulated: set-associative LRU, write-allocate, %u B lines; each thread stream "
+        "has private caches)\n",
+        line_bytes);
   return 0;
 }
 
@@ -273,7 +266,8 @@ int ValidateCommand(const Args& args) {
   const std::vector<OrderingValidation> r =
       RunValidation(base, cfg, [&](const std::string& s) { progress.Say(s); });
 
-  const Table v = ValidationTable(r), t3 = Table3(r, cfg.exclude_cold), sw = ValidationSweepTable(r);
+  const Table v = ValidationTable(r), t3 = Table3(r, cfg.exclude_cold),
+              sw = ValidationSweepTable(r);
   Table cost({"mesh", "ordering", "accesses", "element_accesses", "cost_model_low",
               "cost_model_high", "cost_simulated_low", "cost_simulated_high", "counters"});
   for (const OrderingValidation& o : r)
@@ -288,8 +282,7 @@ int ValidateCommand(const Args& args) {
   } else if (vm.count("csv")) {
     std::printf("%s", v.Csv().c_str());
   } else if (vm.count("markdown")) {
-    std::printf("%s\n%s\n%s", v.Markdown().c_str(), cost.Markdown().c_str(),
-                t3.Markdown().c_str());
+    std::printf("%s\n%s\n%s", v.Markdown().c_str(), cost.Markdown().c_str(), t3.Markdown().c_str());
     for (const std::string& n : notes) std::printf("\n%s\n", n.c_str());
   } else {
     std::printf("%s\n%s\n%s", v.Aligned().c_str(), cost.Aligned().c_str(), t3.Aligned().c_str());
@@ -308,11 +301,10 @@ int ValidateCommand(const Args& args) {
     WriteText(out_dir + "/sweeps.csv", sw.Csv());
     WriteText(out_dir + "/run.json",
               "{\n" + RunJsonHeader("meshreuse validate") + "  \"config\": {\"mesh\": " +
-                  JsonString(mesh) + ", \"orderings\": " + JsonString(orderings) +
-                  ", \"seed\": " + std::to_string(cfg.seed) +
-                  ", \"iterations\": " + std::to_string(cfg.iterations) +
-                  ", \"threads\": " + std::to_string(cfg.threads) + ", \"mode\": " +
-                  JsonString(mode) + ", \"cache\": " + JsonString(cache) +
+                  JsonString(mesh) + ", \"orderings\": " + JsonString(orderings) + ", \"seed\": " +
+                  std::to_string(cfg.seed) + ", \"iterations\": " + std::to_string(cfg.iterations) +
+                  ", \"threads\": " + std::to_string(cfg.threads) +
+                  ", \"mode\": " + JsonString(mode) + ", \"cache\": " + JsonString(cache) +
                   ", \"element_bytes\": " + std::to_string(cfg.element_bytes) +
                   ", \"line_bytes\": " + std::to_string(cfg.line_bytes) +
                   ", \"triangle_order\": " + JsonString(triangle_order) +

@@ -3,6 +3,7 @@
 
 #include <boost/program_options/errors.hpp>
 #include <cstdio>
+#include <filesystem>
 #include <sstream>
 
 #include "cli/commands.h"
@@ -49,6 +50,13 @@ std::string RunJsonHeader(const std::string& tool) {
          ",\n  \"git_revision\": " + JsonString(GitRevision()) +
          ",\n  \"time_utc\": " + JsonString(UtcTimestamp()) + ",\n  \"machine\": " + MachineJson() +
          ",\n";
+}
+
+bool IsMesh(const std::string& p) {
+  auto ends = [&](const std::string& x) {
+    return p.size() >= x.size() && p.compare(p.size() - x.size(), x.size(), x) == 0;
+  };
+  return ends(".node") || ends(".ele") || ends(".msh") || std::filesystem::exists(p + ".node");
 }
 
 void AddTriangleOrderOption(po::options_description& desc, std::string* value) {

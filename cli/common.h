@@ -18,6 +18,9 @@ std::vector<std::string> SplitList(const std::string& s);  // "a,b,,c" -> {a, b,
 // Throws a usage error (exit 2) for an empty list or a name the ordering registry does not know,
 // before any work is done.
 void CheckOrderings(const std::vector<std::string>& specs);
+// True for a mesh path (.node, .ele, .msh, or a prefix with a .node beside it), false for traces.
+bool IsMesh(const std::string& path);
+
 // --triangle-order sorted|file, the same text on every command that lays a mesh out.
 void AddTriangleOrderOption(po::options_description& desc, std::string* value);
 TriangleOrder TriangleOrderOption(const std::string& value);  // po::error on a bad name

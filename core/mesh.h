@@ -55,9 +55,9 @@ class Mesh {
   // in every run.
   AlignedVector<double> xy;
   AlignedVector<int32_t> tri;
-  std::vector<uint8_t> boundary;  // 1 on the topological boundary
-  Csr v2v;                        // distinct neighbours, increasing id
-  Csr v2t;                        // incident triangles, increasing id
+  std::vector<uint8_t> boundary;    // 1 on the topological boundary
+  Csr v2v;                          // distinct neighbours, increasing id
+  Csr v2t;                          // incident triangles, increasing id
   AlignedVector<int32_t> interior;  // non-boundary vertices, increasing id
 };
 

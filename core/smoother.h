@@ -242,9 +242,9 @@ template <class Sink>
 double GaussSeidelSweep(const Arrays& a, const AlignedVector<int32_t>& interior, double* wq,
                         int threads, Sink& sink, SweepRegion* region) {
   return ForStatic<1>(interior.data(), static_cast<int64_t>(interior.size()), threads, sink, region,
-                   [a, wq, &sink](const int32_t* item, int tid) {
-                     return VisitGaussSeidel(a, item, wq, tid, sink);
-                   });
+                      [a, wq, &sink](const int32_t* item, int tid) {
+                        return VisitGaussSeidel(a, item, wq, tid, sink);
+                      });
 }
 
 // Jacobi: new positions from the old buffer into `next`, swap, then all triangle qualities anew.
@@ -254,23 +254,23 @@ double JacobiSweep(Mesh& m, AlignedVector<double>& next, double* wq, int threads
   const Arrays a = ArraysOf(m);
   double* dst = next.data();
   ForStatic<1>(m.interior.data(), static_cast<int64_t>(m.interior.size()), threads, sink, region,
-            [a, dst, &sink](const int32_t* item, int tid) {
-              const int32_t v = Load(sink, tid, Array::kInterior, item);
-              MoveToAverage(a, a.xy, dst, Array::kCoordsNext, v, tid, sink);
-              return 0.0;
-            });
+               [a, dst, &sink](const int32_t* item, int tid) {
+                 const int32_t v = Load(sink, tid, Array::kInterior, item);
+                 MoveToAverage(a, a.xy, dst, Array::kCoordsNext, v, tid, sink);
+                 return 0.0;
+               });
   m.xy.swap(next);  // boundary entries are equal in both buffers, interior ones are now new
   const double* xy = m.xy.data();
   const int32_t* tri = m.tri.data();
   return ForStatic<3>(tri, m.NumTriangles(), threads, sink, region,
-                   [xy, tri, wq, &sink](const int32_t* c, int tid) {
-                     const int64_t t = (c - tri) / 3;
-                     const double q = TracedTriangleQuality(xy, tri, t, tid, sink);
-                     const double wt = Load(sink, tid, Array::kWeights, wq + 2 * t);
-                     Report(sink, tid, wq + 2 * t + 1, 8, Array::kTriQuality, true);
-                     wq[2 * t + 1] = q;
-                     return wt * q;
-                   });
+                      [xy, tri, wq, &sink](const int32_t* c, int tid) {
+                        const int64_t t = (c - tri) / 3;
+                        const double q = TracedTriangleQuality(xy, tri, t, tid, sink);
+                        const double wt = Load(sink, tid, Array::kWeights, wq + 2 * t);
+                        Report(sink, tid, wq + 2 * t + 1, 8, Array::kTriQuality, true);
+                        wq[2 * t + 1] = q;
+                        return wt * q;
+                      });
 }
 
 }  // namespace smoother_detail
@@ -328,8 +328,7 @@ SmoothResult Smooth(Mesh& mesh, const SmoothOptions& opt, Sink& sink,
       q_new = q + smoother_detail::GaussSeidelSweep(smoother_detail::ArraysOf(mesh), mesh.interior,
                                                     wq.data(), threads, sink, opt.region);
     } else {
-      q_new =
-          smoother_detail::JacobiSweep(mesh, next, wq.data(), threads, sink, opt.region);
+      q_new = smoother_detail::JacobiSweep(mesh, next, wq.data(), threads, sink, opt.region);
     }
     const double secs = std::chrono::duration<double>(Clock::now() - t0).count();
     SweepRecord rec{it, q_new, q_new - q, secs};

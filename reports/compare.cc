@@ -1,16 +1,14 @@
 // RunCompare and its tables; see compare.h.
 #include "reports/compare.h"
 
-#include <memory>
-#include <stdexcept>
-
-#include "analysis/papi_counters.h"
-
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <map>
+#include <memory>
+#include <stdexcept>
 
+#include "analysis/papi_counters.h"
 #include "core/mesh_io.h"
 #include "core/orderings/registry.h"
 #include "core/permutation.h"
@@ -149,11 +147,10 @@ std::string OrDash(double v, int decimals) { return std::isfinite(v) ? Fixed(v, 
 }  // namespace
 
 Table CompareTable(const std::vector<CompareRow>& rows) {
-  std::vector<std::string> head = {"mesh",          "ordering",     "threads",
-                                   "sweeps",        "final_quality", "order_ms",
-                                   "apply_ms",      "span_median",  "span_p90",
-                                   "median_ms_per_sweep", "median_total_s", "speedup_vs_ori1",
-                                   "gain_vs_bfs_%"};
+  std::vector<std::string> head = {
+      "mesh",           "ordering",        "threads",      "sweeps",   "final_quality",
+      "order_ms",       "apply_ms",        "span_median",  "span_p90", "median_ms_per_sweep",
+      "median_total_s", "speedup_vs_ori1", "gain_vs_bfs_%"};
   std::vector<std::string> events;  // counters recorded in any row, in first-seen order
   for (const CompareRow& r : rows)
     for (const std::string& e : r.counter_events)
@@ -161,12 +158,19 @@ Table CompareTable(const std::vector<CompareRow>& rows) {
   for (const std::string& e : events) head.push_back(e);
   Table t(head);
   for (const CompareRow& r : rows) {
-    std::vector<std::string> row = {
-        r.mesh, r.ordering, std::to_string(r.threads), SweepRange(r.sweeps),
-        Fixed(r.final_quality, 6), Fixed(1e3 * r.order_seconds, 1),
-        Fixed(1e3 * r.apply_seconds, 1), std::to_string(r.span.median),
-        std::to_string(r.span.p90), Fixed(1e3 * r.median_sweep, 3), Fixed(r.median_total, 3),
-        OrDash(r.speedup_vs_ori1, 3), OrDash(100 * r.gain_vs_bfs, 1)};
+    std::vector<std::string> row = {r.mesh,
+                                    r.ordering,
+                                    std::to_string(r.threads),
+                                    SweepRange(r.sweeps),
+                                    Fixed(r.final_quality, 6),
+                                    Fixed(1e3 * r.order_seconds, 1),
+                                    Fixed(1e3 * r.apply_seconds, 1),
+                                    std::to_string(r.span.median),
+                                    std::to_string(r.span.p90),
+                                    Fixed(1e3 * r.median_sweep, 3),
+                                    Fixed(r.median_total, 3),
+                                    OrDash(r.speedup_vs_ori1, 3),
+                                    OrDash(100 * r.gain_vs_bfs, 1)};
     for (const std::string& e : events) {
       const auto it = std::find(r.counter_events.begin(), r.counter_events.end(), e);
       row.push_back(it == r.counter_events.end()

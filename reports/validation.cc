@@ -240,8 +240,7 @@ Table Table3(const std::vector<OrderingValidation>& r, bool exclude_cold) {
   return t;
 }
 
-std::vector<std::string> Table3Notes(const std::vector<OrderingValidation>& r,
-                                     bool exclude_cold) {
+std::vector<std::string> Table3Notes(const std::vector<OrderingValidation>& r, bool exclude_cold) {
   std::vector<std::string> notes;
   notes.push_back(
       "Table 3: misses are per sweep (over the sweeps run); capacities from the inverse model "
@@ -256,9 +255,10 @@ std::vector<std::string> Table3Notes(const std::vector<OrderingValidation>& r,
       if (l.capacity_elements == kInfiniteCapacity || l.capacity_lines == kInfiniteCapacity)
         notes.push_back(
             "inf (" + v.mesh + " " + v.ordering + " " + l.level.name + "): its " +
-            std::to_string(l.table3_misses) + " misses are no more than the cold (first-touch) "
-            "accesses (" + std::to_string(v.element_cold) + " elements, " +
-            std::to_string(v.line_cold) +
+            std::to_string(l.table3_misses) +
+            " misses are no more than the cold (first-touch) "
+            "accesses (" +
+            std::to_string(v.element_cold) + " elements, " + std::to_string(v.line_cold) +
             " lines), which miss at any capacity, so no finite capacity explains them; "
             "--exclude-cold counts the cold accesses as compulsory and inverts the rest.");
   return notes;

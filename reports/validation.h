@@ -42,7 +42,7 @@ struct ValidationConfig {
 struct LevelValidation {
   CacheLevel level;
   uint64_t element_capacity = 0, line_capacity = 0;  // of the model
-  uint64_t model_element = 0, model_line = 0;         // fully associative LRU misses
+  uint64_t model_element = 0, model_line = 0;        // fully associative LRU misses
   LevelStats simulated;
   bool measured = false;  // counters counted this level
   double counter = 0;     // their misses (sum over threads)
@@ -59,7 +59,7 @@ struct OrderingValidation {
   std::vector<LevelValidation> levels;
   std::vector<std::vector<std::vector<LevelStats>>> sweeps;  // simulated: [sweep][thread][level]
   CostRange cost_model{0, 0}, cost_simulated{0, 0};          // three levels only
-  std::string counters;  // "measured (PAPI ...)" or why not
+  std::string counters;                                      // "measured (PAPI ...)" or why not
 };
 
 std::vector<OrderingValidation> RunValidation(

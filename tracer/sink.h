@@ -30,17 +30,17 @@ inline constexpr int kElementKinds = 3;
 
 // The arrays the sweep reads and writes (core/mesh.h, core/smoother.h).
 enum class Array : uint8_t {
-  kInterior = 0,     // the interior vertex list (the iteration space)
-  kAdjOffsets = 1,   // v2v.off
-  kAdjIndex = 2,     // v2v.idx: neighbour ids
-  kTriOffsets = 3,   // v2t.off
-  kTriIndex = 4,     // v2t.idx: incident triangle ids
-  kTriangles = 5,    // tri: three corners per triangle
-  kTriQuality = 6,   // per-triangle quality kept by the smoother
-  kWeights = 7,      // per-triangle weight in the global quality
-  kCoords = 8,       // xy (Jacobi: the buffer read)
-  kCoordsNext = 9,   // Jacobi only: the buffer written
-  kLoopBound = 10,   // the sweep loop's end bound, a local read once per iteration (smoother.h)
+  kInterior = 0,    // the interior vertex list (the iteration space)
+  kAdjOffsets = 1,  // v2v.off
+  kAdjIndex = 2,    // v2v.idx: neighbour ids
+  kTriOffsets = 3,  // v2t.off
+  kTriIndex = 4,    // v2t.idx: incident triangle ids
+  kTriangles = 5,   // tri: three corners per triangle
+  kTriQuality = 6,  // per-triangle quality kept by the smoother
+  kWeights = 7,     // per-triangle weight in the global quality
+  kCoords = 8,      // xy (Jacobi: the buffer read)
+  kCoordsNext = 9,  // Jacobi only: the buffer written
+  kLoopBound = 10,  // the sweep loop's end bound, a local read once per iteration (smoother.h)
 };
 inline constexpr int kArrays = 11;
 
@@ -211,9 +211,9 @@ inline const char* AccessKindName(AccessKind k) {
 }
 
 inline const char* ArrayName(Array a) {
-  static constexpr const char* kNames[kArrays] = {
-      "interior", "v2v.off", "v2v.idx", "v2t.off", "v2t.idx",
-      "tri",      "tq",      "w",       "xy",      "xy.next", "bound"};
+  static constexpr const char* kNames[kArrays] = {"interior", "v2v.off", "v2v.idx", "v2t.off",
+                                                  "v2t.idx",  "tri",     "tq",      "w",
+                                                  "xy",       "xy.next", "bound"};
   const int i = static_cast<int>(a);
   return i >= 0 && i < kArrays ? kNames[i] : "?";
 }

@@ -32,11 +32,10 @@ class TraceWriter {
       ++header_.sweep_records.back()[thread];
       if (r.element != AccessKind::kNone) ++header_.sweep_elements.back()[thread];
     }
-    buf_.push_back(TraceRecord{canon_(thread, r),
-                               static_cast<uint32_t>(r.vertex), static_cast<uint8_t>(r.element),
-                               static_cast<uint8_t>(thread), static_cast<uint8_t>(r.size),
-                               static_cast<uint8_t>(static_cast<uint8_t>(r.array) |
-                                                    (r.write ? kStoreBit : 0))});
+    buf_.push_back(TraceRecord{
+        canon_(thread, r), static_cast<uint32_t>(r.vertex), static_cast<uint8_t>(r.element),
+        static_cast<uint8_t>(thread), static_cast<uint8_t>(r.size),
+        static_cast<uint8_t>(static_cast<uint8_t>(r.array) | (r.write ? kStoreBit : 0))});
   }
   void Close();  // throws InputError on an I/O failure
   uint64_t records() const { return records_ + buf_.size(); }

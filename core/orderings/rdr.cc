@@ -45,7 +45,8 @@ Permutation RdrOrder(const Mesh& m, const std::vector<double>& quality) {
   std::vector<uint8_t> processed(n, 0), sorted(n, 0);
   std::vector<int32_t> order;
   order.reserve(n);
-  for (const int32_t i : orderings::StableSortByKey({m.interior.begin(), m.interior.end()}, quality)) {
+  for (const int32_t i :
+       orderings::StableSortByKey({m.interior.begin(), m.interior.end()}, quality)) {
     if (processed[i]) continue;
     if (!sorted[i]) {
       order.push_back(i);

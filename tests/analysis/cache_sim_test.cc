@@ -163,10 +163,9 @@ TEST(CacheHierarchy, MatchesANaiveReferenceOnRandomTraces) {
   for (int trial = 0; trial < 12; ++trial) {
     // Small caches (so every level misses), some with set counts that are not powers of two.
     const uint32_t line = trial % 3 == 0 ? 32 : 64;
-    const std::vector<CacheLevel> levels = {
-        {"L1", uint64_t{line} * (2 + trial % 3) * 4, 4},
-        {"L2", uint64_t{line} * (5 + trial) * 8, 8},
-        {"L3", uint64_t{line} * 96 * (1 + trial % 2) * 12, 12}};
+    const std::vector<CacheLevel> levels = {{"L1", uint64_t{line} * (2 + trial % 3) * 4, 4},
+                                            {"L2", uint64_t{line} * (5 + trial) * 8, 8},
+                                            {"L3", uint64_t{line} * 96 * (1 + trial % 2) * 12, 12}};
     CacheHierarchy h(levels, line);
     NaiveHierarchy ref(levels, line);
     std::geometric_distribution<uint64_t> step(0.02);
@@ -179,7 +178,8 @@ TEST(CacheHierarchy, MatchesANaiveReferenceOnRandomTraces) {
       ref.Access(a, size, write);
     }
     for (size_t l = 0; l < levels.size(); ++l)
-      ExpectSame(h.stats()[l], ref.stats[l], "trial " + std::to_string(trial) + " " + levels[l].name);
+      ExpectSame(h.stats()[l], ref.stats[l],
+                 "trial " + std::to_string(trial) + " " + levels[l].name);
     // Each level sees exactly the misses of the one above.
     EXPECT_EQ(h.stats()[1].accesses, h.stats()[0].misses);
     EXPECT_EQ(h.stats()[2].accesses, h.stats()[1].misses);
@@ -216,7 +216,8 @@ TEST(CacheSimulation, PerSweepStatsAddUpAndTheSinkSeesEveryAccess) {
       sum += st[0];
     }
     ExpectSame(sum, sim.Stats(t)[0], "L1 sum of sweeps");
-    for (size_t l = 0; l < levels.size(); ++l) ExpectSame(sim.Stats(t)[l], replay.Stats(t)[l], "replay");
+    for (size_t l = 0; l < levels.size(); ++l)
+      ExpectSame(sim.Stats(t)[l], replay.Stats(t)[l], "replay");
     EXPECT_GT(sim.Stats(t)[0].misses, sim.Stats(t)[0].cold);  // small caches: capacity misses
     // Cold misses in later sweeps: none (every line was touched in sweep 1).
     EXPECT_EQ(sim.SweepStats(t, 2)[0].cold, 0u);

@@ -52,7 +52,8 @@ TEST(BuildMesh, TinyMeshBoundaryAndNeighbours) {
   const Mesh m = testing::TwoInterior();
   EXPECT_EQ(m.NumVertices(), 8);
   EXPECT_EQ(m.NumTriangles(), 8);
-  EXPECT_EQ(std::vector<int32_t>(m.interior.begin(), m.interior.end()), (std::vector<int32_t>{6, 7}));
+  EXPECT_EQ(std::vector<int32_t>(m.interior.begin(), m.interior.end()),
+            (std::vector<int32_t>{6, 7}));
   EXPECT_EQ(m.NumBoundary(), 6);
   EXPECT_EQ(std::vector<int32_t>(m.v2v.RowBegin(6), m.v2v.RowEnd(6)),
             (std::vector<int32_t>{0, 1, 4, 5, 7}));
@@ -93,7 +94,8 @@ TEST(BuildMesh, DropsUnusedVerticesKeepingOrder) {
   EXPECT_EQ(m.NumVertices(), 4);
   EXPECT_EQ(std::vector<double>(m.xy.begin(), m.xy.end()),
             (std::vector<double>{0, 0, 1, 0, 0, 1, 1, 1}));
-  EXPECT_EQ(std::vector<int32_t>(m.tri.begin(), m.tri.end()), (std::vector<int32_t>{0, 1, 2, 1, 3, 2}));
+  EXPECT_EQ(std::vector<int32_t>(m.tri.begin(), m.tri.end()),
+            (std::vector<int32_t>{0, 1, 2, 1, 3, 2}));
   EXPECT_EQ(report.kept, (std::vector<int32_t>{0, 2, 3, 4}));
   ASSERT_EQ(report.warnings.size(), 1u);
   EXPECT_NE(report.warnings[0].find("dropped 1 vertices"), std::string::npos) << report.warnings[0];

@@ -80,7 +80,8 @@ TEST(ApplyPermutation, MovesVerticesRenumbersAndResortsTriangles) {
     EXPECT_EQ(r.xy[2 * i + 1], m.xy[2 * (7 - i) + 1]);
     EXPECT_EQ(r.boundary[i], m.boundary[7 - i]);
   }
-  EXPECT_EQ(std::vector<int32_t>(r.interior.begin(), r.interior.end()), (std::vector<int32_t>{0, 1}));
+  EXPECT_EQ(std::vector<int32_t>(r.interior.begin(), r.interior.end()),
+            (std::vector<int32_t>{0, 1}));
   // Triangles, as sets of old vertices, are the same; their smallest new corners are sorted.
   std::multiset<std::set<int32_t>> a, b;
   int32_t prev = -1;

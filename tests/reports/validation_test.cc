@@ -53,7 +53,7 @@ TEST(Validation, FullyAssociativeL1EqualsTheLineModelAndCountsAddUp) {
   const Table t3 = Table3(r, false);
   ASSERT_EQ(t3.Rows(), 2u);
   const std::string csv = t3.Csv();
-  EXPECT_NE(csv.find("106.00"), std::string::npos) << csv;  // the paper's carabiner ORI L1
+  EXPECT_NE(csv.find("106.00"), std::string::npos) << csv;   // the paper's carabiner ORI L1
   EXPECT_NE(csv.find("1060.00"), std::string::npos) << csv;  // its BFS L3 capacity
   EXPECT_EQ(ValidationTable(r).Rows(), 6u);
   EXPECT_EQ(ValidationSweepTable(r).Rows(), 12u);

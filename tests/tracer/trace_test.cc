@@ -73,8 +73,8 @@ TEST(AccessSequence, AddressStreamOfOneGaussSeidelSweepOnTheTinyMesh) {
   };
   std::vector<Want> want;
   const double* xy = m.xy.data();
-  auto add = [&](int th, Array a, const void* p, uint32_t size, bool write,
-                 AccessKind k = K::kNone, int32_t v = -1) {
+  auto add = [&](int th, Array a, const void* p, uint32_t size, bool write, AccessKind k = K::kNone,
+                 int32_t v = -1) {
     want.push_back({th, a, p, size, write, k, v});
   };
   // Triangles of the tiny mesh (two_interior.ele, 0-based).
@@ -133,12 +133,10 @@ TEST(AccessSequence, AddressStreamOfOneGaussSeidelSweepOnTheTinyMesh) {
     }
     if (e.array == Array::kLoopBound) continue;  // a local: any stack address
     // Which triangle: the v2t.idx entry 6 accesses back names it.
-    const int t = *static_cast<const int32_t*>(sink.refs[i - (e.array == Array::kTriQuality
-                                                                   ? (e.write ? 12 : 10)
-                                                                   : 11)]
-                                                     .ref.address);
-    const char* base = static_cast<const char*>(g.ref.address) - 16 * t -
-                       (e.array == Array::kTriQuality ? 8 : 0);
+    const int t = *static_cast<const int32_t*>(
+        sink.refs[i - (e.array == Array::kTriQuality ? (e.write ? 12 : 10) : 11)].ref.address);
+    const char* base =
+        static_cast<const char*>(g.ref.address) - 16 * t - (e.array == Array::kTriQuality ? 8 : 0);
     if (!wq0) wq0 = base;
     EXPECT_EQ(base, wq0) << "array " << ArrayName(e.array) << " triangle " << t;
   }
@@ -401,7 +399,8 @@ TEST_F(TraceFile, VersionOneStillReads) {
   const TraceRecord recs[3] = {{64, 1, 0, 0, 0, 0}, {128, 2, 1, 0, 0, 0}, {64, 1, 2, 0, 0, 0}};
   const char* p = reinterpret_cast<const char*>(recs);
   b.insert(b.end(), p, p + sizeof recs);
-  std::ofstream(Path("v1"), std::ios::binary).write(b.data(), static_cast<std::streamsize>(b.size()));
+  std::ofstream(Path("v1"), std::ios::binary)
+      .write(b.data(), static_cast<std::streamsize>(b.size()));
   TraceReader r(Path("v1"));
   EXPECT_EQ(r.header().version, 1u);
   EXPECT_EQ(r.header().sweep_records, (std::vector<std::vector<uint64_t>>{{3}}));
