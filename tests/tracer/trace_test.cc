@@ -258,9 +258,13 @@ TEST(StaticOwner, MatchesOpenMPStaticSchedule) {
 #pragma omp single
       team = omp_get_num_threads();
       if (team != threads) GTEST_SKIP() << "OpenMP gave " << team << " threads, not " << threads;
-      for (int64_t k = 0; k < n; ++k)
+      for (int64_t k = 0; k < n; ++k) {
         ASSERT_EQ(smoother_detail::StaticOwner(k, n, threads), owner[k])
             << "k " << k << " n " << n << " threads " << threads;
+        int64_t b, e;  // the range form the sweep loops use
+        smoother_detail::StaticRange(n, threads, owner[k], &b, &e);
+        ASSERT_TRUE(b <= k && k < e) << "k " << k << " n " << n << " threads " << threads;
+      }
     }
 }
 
