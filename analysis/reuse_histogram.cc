@@ -1,6 +1,7 @@
 // ReuseHistogram and ReuseProfile; see reuse_histogram.h.
 #include "analysis/reuse_histogram.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -73,15 +74,21 @@ std::vector<ReuseHistogram::Bin> ReuseHistogram::Binned(uint64_t exact_below) co
 
 ReuseProfile::ReuseProfile(std::vector<uint64_t> lengths, int steps)
     : lengths_(std::move(lengths)), nsteps_(steps) {
-  for (size_t i = 0; i < lengths_.size(); ++i)
-    for (int s = 0; s < nsteps_; ++s) steps_.push_back({static_cast<int>(i + 1), s});
+  // An iteration of n accesses gets min(steps, n) steps, so the profile never holds more steps
+  // than accesses: its memory follows the trace, whatever sweep count a header claims.
+  for (size_t i = 0; i < lengths_.size(); ++i) {
+    first_.push_back(steps_.size());
+    const int k = static_cast<int>(std::min<uint64_t>(nsteps_, lengths_[i]));
+    for (int s = 0; s < k; ++s) steps_.push_back({static_cast<int>(i + 1), s});
+  }
 }
 
 void ReuseProfile::Add(uint64_t d) {
   while (iter_ < lengths_.size() && pos_ >= lengths_[iter_]) ++iter_, pos_ = 0;
   if (iter_ >= lengths_.size()) return;  // past the announced length: not profiled
-  const int s = static_cast<int>(static_cast<long double>(pos_) * nsteps_ / lengths_[iter_]);
-  Step& st = steps_[iter_ * nsteps_ + s];
+  const uint64_t k = std::min<uint64_t>(nsteps_, lengths_[iter_]);
+  const size_t s = static_cast<size_t>(static_cast<long double>(pos_) * k / lengths_[iter_]);
+  Step& st = steps_[first_[iter_] + s];
   ++st.accesses;
   if (d == StackDistance::kCold)
     ++st.cold;

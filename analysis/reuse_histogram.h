@@ -52,7 +52,8 @@ class ReuseHistogram {
 };
 
 // Mean reuse distance over time: each iteration (sweep) of the stream cut into `steps` equal
-// parts, as the paper's carabiner profile figure. Needs each iteration's length in advance.
+// parts (an iteration shorter than that: one step per access), as the paper's carabiner profile
+// figure. Needs each iteration's length in advance.
 class ReuseProfile {
  public:
   ReuseProfile() = default;
@@ -72,6 +73,7 @@ class ReuseProfile {
   std::vector<uint64_t> lengths_;
   int nsteps_ = 100;
   std::vector<Step> steps_;
+  std::vector<size_t> first_;  // index of each iteration's first step
   size_t iter_ = 0;
   uint64_t pos_ = 0;  // within the iteration
 };

@@ -28,7 +28,7 @@ ExternalFormat ParseExternalFormat(const std::string& s) {
 uint64_t ExternalTraceLength(const std::string& path, ExternalFormat fmt) {
   if (fmt == ExternalFormat::kText || path == "-") return 0;
   struct stat st {};
-  if (::stat(path.c_str(), &st) != 0) return 0;
+  if (::stat(path.c_str(), &st) != 0 || !S_ISREG(st.st_mode)) return 0;
   return static_cast<uint64_t>(st.st_size) / (fmt == ExternalFormat::kU32 ? 4 : 8);
 }
 

@@ -1,6 +1,7 @@
 // meshreuse trace | analyze: write the smoother's access trace; reuse distances, quantiles,
 // histograms, profiles and modelled misses of a mesh (streamed, no file), a trace file, or another
 // tool's trace (--format text|u32|u64).
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -234,7 +235,9 @@ int AnalyzeCommand(const Args& args) {
         for (uint32_t t = 0; t < h.threads; ++t) o.iteration_lengths[t].push_back(sweep[t]);
       for (const std::vector<uint64_t>& sweep : h.sweep_records)
         for (uint32_t t = 0; t < h.threads; ++t) o.line_iteration_lengths[t].push_back(sweep[t]);
-      o.dense_elements = h.vertices;  // 0 (unknown): ids go to the hash table
+      // Direct arrays for ids below the vertex count (0, unknown: the hash table); never more
+      // than the records, so a header's count cannot make memory exceed what the file holds.
+      o.dense_elements = std::min<uint64_t>(h.vertices, h.records);
       Job j{in, h.ordering.empty() ? "?" : h.ordering, static_cast<int64_t>(h.vertices),
             static_cast<int>(h.iteration_starts.size()), std::make_unique<TraceAnalysis>(o)};
       progress.Say("analysing trace " + in + " (" + Grouped(static_cast<long long>(h.records)) +

@@ -2,7 +2,10 @@
 // format"). Only $MeshFormat, $Nodes and $Elements are read; other sections are skipped to their
 // $End line. Triangles are element type 2 (3 nodes) and 9 (6 nodes: the corners come first); other
 // element types (points, lines, quads, volumes) are skipped and counted in a warning. Node tags
-// are arbitrary positive integers and are mapped to 0-based ids in file order; z is ignored.
+// are arbitrary positive integers and are mapped to 0-based ids in file order; z (and 4.1's
+// parametric coordinates) must be numbers and are then ignored, as are element tags and physical
+// tags, which must be integers. Counts are checked against the bytes that follow before anything
+// is reserved for them, and all arithmetic on them is overflow-free, so memory follows the file.
 #include <string>
 #include <unordered_map>
 
@@ -66,6 +69,14 @@ class GmshReader {
       f_.Fail(std::string("file ends inside ") + what + " (truncated file or wrong count)");
     return line;
   }
+  // A line of the i-th of n items a section's count announced: the section must not end first.
+  std::string_view Item(const char* section, int64_t i, int64_t n, const char* items) {
+    const std::string_view line = Line(section);
+    if (line.size() > 4 && line.substr(0, 4) == "$End")
+      f_.Fail(std::string(line) + " after " + std::to_string(i) + " of the " + std::to_string(n) +
+              " " + items + " the count announces (wrong count or truncated section)");
+    return line;
+  }
   int Split(std::string_view line, std::string_view* tok) {
     return Tokens(line).Split(tok, kMaxCols);
   }
@@ -107,7 +118,8 @@ class GmshReader {
     return n;
   }
 
-  void AddNode(int64_t tag, std::string_view x, std::string_view y) {
+  void AddNode(int64_t tag, std::string_view x, std::string_view y, std::string_view z) {
+    f_.ParseDouble(z, "the z coordinate");
     if (!tag_to_id_.emplace(tag, static_cast<int32_t>(raw_.vertex_tag.size())).second)
       f_.Fail("node " + std::to_string(tag) + " is defined twice");
     if (raw_.vertex_tag.size() >= static_cast<size_t>(INT32_MAX)) f_.Fail("too many nodes");
@@ -121,10 +133,11 @@ class GmshReader {
     std::string_view tok[kMaxCols];
     if (Split(Line("$Nodes"), tok) != 1) f_.Fail("expected the number of nodes");
     const int64_t n = Count(tok[0], "the number of nodes");
-    tag_to_id_.reserve(n);
+    tag_to_id_.reserve(f_.Reservable(n, 8));  // "1 0 0 0\n"
     for (int64_t i = 0; i < n; ++i) {
-      if (Split(Line("$Nodes"), tok) != 4) f_.Fail("a node line should read 'tag x y z'");
-      AddNode(f_.ParseInt(tok[0], "the node tag"), tok[1], tok[2]);
+      if (Split(Item("$Nodes", i, n, "nodes"), tok) != 4)
+        f_.Fail("a node line should read 'tag x y z'");
+      AddNode(f_.ParseInt(tok[0], "the node tag"), tok[1], tok[2], tok[3]);
     }
   }
 
@@ -134,24 +147,31 @@ class GmshReader {
       f_.Fail("expected 'numEntityBlocks numNodes minNodeTag maxNodeTag'");
     const int64_t blocks = Count(tok[0], "the number of entity blocks");
     const int64_t total = Count(tok[1], "the number of nodes");
-    tag_to_id_.reserve(total);
+    f_.ParseInt(tok[2], "the smallest node tag");
+    f_.ParseInt(tok[3], "the largest node tag");
+    tag_to_id_.reserve(f_.Reservable(total, 8));  // a tag line and an "x y z" line
     std::vector<int64_t> tags;
     for (int64_t b = 0; b < blocks; ++b) {
-      if (Split(Line("$Nodes"), tok) != 4)
+      if (Split(Item("$Nodes", b, blocks, "entity blocks"), tok) != 4)
         f_.Fail("expected 'entityDim entityTag parametric numNodesInBlock'");
+      f_.ParseInt(tok[0], "the entity dimension");
+      f_.ParseInt(tok[1], "the entity tag");
       const bool parametric = f_.ParseInt(tok[2], "the parametric flag") != 0;
       const int64_t n = Count(tok[3], "the number of nodes in the block");
-      tags.resize(n);
+      tags.clear();
+      tags.reserve(f_.Reservable(n, 8));
       for (int64_t i = 0; i < n; ++i) {
-        if (Split(Line("$Nodes"), tok) != 1) f_.Fail("expected one node tag per line");
-        tags[i] = f_.ParseInt(tok[0], "the node tag");
+        if (Split(Item("$Nodes", i, n, "nodes of the block"), tok) != 1)
+          f_.Fail("expected one node tag per line");
+        tags.push_back(f_.ParseInt(tok[0], "the node tag"));
       }
       for (int64_t i = 0; i < n; ++i) {
         const int cols = Split(Line("$Nodes"), tok);
-        if (cols < 3 || (!parametric && cols != 3))
+        if (cols < 3 || (!parametric && cols != 3) || cols > kMaxCols)
           f_.Fail("a node coordinate line should read 'x y z'" +
                   std::string(parametric ? " followed by parameters" : ""));
-        AddNode(tags[i], tok[0], tok[1]);
+        for (int c = 3; c < cols; ++c) f_.ParseDouble(tok[c], "a parametric coordinate");
+        AddNode(tags[i], tok[0], tok[1], tok[2]);
       }
     }
     if (static_cast<int64_t>(raw_.vertex_tag.size()) != total)
@@ -162,6 +182,7 @@ class GmshReader {
   // `nodes` are the element's node tags; corners of a triangle are the first three.
   void AddElement(int64_t type, const std::string_view* nodes, int n_nodes) {
     if (type != 2 && type != 9) {
+      for (int k = 0; k < n_nodes; ++k) f_.ParseInt(nodes[k], "a node tag");
       ++skipped_;
       return;
     }
@@ -185,12 +206,15 @@ class GmshReader {
     if (Split(Line("$Elements"), tok) != 1) f_.Fail("expected the number of elements");
     const int64_t n = Count(tok[0], "the number of elements");
     for (int64_t i = 0; i < n; ++i) {
-      const int cols = Split(Line("$Elements"), tok);
+      const int cols = Split(Item("$Elements", i, n, "elements"), tok);
       if (cols > kMaxCols) f_.Fail("element line too long");
       if (cols < 3) f_.Fail("an element line should read 'tag type ntags tags... nodes...'");
+      f_.ParseInt(tok[0], "the element tag");
       const int64_t type = f_.ParseInt(tok[1], "the element type");
       const int64_t ntags = Count(tok[2], "the number of tags");
-      if (3 + ntags > cols) f_.Fail("the element line is shorter than its tags");
+      if (ntags > cols - 3)  // no arithmetic on the file's count before it is bounded
+        f_.Fail("the element line is shorter than its " + std::to_string(ntags) + " tags");
+      for (int64_t k = 0; k < ntags; ++k) f_.ParseInt(tok[3 + k], "an element tag");
       AddElement(type, tok + 3 + ntags, static_cast<int>(cols - 3 - ntags));
     }
   }
@@ -201,18 +225,25 @@ class GmshReader {
       f_.Fail("expected 'numEntityBlocks numElements minElementTag maxElementTag'");
     const int64_t blocks = Count(tok[0], "the number of entity blocks");
     const int64_t total = Count(tok[1], "the number of elements");
+    f_.ParseInt(tok[2], "the smallest element tag");
+    f_.ParseInt(tok[3], "the largest element tag");
     int64_t seen = 0;
     for (int64_t b = 0; b < blocks; ++b) {
-      if (Split(Line("$Elements"), tok) != 4)
+      if (Split(Item("$Elements", b, blocks, "entity blocks"), tok) != 4)
         f_.Fail("expected 'entityDim entityTag elementType numElementsInBlock'");
+      f_.ParseInt(tok[0], "the entity dimension");
+      f_.ParseInt(tok[1], "the entity tag");
       const int64_t type = f_.ParseInt(tok[2], "the element type");
       const int64_t n = Count(tok[3], "the number of elements in the block");
       for (int64_t i = 0; i < n; ++i) {
-        const int cols = Split(Line("$Elements"), tok);
+        const int cols = Split(Item("$Elements", i, n, "elements of the block"), tok);
         if (cols > kMaxCols) f_.Fail("element line too long");
         if (cols < 2) f_.Fail("an element line should read 'tag node...'");
+        f_.ParseInt(tok[0], "the element tag");
         AddElement(type, tok + 1, cols - 1);
       }
+      if (n > total - seen)  // each block's count is bounded before it is added
+        f_.Fail("the blocks hold more elements than the section header's " + std::to_string(total));
       seen += n;
     }
     if (seen != total)

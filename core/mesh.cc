@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <string>
 
 #include "core/error.h"
@@ -69,10 +70,23 @@ Mesh BuildMesh(RawMesh raw, BuildReport* report) {
     throw InputError(raw.vertex_file, 0, "mesh too large: vertex and triangle ids are 32-bit");
   if (nt == 0) throw InputError(raw.triangle_file, 0, "the mesh has no triangles");
 
+  // Coordinates beyond 1e150 would overflow the squared edge lengths (quality, area) to inf and
+  // NaN; no mesh needs them, so they are refused where they are read.
+  constexpr double kMaxCoordinate = 1e150;
   for (int64_t v = 0; v < nv_raw; ++v)
-    if (!std::isfinite(raw.xy[2 * v]) || !std::isfinite(raw.xy[2 * v + 1]))
-      throw InputError(raw.vertex_file, where.VertexLine(v),
-                       "vertex " + where.Tag(v) + " has a non-finite coordinate");
+    for (int k = 0; k < 2; ++k) {
+      const double c = raw.xy[2 * v + k];
+      if (!std::isfinite(c))
+        throw InputError(raw.vertex_file, where.VertexLine(v),
+                         "vertex " + where.Tag(v) + " has a non-finite coordinate");
+      if (std::fabs(c) > kMaxCoordinate) {
+        char num[32];
+        std::snprintf(num, sizeof num, "%g", c);
+        throw InputError(raw.vertex_file, where.VertexLine(v),
+                         "vertex " + where.Tag(v) + " has the coordinate " + num +
+                             ", beyond +-1e150 (squared edge lengths would overflow)");
+      }
+    }
 
   // Per-triangle checks, and which vertices are used.
   std::vector<uint8_t> used(nv_raw, 0);

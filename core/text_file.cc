@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <memory>
 
 #include "core/error.h"
 
@@ -22,26 +23,59 @@ std::string_view Trim(std::string_view s) {
 }
 }  // namespace
 
-TextFile::TextFile(std::string path, char comment) : path_(std::move(path)), comment_(comment) {
-  std::FILE* f = std::fopen(path_.c_str(), "rb");
-  if (!f) throw InputError(path_, 0, std::string("cannot open: ") + std::strerror(errno));
-  char buf[1 << 16];
-  size_t n;
-  while ((n = std::fread(buf, 1, sizeof buf, f)) > 0) data_.append(buf, n);
-  const bool bad = std::ferror(f);
-  std::fclose(f);
-  if (bad) throw InputError(path_, 0, "read error");
+TextFile::TextFile(std::string path, char comment)
+    : in_(std::make_unique<InputFile>(path)), comment_(comment) {}
+
+bool TextFile::Fill() {
+  if (eof_) return false;
+  if (pos_ > 0) {  // keep the unfinished line, drop what was returned
+    consumed_ += static_cast<int64_t>(pos_);
+    buf_.erase(0, pos_);
+    pos_ = 0;
+  }
+  const size_t old = buf_.size();
+  constexpr size_t kBlock = size_t{1} << 20;
+  buf_.resize(old + kBlock);
+  const size_t got = in_->Read(buf_.data() + old, kBlock);
+  buf_.resize(old + got);
+  if (got == 0) eof_ = true;
+  if (first_ && consumed_ == 0 && pos_ == 0 && (buf_.size() >= 3 || eof_)) {
+    if (buf_.compare(0, 3, "\xEF\xBB\xBF") == 0) pos_ = 3;  // a UTF-8 byte-order mark
+    first_ = false;
+  }
+  return got > 0;
+}
+
+int64_t TextFile::BytesLeft() const {
+  if (in_->size() < 0) return -1;
+  return in_->size() - consumed_ - static_cast<int64_t>(pos_);
 }
 
 bool TextFile::NextLine(std::string_view* line) {
-  if (pos_ >= data_.size()) return false;
-  const size_t nl = data_.find('\n', pos_);
-  const size_t end = nl == std::string::npos ? data_.size() : nl;
-  *line = std::string_view(data_).substr(pos_, end - pos_);
-  if (!line->empty() && line->back() == '\r') line->remove_suffix(1);
-  pos_ = nl == std::string::npos ? data_.size() : nl + 1;
+  size_t nl;
+  while ((nl = buf_.find('\n', pos_)) == std::string::npos) {
+    if (buf_.size() - pos_ > kMaxLine) {
+      ++line_;
+      Fail("line longer than 1 MiB: not a text mesh, permutation or trace file");
+    }
+    if (!Fill()) break;
+  }
+  if (pos_ >= buf_.size()) return false;
+  const size_t end = nl == std::string::npos ? buf_.size() : nl;
   ++line_;
+  if (end - pos_ > kMaxLine)
+    Fail("line longer than 1 MiB: not a text mesh, permutation or trace file");
+  *line = std::string_view(buf_).substr(pos_, end - pos_);
+  if (line->find('\0') != std::string_view::npos) Fail("binary data (a NUL byte): not a text file");
+  if (!line->empty() && line->back() == '\r') line->remove_suffix(1);
+  pos_ = nl == std::string::npos ? buf_.size() : nl + 1;
   return true;
+}
+
+int64_t TextFile::Reservable(int64_t count, int64_t min_bytes) const {
+  const int64_t left = BytesLeft();
+  const int64_t cap = left < 0 ? int64_t{1} << 16 : left / min_bytes;
+  return count < 0 ? 0 : count < cap ? count : cap;
 }
 
 bool TextFile::NextDataLine(std::string_view* line) {
@@ -60,7 +94,9 @@ bool TextFile::NextDataLine(std::string_view* line) {
   return false;
 }
 
-void TextFile::Fail(const std::string& problem) const { throw InputError(path_, line_, problem); }
+void TextFile::Fail(const std::string& problem) const {
+  throw InputError(in_->path(), line_, problem);
+}
 
 int64_t TextFile::ParseInt(std::string_view tok, const char* what) const {
   int64_t v = 0;

@@ -3,7 +3,10 @@
 // then "<id> <x> <y> [attributes] [marker]"; .ele: "<#triangles> <3 or 6> <#attributes>" then
 // "<id> <n1> <n2> <n3> [<n4> <n5> <n6>] [attributes]". Ids are consecutive from 0 or 1; the .ele
 // refers to the .node's ids. We check every count, column and id, so a wrong file fails at its
-// line rather than producing a wrong mesh.
+// line rather than producing a wrong mesh: attributes must be numbers, markers integers, the extra
+// nodes of quadratic triangles existing vertices (they are then ignored: the corners are the first
+// three). A header's count is checked against the bytes that follow before anything is allocated
+// for it (a vertex line needs at least 6 bytes, a triangle line 8), so memory follows the file.
 #include <cstdio>
 #include <string>
 
@@ -81,11 +84,14 @@ RawMesh ReadTriangleFiles(const std::string& node_path, const std::string& ele_p
   const int64_t nattr = nh.n >= 3 ? nh.v[2] : 0;
   const int64_t nmark = nh.n >= 4 ? nh.v[3] : 0;
   if (nmark > 1) node.Fail("the number of boundary markers must be 0 or 1");
+  if (nattr > kMaxCols - 4)  // checked before any arithmetic on it
+    node.Fail("too many attribute columns (" + std::to_string(nattr) + "; at most " +
+              std::to_string(kMaxCols - 4) + ")");
   const int64_t cols = 3 + nattr + nmark;
-  if (cols > kMaxCols) node.Fail("too many attribute columns");
-  raw.xy.resize(2 * nv);
-  raw.vertex_line.resize(nv);
-  raw.vertex_tag.resize(nv);
+  const int64_t fits = node.Reservable(nv, 6);  // "1 0 0\n": containers grow as lines come
+  raw.xy.reserve(2 * fits);
+  raw.vertex_line.reserve(fits);
+  raw.vertex_tag.reserve(fits);
   int64_t base = 0;
   std::string_view line, tok[kMaxCols];
   for (int64_t i = 0; i < nv; ++i) {
@@ -98,10 +104,12 @@ RawMesh ReadTriangleFiles(const std::string& node_path, const std::string& ele_p
                 std::to_string(nattr) + " attributes, " + std::to_string(nmark) +
                 " markers), found " + std::to_string(n));
     const int64_t id = CheckSequenceNumber(node, tok[0], i, &base, "vertex");
-    raw.xy[2 * i] = node.ParseDouble(tok[1], "the x coordinate");
-    raw.xy[2 * i + 1] = node.ParseDouble(tok[2], "the y coordinate");
-    raw.vertex_line[i] = node.line();
-    raw.vertex_tag[i] = id;
+    raw.xy.push_back(node.ParseDouble(tok[1], "the x coordinate"));
+    raw.xy.push_back(node.ParseDouble(tok[2], "the y coordinate"));
+    for (int64_t a = 0; a < nattr; ++a) node.ParseDouble(tok[3 + a], "an attribute");
+    if (nmark) node.ParseInt(tok[3 + nattr], "the boundary marker");
+    raw.vertex_line.push_back(node.line());
+    raw.vertex_tag.push_back(id);
   }
   ExpectEnd(node, nv, "vertex");
 
@@ -115,10 +123,13 @@ RawMesh ReadTriangleFiles(const std::string& node_path, const std::string& ele_p
   if (per != 3 && per != 6)
     ele.Fail("nodes per triangle must be 3 or 6, found " + std::to_string(per));
   const int64_t eattr = eh.n >= 3 ? eh.v[2] : 0;
+  if (eattr > kMaxCols - 7)
+    ele.Fail("too many attribute columns (" + std::to_string(eattr) + "; at most " +
+             std::to_string(kMaxCols - 7) + ")");
   const int64_t ecols = 1 + per + eattr;
-  if (ecols > kMaxCols) ele.Fail("too many attribute columns");
-  raw.tri.resize(3 * nt);
-  raw.triangle_line.resize(nt);
+  const int64_t tfits = ele.Reservable(nt, 8);  // "1 1 2 3\n"
+  raw.tri.reserve(3 * tfits);
+  raw.triangle_line.reserve(tfits);
   int64_t tbase = 0;
   for (int64_t t = 0; t < nt; ++t) {
     if (!ele.NextDataLine(&line))
@@ -129,16 +140,17 @@ RawMesh ReadTriangleFiles(const std::string& node_path, const std::string& ele_p
       ele.Fail("expected " + std::to_string(ecols) + " columns (id, " + std::to_string(per) +
                " vertices, " + std::to_string(eattr) + " attributes), found " + std::to_string(n));
     CheckSequenceNumber(ele, tok[0], t, &tbase, "triangle");
-    for (int k = 0; k < 3; ++k) {  // quadratic triangles: the corners are the first three
-      const int64_t c = ele.ParseInt(tok[1 + k], "a triangle corner");
+    for (int k = 0; k < per; ++k) {  // quadratic triangles: the corners are the first three
+      const int64_t c = ele.ParseInt(tok[1 + k], k < 3 ? "a triangle corner" : "a triangle node");
       if (c < base || c >= base + nv)
         ele.Fail("triangle " + std::string(tok[0]) + " refers to vertex " +
                  std::string(tok[1 + k]) + ", which does not exist (" + node_path +
                  " has vertices " + std::to_string(base) + ".." + std::to_string(base + nv - 1) +
                  ")");
-      raw.tri[3 * t + k] = static_cast<int32_t>(c - base);
+      if (k < 3) raw.tri.push_back(static_cast<int32_t>(c - base));
     }
-    raw.triangle_line[t] = ele.line();
+    for (int64_t a = 0; a < eattr; ++a) ele.ParseDouble(tok[1 + per + a], "an attribute");
+    raw.triangle_line.push_back(ele.line());
   }
   ExpectEnd(ele, nt, "triangle");
   return raw;

@@ -9,7 +9,7 @@ want_plots=0
 for a in "$@"; do [[ $a == --with-plots ]] && want_plots=1; done
 
 pkgs=(build-essential cmake pkg-config libgtest-dev libbenchmark-dev libboost-program-options-dev
-      libpapi-dev triangle-bin)
+      libpapi-dev triangle-bin time)
 ((want_plots)) && pkgs+=(python3-matplotlib python3-numpy)
 
 missing=()

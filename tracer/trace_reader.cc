@@ -43,10 +43,10 @@ bool TraceReader::LooksLikeTrace(const std::string& path) {
 }
 
 TraceReader::TraceReader(std::string path) : path_(std::move(path)) {
-  f_ = std::fopen(path_.c_str(), "rb");
-  if (!f_) throw InputError(path_, 0, std::string("cannot open: ") + std::strerror(errno));
+  in_ = std::make_unique<InputFile>(path_);  // owns the handle: released however this ends
+  if (in_->size() < 0) throw InputError(path_, 0, "a meshreuse trace must be a regular file");
   std::vector<char> fixed(48);
-  const size_t got = std::fread(fixed.data(), 1, fixed.size(), f_);
+  const size_t got = in_->Read(fixed.data(), fixed.size());
   if (got < 8 || std::memcmp(fixed.data(), kTraceMagic, 8) != 0)
     throw InputError(path_, 0,
                      "not a meshreuse trace (wrong magic; for other traces use --format)");
@@ -67,13 +67,30 @@ TraceReader::TraceReader(std::string path) : path_(std::move(path)) {
   const uint32_t slots = c.Get<uint32_t>();
   header_.vertices = c.Get<uint32_t>();
   header_.records = c.Get<uint64_t>();
-  if (header_bytes < 48 || header_bytes > (1u << 26) || iterations > slots ||
-      header_.threads == 0 || header_.threads > 256 ||
+  const uint64_t file_bytes = static_cast<uint64_t>(in_->size());
+  // Every size is bounded before it is used: the header must fit in the file, its tables in the
+  // header (64-bit products of 32-bit fields cannot wrap).
+  if (header_bytes < 48 || header_bytes > (1u << 26))
+    throw InputError(path_, 0,
+                     "corrupt trace header: it claims " + std::to_string(header_bytes) +
+                         " bytes (byte offset 12)");
+  if (header_bytes > file_bytes)
+    throw InputError(path_, 0,
+                     "truncated trace header: it claims " + std::to_string(header_bytes) +
+                         " bytes (byte offset 12), the file has " + std::to_string(file_bytes));
+  if (iterations > slots || header_.threads == 0 || header_.threads > 256 ||
       48 + 8ull * slots * (1 + tables * header_.threads) > header_bytes)
-    throw InputError(path_, 0, "corrupt trace header");
+    throw InputError(path_, 0,
+                     "corrupt trace header: " + std::to_string(iterations) + " sweeps in " +
+                         std::to_string(slots) + " slots for " + std::to_string(header_.threads) +
+                         " threads do not fit its " + std::to_string(header_bytes) + " bytes");
+  if (header_.vertices > static_cast<uint32_t>(INT32_MAX))
+    throw InputError(path_, 0,
+                     "corrupt trace header: " + std::to_string(header_.vertices) +
+                         " vertices (byte offset 36) exceed 32-bit vertex ids");
   std::vector<char> all(header_bytes);
   std::memcpy(all.data(), fixed.data(), 48);
-  if (std::fread(all.data() + 48, 1, header_bytes - 48, f_) != header_bytes - 48)
+  if (in_->Read(all.data() + 48, header_bytes - 48) != header_bytes - 48)
     throw InputError(path_, 0, "truncated trace header");
   Cursor h{all, 48, path_};
   for (uint32_t i = 0; i < slots; ++i) {
@@ -94,26 +111,49 @@ TraceReader::TraceReader(std::string path) : path_(std::move(path)) {
     header_.sweep_elements = header_.sweep_records;  // version 1: every record is a touch
   header_.mesh = h.GetString();
   header_.ordering = h.GetString();
-  struct stat st {};
-  if (::fstat(::fileno(f_), &st) != 0) throw InputError(path_, 0, "cannot stat");
-  const uint64_t body = static_cast<uint64_t>(st.st_size) - header_bytes;
-  if (body != header_.records * sizeof(TraceRecord))
+  const uint64_t body = file_bytes - header_bytes;
+  // Compared by division: records * 16 could wrap for a hostile count.
+  if (body % sizeof(TraceRecord) != 0 || body / sizeof(TraceRecord) != header_.records)
     throw InputError(path_, 0,
                      "truncated trace: the header says " + std::to_string(header_.records) +
-                         " records (" + std::to_string(header_.records * sizeof(TraceRecord)) +
-                         " bytes), the file holds " + std::to_string(body) + " bytes of records");
+                         " records (byte offset 40), the file holds " + std::to_string(body) +
+                         " bytes of records (" + std::to_string(body / sizeof(TraceRecord)) +
+                         " records" + (body % sizeof(TraceRecord) ? " and a partial one" : "") +
+                         ")");
+  // The per-sweep counts must add up to the records and place each sweep where it starts.
+  uint64_t at = 0;
+  for (uint32_t i = 0; i < iterations; ++i) {
+    if (header_.iteration_starts[i] != at)
+      throw InputError(path_, 0,
+                       "corrupt trace header: sweep " + std::to_string(i + 1) +
+                           " starts at record " + std::to_string(header_.iteration_starts[i]) +
+                           ", its predecessors' counts end at " + std::to_string(at));
+    for (uint32_t t = 0; t < header_.threads; ++t) {
+      const uint64_t n = header_.sweep_records[i][t];
+      if (n > header_.records - at || header_.sweep_elements[i][t] > n)
+        throw InputError(path_, 0,
+                         "corrupt trace header: sweep " + std::to_string(i + 1) + ", thread " +
+                             std::to_string(t) + " claims more records than the file holds");
+      at += n;
+    }
+  }
+  if (iterations > 0 && at != header_.records)
+    throw InputError(path_, 0,
+                     "corrupt trace header: the sweeps hold " + std::to_string(at) +
+                         " records, the header says " + std::to_string(header_.records));
   left_ = header_.records;
 }
 
-TraceReader::~TraceReader() {
-  if (f_) std::fclose(f_);
-}
+TraceReader::~TraceReader() = default;
 
 bool TraceReader::Next(std::vector<TraceRecord>* out, size_t max) {
   out->resize(std::min<uint64_t>(max, left_));
   if (out->empty()) return false;
-  if (std::fread(out->data(), sizeof(TraceRecord), out->size(), f_) != out->size())
-    throw InputError(path_, 0, "truncated trace (read failed)");
+  if (in_->Read(out->data(), out->size() * sizeof(TraceRecord)) !=
+      out->size() * sizeof(TraceRecord))
+    throw InputError(
+        path_, 0,
+        "truncated trace: record " + std::to_string(header_.records - left_) + " cannot be read");
   left_ -= out->size();
   return true;
 }

@@ -1,13 +1,18 @@
 // Streaming reader of the binary trace: the header up front, then records in blocks, so memory
-// does not grow with the trace. Rejects, with InputError naming the file: a wrong magic (not a
-// meshreuse trace), an unknown version, a header that does not fit, and a truncated file (fewer
-// record bytes than the header's count says, or a partial record).
+// does not grow with the trace. Rejects, with InputError naming the file and the byte offset: a
+// wrong magic (not a meshreuse trace), an unknown version, a header that does not fit or
+// contradicts itself (per-sweep counts that do not add up to the record count, sweeps that do not
+// start where the counts say, a vertex count beyond 32-bit ids), and a truncated file (fewer record
+// bytes than the header's count says, or a partial record). Every size read from the file is
+// checked before any arithmetic or allocation uses it; the file handle is released on every path.
 #pragma once
 
 #include <cstdio>
+#include <memory>
 #include <string>
 #include <vector>
 
+#include "core/input_file.h"
 #include "tracer/trace_format.h"
 
 namespace meshreuse {
@@ -28,7 +33,7 @@ class TraceReader {
 
  private:
   std::string path_;
-  std::FILE* f_ = nullptr;
+  std::unique_ptr<InputFile> in_;
   TraceHeader header_;
   uint64_t left_ = 0;
 };

@@ -352,8 +352,10 @@ TEST_F(TraceFile, Rejections) {
   bad[8] = 7;
   ExpectRejected(write("version", bad),
                  "unknown trace version 7 (this reader knows versions 1 and 2)");
-  ExpectRejected(write("cut", bytes.substr(0, bytes.size() - 5)),
-                 "truncated trace: the header says 332 records (5312 bytes), the file holds 5307");
+  ExpectRejected(
+      write("cut", bytes.substr(0, bytes.size() - 5)),
+      "truncated trace: the header says 332 records (byte offset 40), the file holds 5307 bytes of "
+      "records (331 records and a partial one)");
   ExpectRejected(write("header", bytes.substr(0, 20)), "truncated trace header");
   ExpectRejected(write("empty", ""), "not a meshreuse trace");
   ExpectRejected(Path("missing"), "cannot open");
@@ -417,6 +419,56 @@ TEST_F(TraceFile, VersionOneStillReads) {
   EXPECT_EQ(got[1].address, 128u);
   EXPECT_EQ(got[2].kind, 2);
   EXPECT_EQ(got[2].size, 0);
+}
+
+// A rejected file gives its descriptor back: thousands of rejections leave the open-file count as
+// it was (issue 8, reproducer 11).
+TEST_F(TraceFile, RejectedFilesLeakNoDescriptor) {
+  std::ofstream(Path("not_a_trace"), std::ios::binary) << "MRTRACEX and then some bytes";
+  auto open_fds = [] {
+    size_t n = 0;
+    for (const auto& e : fs::directory_iterator("/proc/self/fd")) n += !e.path().empty();
+    return n;
+  };
+  const size_t before = open_fds();
+  for (int i = 0; i < 3000; ++i) EXPECT_THROW(TraceReader r(Path("not_a_trace")), InputError);
+  EXPECT_EQ(open_fds(), before);
+}
+
+// A header that announces 50,000 sweeps over a sparse body: the reader accepts it (it is
+// consistent), and the profile holds no more steps than there are accesses (reproducer 8).
+TEST_F(TraceFile, ManySweepsCostNoMoreThanTheirRecords) {
+  TraceHeader h;
+  h.threads = 1;
+  h.vertices = 8;
+  h.records = 1000;
+  const int n = 50000;
+  h.iteration_starts.assign(n, 1000);
+  h.iteration_starts[0] = 0;
+  h.sweep_records.assign(n, {0});
+  h.sweep_records[0] = {1000};
+  h.sweep_elements.assign(n, {0});
+  const std::vector<char> b = EncodeTraceHeader(h, n);
+  {
+    std::ofstream out(Path("many"), std::ios::binary);
+    out.write(b.data(), static_cast<std::streamsize>(b.size()));
+  }
+  fs::resize_file(Path("many"), b.size() + 1000 * sizeof(TraceRecord));  // a hole of zeros
+  TraceReader r(Path("many"));
+  ASSERT_EQ(r.header().sweep_records.size(), static_cast<size_t>(n));
+  std::vector<uint64_t> lengths;
+  for (const auto& sweep : r.header().sweep_records) lengths.push_back(sweep[0]);
+  const ReuseProfile p(lengths, 100);
+  EXPECT_EQ(p.steps().size(), 100u);  // the one sweep with records
+  // Counts that do not add up are refused.
+  h.sweep_records[0] = {999};
+  const std::vector<char> bad = EncodeTraceHeader(h, n);
+  {
+    std::ofstream out(Path("bad"), std::ios::binary);
+    out.write(bad.data(), static_cast<std::streamsize>(bad.size()));
+  }
+  fs::resize_file(Path("bad"), bad.size() + 1000 * sizeof(TraceRecord));
+  ExpectRejected(Path("bad"), "corrupt trace header: sweep 2 starts at record 1000");
 }
 
 TEST(ExternalTrace, TextAndBinary) {
