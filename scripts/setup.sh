@@ -2,15 +2,20 @@
 # Installs what meshreuse needs on a Debian machine, only what is missing, with apt-get (as root).
 # Triangle (Shewchuk's mesh generator) is Debian's triangle-bin, in the non-free component: a
 # sources entry for non-free is added when no configured source offers it yet.
-# Usage: scripts/setup.sh [--with-plots]   (sourced or run; idempotent)
+# Usage: scripts/setup.sh [--with-plots] [--with-fuzz]   (sourced or run; idempotent)
 set -euo pipefail
 
-want_plots=0
-for a in "$@"; do [[ $a == --with-plots ]] && want_plots=1; done
+want_plots=0 want_fuzz=0
+for a in "$@"; do
+  [[ $a == --with-plots ]] && want_plots=1
+  [[ $a == --with-fuzz ]] && want_fuzz=1
+done
 
 pkgs=(build-essential cmake pkg-config libgtest-dev libbenchmark-dev libboost-program-options-dev
       libpapi-dev triangle-bin time)
 ((want_plots)) && pkgs+=(python3-matplotlib python3-numpy)
+# libFuzzer and clang's OpenMP runtime for the fuzz harnesses (scripts/fuzz.sh)
+((want_fuzz)) && pkgs+=(clang libclang-rt-14-dev libomp-14-dev)
 
 missing=()
 for p in "${pkgs[@]}"; do

@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # The README's test command: installs what is missing (apt-get, as root), builds a Release and an
 # ASan+UBSan build with warnings as errors, and runs every test (GoogleTest suites and CLI checks)
-# in both. Exit 0 only when everything passed.
-# Usage: scripts/test.sh [--quick]   (--quick: Release build only, no sanitizers)
+# in both, then fuzzes every reader for 60 s each (scripts/fuzz.sh; libFuzzer from clang). Exit 0
+# only when everything passed.
+# Usage: scripts/test.sh [--quick]   (--quick: Release build only, no sanitizers, no fuzzing)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -31,6 +32,10 @@ if ((quick == 0)); then
   build build/asan -DCMAKE_BUILD_TYPE=Debug -DMESHREUSE_SANITIZE=ON
   ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
     run_tests build/asan
+fi
+if ((quick == 0)); then
+  echo "== fuzz every reader, 60 s each" >&2
+  bash scripts/fuzz.sh 60
 fi
 ln -sf build/release/compile_commands.json compile_commands.json
 echo "== all tests passed" >&2

@@ -1,0 +1,81 @@
+#!/usr/bin/env bash
+# Fuzzes every reader with libFuzzer (clang, AddressSanitizer + UndefinedBehaviorSanitizer): the
+# Triangle pair, Gmsh, the binary trace, other tools' traces (text/u32/u64) and permutation files
+# (harnesses in tests/fuzz/, each running everything downstream of the reader on what it accepts).
+# Seeds come from tests/data; corpora grow in build/fuzz/corpus/ and are kept between runs.
+# Limits per input: 10 s, 512 MB of RSS, no single allocation above 64 MB (a header's count must
+# never be trusted for memory). Fails (exit 1) on any finding; crashes go to build/fuzz/artifacts/.
+# Usage: scripts/fuzz.sh [SECONDS]   (per harness, default 60; two harnesses run at a time)
+set -euo pipefail
+cd "$(dirname "$0")/.."
+secs=${1:-60}
+[[ $secs =~ ^[0-9]+$ ]] || { echo "fuzz.sh: SECONDS must be a number" >&2; exit 2; }
+bash scripts/setup.sh --with-fuzz
+
+echo "== configure and build build/fuzz (clang, libFuzzer)" >&2
+CC=clang CXX=clang++ cmake -S . -B build/fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo -DMESHREUSE_FUZZ=ON \
+  -DMESHREUSE_PAPI=OFF >build/fuzz.configure.log 2>&1 || { cat build/fuzz.configure.log; exit 1; }
+cmake --build build/fuzz -j"$(nproc 2>/dev/null || echo 2)" >build/fuzz.build.log 2>&1 ||
+  { tail -n 40 build/fuzz.build.log; exit 1; }
+
+harnesses=(triangle gmsh trace external permutation)
+c=build/fuzz/corpus
+mkdir -p build/fuzz/artifacts build/fuzz/logs
+for h in "${harnesses[@]}"; do mkdir -p "$c/$h"; done
+# Seeds: every small and broken input we have, in the harness's input format.
+for node in tests/data/*.node tests/data/broken/*.node; do
+  ele=${node%.node}.ele
+  [[ -f $ele ]] && { cat "$node"; printf '@@@\n'; cat "$ele"; } >"$c/triangle/seed-$(basename "${node%.node}")"
+done
+cp tests/data/*.msh tests/data/broken/*.msh "$c/gmsh/"
+cp tests/data/broken/*.trace "$c/trace/"
+[[ -x build/release/cli/meshreuse ]] &&
+  build/release/cli/meshreuse trace tests/data/two_interior.node --threads 2 -o "$c/trace/seed-two_interior.trace" --quiet >/dev/null
+for f in tests/data/broken/*.txt; do { printf '\0'; cat "$f"; } >"$c/external/seed-$(basename "$f")"; done
+printf '\0# ids\n1\n2\n0x10\n1\n' >"$c/external/seed-text"
+{ printf '\1'; /usr/bin/python3 -c 'import struct,sys; sys.stdout.buffer.write(struct.pack("<4I",1,2,1,3))'; } >"$c/external/seed-u32"
+{ printf '\2'; cat tests/data/broken/reserved.u64; } >"$c/external/seed-u64"
+cp tests/data/broken/*.perm "$c/permutation/"
+/usr/bin/python3 -c 'print("\n".join(str(i) for i in range(336)))' >"$c/permutation/seed-identity"
+
+run() {  # run HARNESS: one libFuzzer session, its log and exit code
+  local h=$1
+  ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
+    "build/fuzz/tests/fuzz/fuzz_$h" -max_total_time="$secs" -rss_limit_mb=512 -malloc_limit_mb=64 \
+    -timeout=10 -print_final_stats=1 -artifact_prefix="build/fuzz/artifacts/$h-" "$c/$h" \
+    >"build/fuzz/logs/$h.log" 2>&1
+  echo $? >"build/fuzz/logs/$h.rc"
+}
+echo "== fuzzing ${#harnesses[@]} harnesses, ${secs} s each, two at a time" >&2
+running=0
+for h in "${harnesses[@]}"; do
+  run "$h" &
+  running=$((running + 1))
+  if ((running == 2)); then wait -n; running=$((running - 1)); fi
+done
+wait
+
+failed=0
+printf '%-12s %12s %8s %8s %8s  %s\n' harness executions cov features corpus result
+for h in "${harnesses[@]}"; do
+  log=build/fuzz/logs/$h.log
+  rc=$(cat "build/fuzz/logs/$h.rc")
+  execs=$(awk '/stat::number_of_executed_units/ {print $2}' "$log" | tail -n 1)
+  last=$(grep -E '^#[0-9]+.*cov: ' "$log" | tail -n 1)
+  cov=$(sed -n 's/.*cov: \([0-9]*\).*/\1/p' <<<"$last")
+  ft=$(sed -n 's/.*ft: \([0-9]*\).*/\1/p' <<<"$last")
+  corp=$(sed -n 's/.*corp: \([0-9]*\).*/\1/p' <<<"$last")
+  result=ok
+  if [[ $rc != 0 ]]; then
+    result="FINDING (exit $rc; $log, build/fuzz/artifacts/$h-*)"
+    failed=1
+  fi
+  printf '%-12s %12s %8s %8s %8s  %s\n' "$h" "${execs:-?}" "${cov:-?}" "${ft:-?}" "${corp:-?}" "$result"
+done
+if ((failed)); then
+  for h in "${harnesses[@]}"; do
+    [[ $(cat "build/fuzz/logs/$h.rc") == 0 ]] || { echo "--- $h"; grep -A30 -m1 -E "ERROR|runtime error|==[0-9]+==" "build/fuzz/logs/$h.log" | head -40; }
+  done
+  exit 1
+fi
+echo "fuzz: ${#harnesses[@]} passed, 0 failed"
