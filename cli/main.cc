@@ -4,6 +4,7 @@
 #include <boost/program_options/errors.hpp>
 #include <cstdio>
 #include <cstring>
+#include <new>
 #include <string>
 #include <vector>
 
@@ -91,6 +92,12 @@ int Main(int argc, char** argv) {
   } catch (const boost::program_options::error& e) {
     std::fprintf(stderr, "meshreuse %s: %s (see --help)\n", cmd->name, e.what());
     return 2;
+  } catch (const std::bad_alloc&) {
+    // Readers never size anything from a header before its records arrive, so this is a genuinely
+    // too-large input for this machine, or a bug.
+    std::fprintf(stderr, "meshreuse: error: out of memory (the input is larger than this machine "
+                         "can hold, or this is a bug: please report it)\n");
+    return 1;
   } catch (const ToolError& e) {
     std::fprintf(stderr, "meshreuse: error: %s\n", e.what());
     return 1;
