@@ -49,7 +49,8 @@ SetAssociativeCache::SetAssociativeCache(uint64_t bytes, uint32_t ways, uint32_t
   tags_.assign(sets_ * ways_, kEmpty);
 }
 
-CacheHierarchy::CacheHierarchy(const std::vector<CacheLevel>& levels, uint32_t line_bytes) {
+CacheHierarchy::CacheHierarchy(const std::vector<CacheLevel>& levels, uint32_t line_bytes)
+    : config_(levels), line_bytes_(line_bytes) {
   if (line_bytes == 0 || (line_bytes & (line_bytes - 1)))
     throw std::invalid_argument("the line size must be a power of two");
   shift_ = __builtin_ctz(line_bytes);
@@ -58,10 +59,14 @@ CacheHierarchy::CacheHierarchy(const std::vector<CacheLevel>& levels, uint32_t l
       throw std::invalid_argument("cache level " + l.name +
                                   " needs its associativity for simulation, e.g. " + l.name +
                                   "=32K/8 (the fully associative model is `analyze`)");
-    levels_.emplace_back(l.bytes, l.ways, line_bytes);
+    if (l.bytes % (uint64_t{line_bytes} * l.ways) != 0)
+      throw std::invalid_argument("a cache of " + std::to_string(l.bytes) + " B cannot have " +
+                                  std::to_string(l.ways) + " ways of " +
+                                  std::to_string(line_bytes) +
+                                  " B lines (the size must be a multiple of ways x line size)");
   }
   stats_.resize(levels.size());
-  seen_.assign(1 << 12, kEmpty);
+  seen_.assign(16, kEmpty);
 }
 
 bool CacheHierarchy::FirstTouch(uint64_t line) {
@@ -88,6 +93,8 @@ bool CacheHierarchy::FirstTouch(uint64_t line) {
 }
 
 void CacheHierarchy::Access(uint64_t address, uint32_t size, bool write) {
+  if (levels_.size() != config_.size())
+    for (const CacheLevel& l : config_) levels_.emplace_back(l.bytes, l.ways, line_bytes_);
   const uint64_t first = address >> shift_;
   const uint64_t last = (address + (size ? size - 1 : 0)) >> shift_;
   // A line number of ~0 would collide with the empty tag; it is the last line of the address

@@ -73,6 +73,8 @@ class CacheHierarchy {
   CacheHierarchy(const CacheHierarchy&) = delete;
   CacheHierarchy& operator=(const CacheHierarchy&) = delete;
 
+  // The levels' tags are allocated at the first access: memory follows the streams that have
+  // accesses, whatever thread count a trace's header announces.
   void Access(uint64_t address, uint32_t size, bool write);
   const std::vector<LevelStats>& stats() const { return stats_; }
   uint64_t distinct_lines() const { return seen_used_; }
@@ -80,7 +82,9 @@ class CacheHierarchy {
  private:
   bool FirstTouch(uint64_t line);  // records the line; true if it was never seen
 
-  std::vector<SetAssociativeCache> levels_;
+  std::vector<CacheLevel> config_;
+  uint32_t line_bytes_;
+  std::vector<SetAssociativeCache> levels_;  // empty until the first access
   std::vector<LevelStats> stats_;
   int shift_;
   std::vector<uint64_t> seen_;  // open addressing set of touched lines (~0 = empty)

@@ -21,13 +21,15 @@ inline uint32_t Popcount(uint64_t x) { return static_cast<uint32_t>(__builtin_po
 StackDistance::StackDistance(uint64_t dense_limit, uint32_t min_capacity)
     : dense_limit_(std::min<uint64_t>(dense_limit, kHashedBit)),
       min_capacity_(std::max<uint32_t>(128, (min_capacity + 63) & ~63u)) {
-  capacity_ = min_capacity_;
+  // A small window to start with: a stream's memory follows its own accesses (a trace announcing
+  // 256 thread streams with a handful of records each costs a few kilobytes per stream).
+  capacity_ = 128;
   bits_.assign(capacity_ / 64, 0);
   owner_.assign(capacity_, 0);
   block_.assign((bits_.size() + 63) / 64, 0);
   super_.assign((block_.size() + 63) / 64, 0);
-  keys_.assign(1024, kEmptyKey);
-  slots_.assign(1024, 0);
+  keys_.assign(16, kEmptyKey);
+  slots_.assign(16, 0);
 }
 
 size_t StackDistance::MemoryBytes() const {
@@ -133,7 +135,10 @@ void StackDistance::Compact() {
   const uint64_t live = distinct_ - 1;  // the id being accessed has no marker right now
   // A window of 4x the live markers: compaction (O(window)) then runs once per 3x live accesses;
   // the window costs 4 bytes of owner_ per position, so 16 bytes per distinct id.
-  uint64_t want = std::max<uint64_t>(min_capacity_, 4 * live + 64);
+  // The floor (min_capacity, fewer compactions) applies once the stream is that long, so the
+  // window never exceeds 4x the larger of the distinct ids and the accesses so far.
+  uint64_t want =
+      std::max<uint64_t>(std::min<uint64_t>(min_capacity_, 4 * accesses_), 4 * live + 64);
   want = (want + 63) & ~uint64_t{63};
   if (want >= kHashedBit) throw std::length_error("too many distinct ids for the analyzer");
   std::vector<uint32_t> owner(want);

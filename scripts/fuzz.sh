@@ -3,8 +3,9 @@
 # Triangle pair, Gmsh, the binary trace, other tools' traces (text/u32/u64) and permutation files
 # (harnesses in tests/fuzz/, each running everything downstream of the reader on what it accepts).
 # Seeds come from tests/data; corpora grow in build/fuzz/corpus/ and are kept between runs.
-# Limits per input: 10 s, 512 MB of RSS, no single allocation above 64 MB (a header's count must
-# never be trusted for memory). Fails (exit 1) on any finding; crashes go to build/fuzz/artifacts/.
+# Limits: 10 s per input, 512 MB of RSS (ASan's quarantine at 32 MB), no single allocation above
+# 64 MB (a header's count must never be trusted for memory). Fails (exit 1) on any finding;
+# reproducers go to build/fuzz/artifacts/.
 # Usage: scripts/fuzz.sh [SECONDS]   (per harness, default 60; two harnesses run at a time)
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -20,6 +21,7 @@ cmake --build build/fuzz -j"$(nproc 2>/dev/null || echo 2)" >build/fuzz.build.lo
 
 harnesses=(triangle gmsh trace external permutation)
 c=build/fuzz/corpus
+rm -rf build/fuzz/logs build/fuzz/artifacts
 mkdir -p build/fuzz/artifacts build/fuzz/logs
 for h in "${harnesses[@]}"; do mkdir -p "$c/$h"; done
 # Seeds: every small and broken input we have, in the harness's input format.
@@ -39,21 +41,24 @@ cp tests/data/broken/*.perm "$c/permutation/"
 /usr/bin/python3 -c 'print("\n".join(str(i) for i in range(336)))' >"$c/permutation/seed-identity"
 
 run() {  # run HARNESS: one libFuzzer session, its log and exit code
-  local h=$1
-  ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
+  local h=$1 rc=0
+  ASAN_OPTIONS=detect_leaks=1:quarantine_size_mb=32 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
     "build/fuzz/tests/fuzz/fuzz_$h" -max_total_time="$secs" -rss_limit_mb=512 -malloc_limit_mb=64 \
     -timeout=10 -print_final_stats=1 -artifact_prefix="build/fuzz/artifacts/$h-" "$c/$h" \
-    >"build/fuzz/logs/$h.log" 2>&1
-  echo $? >"build/fuzz/logs/$h.rc"
+    >"build/fuzz/logs/$h.log" 2>&1 || rc=$?
+  echo "$rc" >"build/fuzz/logs/$h.rc"
 }
 echo "== fuzzing ${#harnesses[@]} harnesses, ${secs} s each, two at a time" >&2
 running=0
 for h in "${harnesses[@]}"; do
   run "$h" &
   running=$((running + 1))
-  if ((running == 2)); then wait -n; running=$((running - 1)); fi
+  if ((running == 2)); then
+    wait -n || true
+    running=$((running - 1))
+  fi
 done
-wait
+wait || true
 
 failed=0
 printf '%-12s %12s %8s %8s %8s  %s\n' harness executions cov features corpus result
