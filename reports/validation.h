@@ -74,7 +74,8 @@ Table ValidationTable(const std::vector<OrderingValidation>& r);
 Table ValidationSweepTable(const std::vector<OrderingValidation>& r);
 // The paper's Table 3: per ordering, misses per level (x10^3, per sweep) and the capacity the
 // inverse model gives for them (x10^3 elements; lines too), with the paper's values beside ours
-// for its nine meshes (carabiner ... wrench, ori/bfs/rdr), "-" elsewhere.
+// for its nine meshes (carabiner ... wrench at the paper's size, within 5% of its vertex count;
+// ori/bfs/rdr), "-" elsewhere.
 Table Table3(const std::vector<OrderingValidation>& r, bool exclude_cold);
 // Notes for the tables: where an inverse capacity is infinite, why.
 std::vector<std::string> Table3Notes(const std::vector<OrderingValidation>& r, bool exclude_cold);

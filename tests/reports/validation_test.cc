@@ -22,7 +22,7 @@ Mesh Small() {
 TEST(Validation, FullyAssociativeL1EqualsTheLineModelAndCountsAddUp) {
   const Mesh m = Small();
   ValidationConfig cfg;
-  cfg.mesh_name = "carabiner.node";  // to pick up the paper's row
+  cfg.mesh_name = "carabiner.node";  // the paper's name, but not its size
   cfg.orderings = {"ori", "bfs"};
   cfg.iterations = 2;
   // L1: 2 KiB fully associative (32 lines, 32 ways); L2/L3 set-associative.
@@ -53,8 +53,9 @@ TEST(Validation, FullyAssociativeL1EqualsTheLineModelAndCountsAddUp) {
   const Table t3 = Table3(r, false);
   ASSERT_EQ(t3.Rows(), 2u);
   const std::string csv = t3.Csv();
-  EXPECT_NE(csv.find("106.00"), std::string::npos) << csv;   // the paper's carabiner ORI L1
-  EXPECT_NE(csv.find("1060.00"), std::string::npos) << csv;  // its BFS L3 capacity
+  // The paper's carabiner has 328,082 vertices, this one about 1,200: no paper values beside it.
+  EXPECT_EQ(csv.find("106.00"), std::string::npos) << csv;
+  EXPECT_NE(csv.find(",-,-,-,"), std::string::npos) << csv;
   EXPECT_EQ(ValidationTable(r).Rows(), 6u);
   EXPECT_EQ(ValidationSweepTable(r).Rows(), 12u);
 }
