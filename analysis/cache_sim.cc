@@ -37,11 +37,15 @@ LevelStats LevelStats::operator-(const LevelStats& o) const {
   return d;
 }
 
-SetAssociativeCache::SetAssociativeCache(uint64_t bytes, uint32_t ways, uint32_t line_bytes) {
+void SetAssociativeCache::CheckGeometry(uint64_t bytes, uint32_t ways, uint32_t line_bytes) {
   if (line_bytes == 0 || ways == 0 || bytes == 0 || bytes % (uint64_t{line_bytes} * ways) != 0)
     throw std::invalid_argument("a cache of " + std::to_string(bytes) + " B cannot have " +
                                 std::to_string(ways) + " ways of " + std::to_string(line_bytes) +
                                 " B lines (the size must be a multiple of ways x line size)");
+}
+
+SetAssociativeCache::SetAssociativeCache(uint64_t bytes, uint32_t ways, uint32_t line_bytes) {
+  CheckGeometry(bytes, ways, line_bytes);
   sets_ = bytes / line_bytes / ways;
   ways_ = ways;
   pow2_ = (sets_ & (sets_ - 1)) == 0;
@@ -59,11 +63,7 @@ CacheHierarchy::CacheHierarchy(const std::vector<CacheLevel>& levels, uint32_t l
       throw std::invalid_argument("cache level " + l.name +
                                   " needs its associativity for simulation, e.g. " + l.name +
                                   "=32K/8 (the fully associative model is `analyze`)");
-    if (l.bytes % (uint64_t{line_bytes} * l.ways) != 0)
-      throw std::invalid_argument("a cache of " + std::to_string(l.bytes) + " B cannot have " +
-                                  std::to_string(l.ways) + " ways of " +
-                                  std::to_string(line_bytes) +
-                                  " B lines (the size must be a multiple of ways x line size)");
+    SetAssociativeCache::CheckGeometry(l.bytes, l.ways, line_bytes);
   }
   stats_.resize(levels.size());
   seen_.assign(16, kEmpty);
@@ -114,8 +114,7 @@ void CacheHierarchy::Access(uint64_t address, uint32_t size, bool write) {
 }
 
 CacheSimulation::CacheSimulation(const std::vector<CacheLevel>& levels, uint32_t line_bytes,
-                                 int threads)
-    : levels_(levels) {
+                                 int threads) {
   if (threads < 1 || threads > 256) throw std::invalid_argument("threads must be 1..256");
   for (int t = 0; t < threads; ++t) streams_.emplace_back(levels, line_bytes);
 }

@@ -39,6 +39,8 @@ class SetAssociativeCache {
  public:
   // Throws std::invalid_argument unless bytes is a multiple of line_bytes * ways.
   SetAssociativeCache(uint64_t bytes, uint32_t ways, uint32_t line_bytes);
+  // The same check, without building the cache.
+  static void CheckGeometry(uint64_t bytes, uint32_t ways, uint32_t line_bytes);
   // Looks `line` up; on a hit moves it to the front of its set, on a miss installs it there
   // (evicting the least recently used). Returns true on a hit.
   bool Access(uint64_t line) {
@@ -101,19 +103,15 @@ class CacheSimulation {
   }
   int threads() const { return static_cast<int>(streams_.size()); }
   const std::vector<LevelStats>& Stats(int thread) const { return streams_[thread].stats(); }
-  uint64_t DistinctLines(int thread) const { return streams_[thread].distinct_lines(); }
   // Stats of `thread` in sweep s (0-based, in the order BeginSweep was called).
   std::vector<LevelStats> SweepStats(int thread, size_t s) const;
   size_t sweeps() const { return marks_.size(); }
-  const std::vector<CacheLevel>& levels() const { return levels_; }
 
  private:
-  std::vector<CacheLevel> levels_;
   std::vector<CacheHierarchy> streams_;
   std::vector<std::vector<std::vector<LevelStats>>> marks_;  // [sweep][thread] stats at its start
 };
 
-// The sink the smoother streams into.
 // The sink the smoother streams into; addresses are canonical (sink.h), so the numbers are the
 // same in every run and equal to a simulation of the trace file.
 struct CacheSimSink {

@@ -60,6 +60,8 @@ void ReadExternalTrace(const std::string& path, ExternalFormat fmt, F&& add) {
   std::string pending;
   auto parse = [&](const char* b, const char* e) {
     ++line;
+    if (static_cast<size_t>(e - b) > kMaxLine)
+      throw InputError(path, line, "line longer than 4096 bytes: not a text trace");
     if (line == 1 && e - b >= 3 && std::memcmp(b, "\xEF\xBB\xBF", 3) == 0) b += 3;  // BOM
     if (std::memchr(b, '\0', e - b))
       throw InputError(path, line, "binary data (a NUL byte): not a text trace");
@@ -96,13 +98,9 @@ void ReadExternalTrace(const std::string& path, ExternalFormat fmt, F&& add) {
       }
       if (!pending.empty()) {
         pending.append(p, nl);
-        if (pending.size() > kMaxLine)
-          throw InputError(path, line + 1, "line longer than 4096 bytes: not a text trace");
         parse(pending.data(), pending.data() + pending.size());
         pending.clear();
       } else {
-        if (static_cast<size_t>(nl - p) > kMaxLine)
-          throw InputError(path, line + 1, "line longer than 4096 bytes: not a text trace");
         parse(p, nl);
       }
       p = nl + 1;

@@ -322,9 +322,7 @@ int AnalyzeCommand(const Args& args) {
                        std::to_string(st.cold), st.accesses > st.cold ? Fixed(st.mean(), 3) : ""});
       }
   if (vm.count("json")) {
-    std::string s = "[";
-    for (size_t r = 0; r < t.Rows(); ++r) s += std::string(r ? ",\n " : "\n ") + t.RowJson(r);
-    std::printf("%s\n]\n", s.c_str());
+    std::printf("%s", t.Json().c_str());
   } else if (vm.count("csv")) {
     std::printf("%s", t.Csv().c_str());
   } else {
@@ -338,9 +336,7 @@ int AnalyzeCommand(const Args& args) {
   if (!out_dir.empty()) {
     std::filesystem::create_directories(out_dir);
     WriteText(out_dir + "/analyze.csv", t.Csv());
-    std::string s = "[";
-    for (size_t r = 0; r < t.Rows(); ++r) s += std::string(r ? ",\n " : "\n ") + t.RowJson(r);
-    WriteText(out_dir + "/analyze.json", s + "\n]\n");
+    WriteText(out_dir + "/analyze.json", t.Json());
     WriteText(out_dir + "/histogram.csv", hist.Csv());
     WriteText(out_dir + "/profile.csv", prof.Csv());
     WriteText(out_dir + "/run.json",

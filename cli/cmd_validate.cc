@@ -41,20 +41,12 @@ std::vector<CacheLevel> SimulatedLevels(const std::string& spec) {
 
 void Print(const Table& t, bool json, bool csv) {
   if (json) {
-    std::string s = "[";
-    for (size_t r = 0; r < t.Rows(); ++r) s += std::string(r ? ",\n " : "\n ") + t.RowJson(r);
-    std::printf("%s\n]\n", s.c_str());
+    std::printf("%s", t.Json().c_str());
   } else if (csv) {
     std::printf("%s", t.Csv().c_str());
   } else {
     std::printf("%s", t.Aligned().c_str());
   }
-}
-
-std::string JsonRows(const Table& t) {
-  std::string s = "[";
-  for (size_t r = 0; r < t.Rows(); ++r) s += std::string(r ? ",\n " : "\n ") + t.RowJson(r);
-  return s + "\n]\n";
 }
 
 }  // namespace
@@ -266,8 +258,7 @@ int ValidateCommand(const Args& args) {
   const std::vector<OrderingValidation> r =
       RunValidation(base, cfg, [&](const std::string& s) { progress.Say(s); });
 
-  const Table v = ValidationTable(r), t3 = Table3(r, cfg.exclude_cold),
-              sw = ValidationSweepTable(r);
+  const Table v = ValidationTable(r), t3 = Table3(r), sw = ValidationSweepTable(r);
   Table cost({"mesh", "ordering", "accesses", "element_accesses", "cost_model_low",
               "cost_model_high", "cost_simulated_low", "cost_simulated_high", "counters"});
   for (const OrderingValidation& o : r)
@@ -277,8 +268,8 @@ int ValidateCommand(const Args& args) {
                  Fixed(o.cost_simulated.high, 0), o.counters});
   const std::vector<std::string> notes = Table3Notes(r, cfg.exclude_cold);
   if (vm.count("json")) {
-    std::printf("{\"validation\": %s, \"table3\": %s, \"cost\": %s}\n", JsonRows(v).c_str(),
-                JsonRows(t3).c_str(), JsonRows(cost).c_str());
+    std::printf("{\"validation\": %s, \"table3\": %s, \"cost\": %s}\n", v.Json().c_str(),
+                t3.Json().c_str(), cost.Json().c_str());
   } else if (vm.count("csv")) {
     std::printf("%s", v.Csv().c_str());
   } else if (vm.count("markdown")) {
@@ -292,7 +283,7 @@ int ValidateCommand(const Args& args) {
     std::filesystem::create_directories(out_dir);
     WriteText(out_dir + "/validate.csv", v.Csv());
     WriteText(out_dir + "/validate.md", v.Markdown());
-    WriteText(out_dir + "/validate.json", JsonRows(v));
+    WriteText(out_dir + "/validate.json", v.Json());
     WriteText(out_dir + "/cost.csv", cost.Csv());
     WriteText(out_dir + "/table3.csv", t3.Csv());
     std::string md = t3.Markdown();

@@ -83,6 +83,12 @@ std::string Table::Markdown() const {
   return out;
 }
 
+std::string Table::Json() const {
+  std::string s = "[";
+  for (size_t r = 0; r < rows_.size(); ++r) s += std::string(r ? ",\n " : "\n ") + RowJson(r);
+  return s + "\n]\n";
+}
+
 std::string Table::RowJson(size_t r) const {
   std::string s = "{";
   for (size_t c = 0; c < header_.size(); ++c) {
@@ -92,7 +98,8 @@ std::string Table::RowJson(size_t r) const {
     const bool number = !v.empty() && end && *end == '\0' && v.find(',') == std::string::npos &&
                         v != "inf" && v != "nan";
     std::string quoted = "\"";
-    for (char ch : v) quoted += (ch == '"' || ch == '\\') ? std::string("\\") + ch : std::string(1, ch);
+    for (char ch : v)
+      quoted += (ch == '"' || ch == '\\') ? std::string("\\") + ch : std::string(1, ch);
     s += (c ? ", \"" : "\"") + header_[c] + "\": " + (number ? v : quoted + "\"");
   }
   return s + "}";

@@ -18,6 +18,7 @@ class Table {
   std::string Markdown() const;
   // Row r as a JSON object keyed by the header; numeric-looking cells become numbers.
   std::string RowJson(size_t r) const;
+  std::string Json() const;  // all rows as a JSON array, one object per line
 
  private:
   std::vector<std::string> header_;

@@ -218,7 +218,7 @@ Table ValidationSweepTable(const std::vector<OrderingValidation>& r) {
   return t;
 }
 
-Table Table3(const std::vector<OrderingValidation>& r, bool exclude_cold) {
+Table Table3(const std::vector<OrderingValidation>& r) {
   std::vector<std::string> head = {"mesh", "ordering", "source"};
   const size_t n = r.empty() ? 0 : r[0].levels.size();
   auto names = [&](const std::string& prefix, const std::string& suffix) {
@@ -248,7 +248,6 @@ Table Table3(const std::vector<OrderingValidation>& r, bool exclude_cold) {
     for (const LevelValidation& l : v.levels) row.push_back(Cap(l.capacity_lines));
     t.AddRow(row);
   }
-  (void)exclude_cold;
   return t;
 }
 

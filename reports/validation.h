@@ -76,7 +76,7 @@ Table ValidationSweepTable(const std::vector<OrderingValidation>& r);
 // inverse model gives for them (x10^3 elements; lines too), with the paper's values beside ours
 // for its nine meshes (carabiner ... wrench at the paper's size, within 5% of its vertex count;
 // ori/bfs/rdr), "-" elsewhere.
-Table Table3(const std::vector<OrderingValidation>& r, bool exclude_cold);
+Table Table3(const std::vector<OrderingValidation>& r);
 // Notes for the tables: where an inverse capacity is infinite, why.
 std::vector<std::string> Table3Notes(const std::vector<OrderingValidation>& r, bool exclude_cold);
 

@@ -117,7 +117,6 @@ struct CountingSink {
   struct PerThread {
     std::array<uint64_t, kElementKinds> kind{};
     std::array<std::array<uint64_t, 2>, kArrays> array{};  // [array][write]
-    uint64_t bytes = 0;
   };
   std::vector<PerThread> per_thread;
   int sweeps = 0;
@@ -128,7 +127,6 @@ struct CountingSink {
     PerThread& p = per_thread[thread];
     if (r.element != AccessKind::kNone) ++p.kind[static_cast<int>(r.element)];
     ++p.array[static_cast<int>(r.array)][r.write];
-    p.bytes += r.size;
   }
   uint64_t Elements() const {  // element touches, all threads
     uint64_t s = 0;
@@ -182,14 +180,10 @@ struct RecordingSink {
   };
   std::vector<Touched> touches;
   std::vector<Ref> refs;
-  std::vector<size_t> sweep_starts;      // index into touches where each sweep begins
-  std::vector<size_t> ref_sweep_starts;  // index into refs where each sweep begins
+  std::vector<size_t> sweep_starts;  // index into touches where each sweep begins
   ArrayLayout layout;
   void Bind(const ArrayLayout& l) { layout = l; }
-  void BeginSweep(int) {
-    sweep_starts.push_back(touches.size());
-    ref_sweep_starts.push_back(refs.size());
-  }
+  void BeginSweep(int) { sweep_starts.push_back(touches.size()); }
   void Access(int thread, const MemRef& r) {
     refs.push_back({thread, r});
     if (r.element != AccessKind::kNone) touches.push_back({thread, r.element, r.vertex, r.address});

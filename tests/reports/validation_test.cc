@@ -50,7 +50,7 @@ TEST(Validation, FullyAssociativeL1EqualsTheLineModelAndCountsAddUp) {
     EXPECT_EQ(v.sweeps.size(), 2u);
     for (const LevelValidation& l : v.levels) EXPECT_EQ(l.table3_misses, l.simulated.misses);
   }
-  const Table t3 = Table3(r, false);
+  const Table t3 = Table3(r);
   ASSERT_EQ(t3.Rows(), 2u);
   const std::string csv = t3.Csv();
   // The paper's carabiner has 328,082 vertices, this one about 1,200: no paper values beside it.
