@@ -16,26 +16,34 @@ inline uint64_t Mix(uint64_t x) {  // SplitMix64 finaliser
   return x ^ (x >> 31);
 }
 inline uint32_t Popcount(uint64_t x) { return static_cast<uint32_t>(__builtin_popcountll(x)); }
+constexpr uint32_t kGroup = 512;
 }  // namespace
 
 StackDistance::StackDistance(uint64_t dense_limit, uint32_t min_capacity)
     : dense_limit_(std::min<uint64_t>(dense_limit, kHashedBit)),
-      min_capacity_(std::max<uint32_t>(128, (min_capacity + 63) & ~63u)) {
+      min_capacity_(std::max<uint32_t>(kGroup, (min_capacity + kGroup - 1) & ~(kGroup - 1))) {
   // A small window to start with: a stream's memory follows its own accesses (a trace announcing
   // 256 thread streams with a handful of records each costs a few kilobytes per stream).
-  capacity_ = 128;
+  capacity_ = kGroup;
   bits_.assign(capacity_ / 64, 0);
   owner_.assign(capacity_, 0);
-  block_.assign((bits_.size() + 63) / 64, 0);
-  super_.assign((block_.size() + 63) / 64, 0);
+  tree_.assign(capacity_ / kGroup + 1, 0);
   keys_.assign(16, kEmptyKey);
   slots_.assign(16, 0);
 }
 
 size_t StackDistance::MemoryBytes() const {
-  return dense_last_.capacity() * 4 + hashed_last_.capacity() * 4 + keys_.capacity() * 8 +
-         slots_.capacity() * 4 + bits_.capacity() * 8 + owner_.capacity() * 4 +
-         block_.capacity() * 4 + super_.capacity() * 4;
+  return dense_last_.capacity() * 4 + hashed_last_.capacity() * 4 + free_slots_.capacity() * 4 +
+         keys_.capacity() * 8 + slots_.capacity() * 4 + bits_.capacity() * 8 +
+         owner_.capacity() * 4 + tree_.capacity() * 4;
+}
+
+uint32_t* StackDistance::FindHashed(uint64_t id, size_t* slot_index) {
+  const size_t mask = keys_.size() - 1;
+  size_t j = Mix(id) & mask;
+  while (keys_[j] != kEmptyKey && keys_[j] != id) j = (j + 1) & mask;
+  *slot_index = j;
+  return keys_[j] == id ? &hashed_last_[slots_[j]] : nullptr;
 }
 
 uint32_t& StackDistance::LastOfSlow(uint64_t id, uint32_t* key) {
@@ -62,47 +70,46 @@ uint32_t& StackDistance::LastOfSlow(uint64_t id, uint32_t* key) {
     keys_.swap(k);
     slots_.swap(s);
   }
-  const size_t mask = keys_.size() - 1;
-  size_t j = Mix(id) & mask;
-  while (keys_[j] != kEmptyKey && keys_[j] != id) j = (j + 1) & mask;
-  if (keys_[j] == kEmptyKey) {
+  size_t j;
+  if (uint32_t* last = FindHashed(id, &j)) {
+    *key = kHashedBit | slots_[j];
+    return *last;
+  }
+  uint32_t slot;
+  if (!free_slots_.empty()) {
+    slot = free_slots_.back();
+    free_slots_.pop_back();
+  } else {
     if (hashed_last_.size() >= kHashedBit - 1) throw std::length_error("too many distinct ids");
-    keys_[j] = id;
-    slots_[j] = static_cast<uint32_t>(hashed_last_.size());
+    slot = static_cast<uint32_t>(hashed_last_.size());
     hashed_last_.push_back(kNone);
-    ++hash_used_;
   }
-  *key = kHashedBit | slots_[j];
-  return hashed_last_[slots_[j]];
+  keys_[j] = id;
+  slots_[j] = slot;
+  ++hash_used_;
+  *key = kHashedBit | slot;
+  return hashed_last_[slot];
 }
 
-uint64_t StackDistance::CountBlocks(uint32_t b, uint32_t be) const {
-  uint64_t n = 0;
-  while (b < be && (b & 63)) n += block_[b++];
-  while (b + 64 <= be) n += super_[b >> 6], b += 64;
-  while (b < be) n += block_[b++];
-  return n;
-}
-
-uint64_t StackDistance::CountWords(uint32_t w, uint32_t we) const {
-  uint64_t n = 0;
-  if (we - w > 128) {  // far: whole blocks by their counts
-    while (w & 63) n += Popcount(bits_[w++]);
-    const uint32_t be = we >> 6;
-    n += CountBlocks(w >> 6, be);
-    w = be << 6;
+uint64_t StackDistance::LiveAfter(uint32_t p) const {
+  const uint32_t wp = p >> 6, wt = t_ >> 6;
+  const uint64_t above_p = ~uint64_t{1} << (p & 63);  // bits > p within its word (p&63 < 63 ok)
+  const uint64_t below_t = (uint64_t{1} << (t_ & 63)) - 1;
+  if (wp == wt) return Popcount(bits_[wp] & above_p & below_t);
+  if (wt - wp <= kShortWords) {
+    uint64_t n = Popcount(bits_[wp] & above_p);
+    for (uint32_t w = wp + 1; w < wt; ++w) n += Popcount(bits_[w]);
+    if (wt < bits_.size()) n += Popcount(bits_[wt] & below_t);
+    return n;
   }
-  while (w < we) n += Popcount(bits_[w++]);
-  return n;
-}
-
-uint64_t StackDistance::CountLive(uint32_t a, uint32_t b) const {
-  if (a >= b) return 0;
-  const uint32_t wa = a >> 6, wb = (b - 1) >> 6;
-  const uint64_t lo_mask = ~uint64_t{0} << (a & 63);
-  const uint64_t hi_mask = ~uint64_t{0} >> (63 - ((b - 1) & 63));
-  if (wa == wb) return Popcount(bits_[wa] & lo_mask & hi_mask);
-  return Popcount(bits_[wa] & lo_mask) + Popcount(bits_[wb] & hi_mask) + CountWords(wa + 1, wb);
+  // Far: live total - live up to and including p. p's group is closed (it is more than a group
+  // before t_), so the tree holds every group before it.
+  const uint32_t g = p >> kGroupShift;
+  uint64_t upto = 0;
+  for (uint32_t i = g; i > 0; i -= i & (0u - i)) upto += static_cast<uint32_t>(tree_[i]);
+  for (uint32_t w = g << 3; w < wp; ++w) upto += Popcount(bits_[w]);
+  upto += Popcount(bits_[wp] & (~uint64_t{0} >> (63 - (p & 63))));
+  return live_ - upto;
 }
 
 uint64_t StackDistance::Access(uint64_t id) {
@@ -115,31 +122,86 @@ uint64_t StackDistance::Access(uint64_t id) {
     ++distinct_;
   } else {
     const uint32_t p = last;
-    d = CountLive(p + 1, t_);
-    bits_[p >> 6] &= ~(uint64_t{1} << (p & 63));
-    --block_[p >> 12];
-    --super_[p >> 18];
+    d = LiveAfter(p);
+    ClearMarker(p);
+    --live_;
   }
   if (t_ == capacity_) Compact();  // renumbers `last` of every live id, not its storage
+  if ((t_ & (kGroup - 1)) == 0 && t_ > 0) CloseGroups();
   bits_[t_ >> 6] |= uint64_t{1} << (t_ & 63);
-  ++block_[t_ >> 12];
-  ++super_[t_ >> 18];
   owner_[t_] = key;
   last = t_;
   ++t_;
+  ++live_;
   return d;
+}
+
+bool StackDistance::Remove(uint64_t id) {
+  uint32_t* last = nullptr;
+  size_t j = 0;
+  if (id < dense_limit_) {
+    if (id < dense_last_.size() && dense_last_[id] != kNone) last = &dense_last_[id];
+  } else if (id != kEmptyKey) {
+    last = FindHashed(id, &j);
+  }
+  if (!last || *last == kNone) return false;
+  ClearMarker(*last);
+  --live_;
+  *last = kNone;
+  if (id >= dense_limit_) {  // free the slot; backward-shift deletion keeps probing exact
+    free_slots_.push_back(slots_[j]);
+    const size_t mask = keys_.size() - 1;
+    size_t hole = j;
+    for (size_t i = (j + 1) & mask; keys_[i] != kEmptyKey; i = (i + 1) & mask) {
+      const size_t home = Mix(keys_[i]) & mask;
+      // Move i into the hole unless its home lies cyclically in (hole, i].
+      const bool stays = hole <= i ? (home > hole && home <= i) : (home > hole || home <= i);
+      if (!stays) {
+        keys_[hole] = keys_[i];
+        slots_[hole] = slots_[i];
+        hole = i;
+      }
+    }
+    keys_[hole] = kEmptyKey;
+    --hash_used_;
+  }
+  return true;
+}
+
+std::vector<uint64_t> StackDistance::StackBottomUp() const {
+  std::vector<uint64_t> slot_id;  // hashed slot -> id, built on demand
+  if (!hashed_last_.empty()) {
+    slot_id.assign(hashed_last_.size(), 0);
+    for (size_t i = 0; i < keys_.size(); ++i)
+      if (keys_[i] != kEmptyKey) slot_id[slots_[i]] = keys_[i];
+  }
+  std::vector<uint64_t> out;
+  out.reserve(live_);
+  for (uint32_t w = 0; w < bits_.size(); ++w)
+    for (uint64_t x = bits_[w]; x; x &= x - 1) {
+      const uint32_t key = owner_[w * 64 + __builtin_ctzll(x)];
+      out.push_back(key & kHashedBit ? slot_id[key & ~kHashedBit] : key);
+    }
+  return out;
+}
+
+void StackDistance::CloseGroups() {
+  for (; closed_ < (t_ >> kGroupShift); ++closed_) {
+    uint32_t n = 0;
+    for (uint32_t w = closed_ << 3; w < (closed_ + 1) << 3; ++w) n += Popcount(bits_[w]);
+    if (n) TreeAdd(closed_, static_cast<int32_t>(n));
+  }
 }
 
 void StackDistance::Compact() {
   ++compactions_;
-  const uint64_t live = distinct_ - 1;  // the id being accessed has no marker right now
   // A window of 4x the live markers: compaction (O(window)) then runs once per 3x live accesses;
   // the window costs 4 bytes of owner_ per position, so 16 bytes per distinct id.
   // The floor (min_capacity, fewer compactions) applies once the stream is that long, so the
-  // window never exceeds 4x the larger of the distinct ids and the accesses so far.
+  // window never exceeds 4x the larger of the live ids and the accesses so far.
   uint64_t want =
-      std::max<uint64_t>(std::min<uint64_t>(min_capacity_, 4 * accesses_), 4 * live + 64);
-  want = (want + 63) & ~uint64_t{63};
+      std::max<uint64_t>(std::min<uint64_t>(min_capacity_, 4 * accesses_), 4 * live_ + 64);
+  want = (want + kGroup - 1) & ~uint64_t{kGroup - 1};
   if (want >= kHashedBit) throw std::length_error("too many distinct ids for the analyzer");
   std::vector<uint32_t> owner(want);
   uint32_t k = 0;
@@ -156,12 +218,14 @@ void StackDistance::Compact() {
   owner_.swap(owner);
   capacity_ = static_cast<uint32_t>(want);
   bits_.assign(capacity_ / 64, 0);
-  block_.assign((bits_.size() + 63) / 64, 0);
-  super_.assign((block_.size() + 63) / 64, 0);
-  for (uint32_t i = 0; i < k; ++i) {
-    bits_[i >> 6] |= uint64_t{1} << (i & 63);
-    ++block_[i >> 12];
-    ++super_[i >> 18];
+  for (uint32_t i = 0; i < k; ++i) bits_[i >> 6] |= uint64_t{1} << (i & 63);
+  // Every group wholly below k is full: build the tree over them in O(groups).
+  tree_.assign(capacity_ / kGroup + 1, 0);
+  closed_ = k >> kGroupShift;
+  for (uint32_t i = 1; i < tree_.size(); ++i) {
+    if (i <= closed_) tree_[i] += static_cast<int32_t>(kGroup);
+    const uint32_t parent = i + (i & (0u - i));
+    if (parent < tree_.size()) tree_[parent] += tree_[i];
   }
   t_ = k;
 }

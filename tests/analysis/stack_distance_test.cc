@@ -10,6 +10,7 @@
 
 #include "analysis/reference.h"
 #include "analysis/reuse_histogram.h"
+#include "analysis/synthetic_trace.h"
 #include "core/synthetic.h"
 
 namespace meshreuse {
@@ -109,8 +110,8 @@ TEST(StackDistance, LongReusesGoThroughTheTree) {
   EXPECT_GT(compactions, 0u);
 }
 
-TEST(StackDistance, VeryLongReusesUseBlockAndSuperblockCounts) {
-  // Reuse gaps of up to ~10^6 positions: beyond a superblock (262,144 positions).
+TEST(StackDistance, VeryLongReusesUseTheFenwickTree) {
+  // Reuse gaps of up to ~10^6 positions: thousands of Fenwick groups (512 positions each).
   SplitMix64 rng(11);
   for (uint64_t alphabet : {20000, 150000, 400000}) {
     std::vector<uint64_t> t = RandomTrace(rng, 1200000, alphabet, alphabet == 150000 ? 1 : 0);
@@ -123,6 +124,72 @@ TEST(StackDistance, VeryLongReusesUseBlockAndSuperblockCounts) {
   StackDistance sd(300000);
   for (int lap = 0; lap < 3; ++lap)
     for (uint64_t id = 0; id < 300000; ++id) ASSERT_EQ(sd.Access(id), lap == 0 ? kCold : 299999u);
+}
+
+// The traces where long distances live (the benchmark shapes, smaller): a cyclic scan
+// (every warm distance exact by construction), uniform random ids, and a mesh-like walk with 10%
+// far reuses, each against the textbook analyzer, with dense and with hashed ids.
+TEST(StackDistance, ScanUniformAndMixedTracesMatchTheTextbook) {
+  const std::vector<uint64_t> scan = CyclicScanTrace(70000, 4);
+  const std::vector<std::vector<uint64_t>> traces = {scan, UniformTrace(50000, 600000, 5),
+                                                     MeshLikeTrace(40000, 900000, 0.1, 6),
+                                                     MeshLikeTrace(3000, 200000, 0.02, 7)};
+  for (size_t k = 0; k < traces.size(); ++k) {
+    SCOPED_TRACE("trace " + std::to_string(k));
+    const std::vector<uint64_t> expect = TextbookStackDistances(traces[k]);
+    ASSERT_EQ(Distances(traces[k], 1u << 20, 1u << 16), expect) << "dense";
+    std::vector<uint64_t> hashed = traces[k];
+    for (uint64_t& id : hashed) id = id * 0x9E3779B97F4A7C15ull + (uint64_t{1} << 40);
+    ASSERT_EQ(Distances(hashed, 1u << 20, 512), expect) << "hashed";
+  }
+  const std::vector<uint64_t> d = Distances(scan, 70000, 1u << 16);
+  for (size_t i = 0; i < d.size(); ++i) ASSERT_EQ(d[i], i < 70000 ? kCold : 69999u);
+}
+
+// An LRU stack as a plain list (bottom first), with removal: the reference for Remove and
+// StackBottomUp.
+struct ListStack {
+  std::vector<uint64_t> s;
+  uint64_t Access(uint64_t id) {
+    auto it = std::find(s.begin(), s.end(), id);
+    uint64_t d = kCold;
+    if (it != s.end()) {
+      d = static_cast<uint64_t>(s.end() - it - 1);
+      s.erase(it);
+    }
+    s.push_back(id);
+    return d;
+  }
+  bool Remove(uint64_t id) {
+    auto it = std::find(s.begin(), s.end(), id);
+    if (it == s.end()) return false;
+    s.erase(it);
+    return true;
+  }
+};
+
+TEST(StackDistance, RemoveAndStackMatchAListReference) {
+  SplitMix64 rng(99);
+  for (int trial = 0; trial < 40; ++trial) {
+    const uint64_t alphabet = 1 + rng.Below(trial % 2 ? 40 : 900);
+    const uint64_t offset = trial % 3 == 0 ? 0 : uint64_t{1} << 40;  // dense or hashed
+    StackDistance sd(1000, 512);
+    ListStack ref;
+    for (int i = 0; i < 6000; ++i) {
+      const uint64_t id = rng.Below(alphabet) + offset;
+      if (rng.Below(10) == 0)
+        ASSERT_EQ(sd.Remove(id), ref.Remove(id)) << "trial " << trial << " step " << i;
+      else
+        ASSERT_EQ(sd.Access(id), ref.Access(id)) << "trial " << trial << " step " << i;
+    }
+    EXPECT_EQ(sd.StackBottomUp(), ref.s) << "trial " << trial;
+    EXPECT_EQ(sd.live(), ref.s.size());
+  }
+  StackDistance sd(0);
+  EXPECT_FALSE(sd.Remove(5));
+  EXPECT_EQ(sd.Access(5), kCold);
+  EXPECT_TRUE(sd.Remove(5));
+  EXPECT_EQ(sd.Access(5), kCold) << "a removed id is cold again";
 }
 
 TEST(StackDistance, EdgeCases) {
@@ -140,14 +207,14 @@ TEST(StackDistance, EdgeCases) {
 }
 
 TEST(StackDistance, CompactionMidTraceKeepsDistancesExact) {
-  // A cyclic scan over 300 ids starting from a 128-position window: compactions every few laps
+  // A cyclic scan over 300 ids starting from a 512-position window: compactions every few laps
   // (the window then holds 4x the live ids), and every warm distance is exactly 299.
   StackDistance sd(1000, 128);
-  for (int lap = 0; lap < 20; ++lap)
+  for (int lap = 0; lap < 40; ++lap)
     for (uint64_t id = 0; id < 300; ++id) ASSERT_EQ(sd.Access(id), lap == 0 ? kCold : 299u);
   EXPECT_GE(sd.compactions(), 5u);
   EXPECT_EQ(sd.distinct(), 300u);
-  EXPECT_EQ(sd.accesses(), 6000u);
+  EXPECT_EQ(sd.accesses(), 12000u);
 }
 
 TEST(StackDistance, MemoryFollowsDistinctIdsNotTraceLength) {

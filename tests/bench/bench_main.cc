@@ -1,8 +1,10 @@
 // Benchmarks (Google Benchmark; not unit tests, never run by ctest). Run:
 //   build/release/tests/bench/meshreuse_bench --mesh=out/meshes/paper/carabiner.node
 // They measure, in one run so the ratios are side by side:
-//   Analyzer/<ordering>      StackDistance + histogram over the first-sweep element trace
-//   TextbookFenwick/<ord.>   the textbook analyzer (Fenwick tree over every time position, hash
+//   Analyzer/<trace>         StackDistance + histogram over a trace: <ordering> is the mesh's
+//                            first-sweep element trace, <ordering>-8 eight sweeps; scan, uniform
+//                            and meshlike are synthetic (analysis/synthetic_trace.h)
+//   TextbookFenwick/<trace>  the textbook analyzer (Fenwick tree over every time position, hash
 //                            map of last accesses) on the same trace, for the ratio
 //   Sweep/plain, Sweep/null  a hand-written Gauss-Seidel sweep with no sink at all, and
 //                            Smooth<NullSink>'s sweep: NullSink must cost nothing
@@ -18,6 +20,7 @@
 #include "analysis/reference.h"
 #include "analysis/reuse_histogram.h"
 #include "analysis/stack_distance.h"
+#include "analysis/synthetic_trace.h"
 #include "analysis/trace_analysis.h"
 #include "core/mesh_io.h"
 #include "core/orderings/registry.h"
@@ -53,43 +56,62 @@ const Mesh& Ordered(const std::string& ordering) {
 
 struct ElementTrace {
   static constexpr bool kEnabled = true;
-  std::vector<uint32_t> ids;
+  std::vector<uint64_t> ids;
   void BeginSweep(int) {}
   void Bind(const ArrayLayout&) {}
   void Access(int, const MemRef& r) {
-    if (r.element != AccessKind::kNone) ids.push_back(static_cast<uint32_t>(r.vertex));
+    if (r.element != AccessKind::kNone) ids.push_back(static_cast<uint64_t>(r.vertex));
   }
 };
 
-const std::vector<uint32_t>& FirstSweepTrace(const std::string& ordering) {
-  static std::map<std::string, std::vector<uint32_t>> cache;
-  auto it = cache.find(ordering);
-  if (it == cache.end()) {
-    Mesh m = Ordered(ordering).Clone();
+// The traces by name: <ordering> (the mesh's first-sweep element trace), <ordering>-8 (8 sweeps),
+// scan (1M ids x 20), uniform (20M accesses over 1M ids), meshlike (15M accesses over 330k ids,
+// 10% far reuses).
+const std::vector<uint64_t>& Trace(const std::string& name) {
+  static std::map<std::string, std::vector<uint64_t>> cache;
+  auto it = cache.find(name);
+  if (it != cache.end()) return it->second;
+  std::vector<uint64_t> t;
+  if (name == "scan") {
+    t = CyclicScanTrace(1000000, 20);
+  } else if (name == "uniform") {
+    t = UniformTrace(1000000, 20000000, 1);
+  } else if (name == "meshlike") {
+    t = MeshLikeTrace(330000, 15000000, 0.1, 1);
+  } else {
+    const size_t dash = name.find('-');
+    Mesh m = Ordered(name.substr(0, dash)).Clone();
     SmoothOptions o;
-    o.max_iters = 1;
-    ElementTrace t;
-    Smooth(m, o, t);
-    it = cache.emplace(ordering, std::move(t.ids)).first;
+    o.max_iters = dash == std::string::npos ? 1 : std::stoi(name.substr(dash + 1));
+    o.tol = -1;
+    ElementTrace e;
+    Smooth(m, o, e);
+    t = std::move(e.ids);
   }
-  return it->second;
+  return cache.emplace(name, std::move(t)).first->second;
 }
 
-void Analyzer(benchmark::State& state, std::string ordering) {
-  const std::vector<uint32_t>& trace = FirstSweepTrace(ordering);
+uint64_t DenseLimit(const std::string& name) {
+  if (name == "scan" || name == "uniform") return 1000000;
+  if (name == "meshlike") return 330000;
+  return static_cast<uint64_t>(BaseMesh().NumVertices());
+}
+
+void Analyzer(benchmark::State& state, std::string name) {
+  const std::vector<uint64_t>& trace = Trace(name);
   for (auto _ : state) {
-    StackDistance sd(BaseMesh().NumVertices());
+    StackDistance sd(DenseLimit(name));
     ReuseHistogram h;
-    h.Reserve(BaseMesh().NumVertices());
-    for (uint32_t id : trace) h.Add(sd.Access(id));
+    h.Reserve(DenseLimit(name));
+    for (uint64_t id : trace) h.Add(sd.Access(id));
     benchmark::DoNotOptimize(h.finite());
   }
   state.SetItemsProcessed(state.iterations() * static_cast<int64_t>(trace.size()));
 }
 
 // The textbook method (analysis/reference.h), distances then the same histogram.
-void TextbookFenwick(benchmark::State& state, std::string ordering) {
-  const std::vector<uint32_t>& trace = FirstSweepTrace(ordering);
+void TextbookFenwick(benchmark::State& state, std::string name) {
+  const std::vector<uint64_t>& trace = Trace(name);
   for (auto _ : state) {
     ReuseHistogram h;
     for (uint64_t d : TextbookStackDistances(trace)) h.Add(d);
@@ -214,13 +236,15 @@ int main(int argc, char** argv) {
   }
   int n = static_cast<int>(rest.size());
   using namespace meshreuse;
-  for (const char* o : {"ori", "random", "bfs", "rdr"})
+  // Each trace's analyzer and textbook runs side by side, so their ratio is from one moment.
+  for (const char* o : {"ori", "bfs", "rdr", "random", "ori-8", "bfs-8", "rdr-8", "random-8",
+                        "scan", "uniform", "meshlike"}) {
     benchmark::RegisterBenchmark(("Analyzer/" + std::string(o)).c_str(), Analyzer, std::string(o))
         ->Unit(benchmark::kMillisecond);
-  for (const char* o : {"ori", "rdr"})
     benchmark::RegisterBenchmark(("TextbookFenwick/" + std::string(o)).c_str(), TextbookFenwick,
                                  std::string(o))
         ->Unit(benchmark::kMillisecond);
+  }
   benchmark::RegisterBenchmark("Sweep/plain", SweepPlain)->Unit(benchmark::kMillisecond);
   benchmark::RegisterBenchmark("Sweep/null", SweepNull)
       ->UseManualTime()
