@@ -76,25 +76,51 @@ ReuseProfile::ReuseProfile(std::vector<uint64_t> lengths, int steps)
     : lengths_(std::move(lengths)), nsteps_(steps) {
   // An iteration of n accesses gets min(steps, n) steps, so the profile never holds more steps
   // than accesses: its memory follows the trace, whatever sweep count a header claims.
+  starts_.push_back(0);
   for (size_t i = 0; i < lengths_.size(); ++i) {
     first_.push_back(steps_.size());
     const int k = static_cast<int>(std::min<uint64_t>(nsteps_, lengths_[i]));
     for (int s = 0; s < k; ++s) steps_.push_back({static_cast<int>(i + 1), s});
+    const uint64_t end = starts_.back() + lengths_[i];
+    starts_.push_back(end < starts_.back() ? ~uint64_t{0} : end);  // saturate: a hostile header
   }
 }
 
-void ReuseProfile::Add(uint64_t d) {
-  while (iter_ < lengths_.size() && pos_ >= lengths_[iter_]) ++iter_, pos_ = 0;
-  if (iter_ >= lengths_.size()) return;  // past the announced length: not profiled
-  const uint64_t k = std::min<uint64_t>(nsteps_, lengths_[iter_]);
-  const size_t s = static_cast<size_t>(static_cast<long double>(pos_) * k / lengths_[iter_]);
+void ReuseProfile::AddAt(uint64_t position, uint64_t d) {
+  if (lengths_.empty() || position >= starts_.back()) return;  // past the announced length
+  if (position < starts_[iter_] || position >= starts_[iter_ + 1]) {
+    if (position >= starts_[iter_ + 1] && position < starts_[std::min(iter_ + 2, lengths_.size())])
+      ++iter_;  // the next iteration: the common case when accesses come in order
+    else
+      iter_ = static_cast<size_t>(std::upper_bound(starts_.begin(), starts_.end(), position) -
+                                  starts_.begin()) -
+              1;
+  }
+  const uint64_t pos = position - starts_[iter_], len = lengths_[iter_];
+  const uint64_t k = std::min<uint64_t>(nsteps_, len);
+  const size_t s = static_cast<size_t>(static_cast<unsigned __int128>(pos) * k / len);
   Step& st = steps_[first_[iter_] + s];
   ++st.accesses;
   if (d == StackDistance::kCold)
     ++st.cold;
   else
     st.sum += d;
-  ++pos_;
+}
+
+ReuseProfile ReuseProfile::EmptyCopy() const {
+  ReuseProfile p = *this;
+  for (Step& s : p.steps_) s.accesses = s.cold = 0, s.sum = 0;
+  p.iter_ = 0;
+  p.next_ = 0;
+  return p;
+}
+
+void ReuseProfile::Merge(const ReuseProfile& o) {
+  for (size_t i = 0; i < steps_.size() && i < o.steps_.size(); ++i) {
+    steps_[i].accesses += o.steps_[i].accesses;
+    steps_[i].cold += o.steps_[i].cold;
+    steps_[i].sum += o.steps_[i].sum;
+  }
 }
 
 double ReuseProfile::Step::mean() const {

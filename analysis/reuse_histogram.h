@@ -53,12 +53,18 @@ class ReuseHistogram {
 
 // Mean reuse distance over time: each iteration (sweep) of the stream cut into `steps` equal
 // parts (an iteration shorter than that: one step per access), as the paper's carabiner profile
-// figure. Needs each iteration's length in advance.
+// figure. Needs each iteration's length in advance. Accesses are placed by their position in the
+// stream, so partial profiles of consecutive chunks (the parallel analyzer) merge exactly.
 class ReuseProfile {
  public:
   ReuseProfile() = default;
   ReuseProfile(std::vector<uint64_t> iteration_lengths, int steps = 100);
-  void Add(uint64_t d);
+  void Add(uint64_t d) { AddAt(next_++, d); }            // the access after the previous Add
+  void AddAt(uint64_t position, uint64_t d);             // position in the stream, 0-based
+  void SetNext(uint64_t position) { next_ = position; }  // where the next Add() goes
+  // The same iterations and steps, every count zero: a partial profile for one chunk.
+  ReuseProfile EmptyCopy() const;
+  void Merge(const ReuseProfile& o);  // o: an EmptyCopy() of this one, filled
   struct Step {
     int iteration;  // 1-based
     int step;       // 0-based
@@ -71,11 +77,12 @@ class ReuseProfile {
 
  private:
   std::vector<uint64_t> lengths_;
+  std::vector<uint64_t> starts_;  // position of each iteration's first access; back() = total
   int nsteps_ = 100;
   std::vector<Step> steps_;
   std::vector<size_t> first_;  // index of each iteration's first step
-  size_t iter_ = 0;
-  uint64_t pos_ = 0;  // within the iteration
+  size_t iter_ = 0;            // the iteration of the last AddAt (a cursor: accesses come in order)
+  uint64_t next_ = 0;
 };
 
 }  // namespace meshreuse

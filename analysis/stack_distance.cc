@@ -112,17 +112,17 @@ uint64_t StackDistance::LiveAfter(uint32_t p) const {
   return live_ - upto;
 }
 
-uint64_t StackDistance::Access(uint64_t id) {
+template <bool kDistance>
+uint64_t StackDistance::Visit(uint64_t id) {
   ++accesses_;
   uint32_t key;
   uint32_t& last = LastOf(id, &key);
-  uint64_t d;
+  uint64_t d = kCold;
   if (last == kNone) {
-    d = kCold;
     ++distinct_;
   } else {
     const uint32_t p = last;
-    d = LiveAfter(p);
+    if (kDistance) d = LiveAfter(p);
     ClearMarker(p);
     --live_;
   }
@@ -135,6 +135,9 @@ uint64_t StackDistance::Access(uint64_t id) {
   ++live_;
   return d;
 }
+
+template uint64_t StackDistance::Visit<true>(uint64_t);
+template uint64_t StackDistance::Visit<false>(uint64_t);
 
 bool StackDistance::Remove(uint64_t id) {
   uint32_t* last = nullptr;

@@ -38,7 +38,9 @@ class StackDistance {
   StackDistance(const StackDistance&) = delete;
   StackDistance& operator=(const StackDistance&) = delete;
 
-  uint64_t Access(uint64_t id);
+  uint64_t Access(uint64_t id) { return Visit<true>(id); }
+  // Moves `id` to the top of the stack without computing its distance (cheaper: no count).
+  void Touch(uint64_t id) { Visit<false>(id); }
   // Forgets `id` (its next access is cold again); false if it was not tracked. For samplers that
   // stop following an id (SHARDS fixed-size).
   bool Remove(uint64_t id);
@@ -66,6 +68,8 @@ class StackDistance {
     return LastOfSlow(id, key);
   }
   uint32_t& LastOfSlow(uint64_t id, uint32_t* key);
+  template <bool kDistance>
+  uint64_t Visit(uint64_t id);
   uint32_t* FindHashed(uint64_t id, size_t* slot_index);
   uint64_t LiveAfter(uint32_t p) const;  // live markers at positions > p (p < t_)
   void TreeAdd(uint32_t group, int32_t delta) {

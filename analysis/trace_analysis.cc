@@ -5,6 +5,8 @@
 
 #include <stdexcept>
 
+#include "analysis/parallel_stack_distance.h"
+
 namespace meshreuse {
 
 Granularity ParseGranularity(const std::string& s) {
@@ -54,6 +56,71 @@ TraceAnalysis::TraceAnalysis(const TraceAnalysisOptions& o) : opt_(o) {
     element_.push_back(std::move(e));
     line_.push_back(std::move(l));
   }
+  if (o.workers < 1 || o.workers > 1024) throw std::invalid_argument("workers must be 1..1024");
+  ebuf_.resize(o.threads);
+  lbuf_.resize(o.threads);
+  if (o.workers > 1)
+    for (int t = 0; t < o.threads; ++t) {
+      if (element_[t]) ebuf_[t].reserve(o.batch_per_worker * o.workers);
+      if (line_[t]) lbuf_[t].reserve(o.batch_per_worker * o.workers);
+    }
+}
+
+void TraceAnalysis::Flush(StreamAnalysis& s, std::vector<uint64_t>& buf) {
+  s.AddBatch(buf.data(), buf.size(), opt_.workers);
+  buf.clear();
+}
+
+void TraceAnalysis::Finish() {
+  for (int t = 0; t < threads(); ++t) {
+    if (element_[t] && !ebuf_[t].empty()) Flush(*element_[t], ebuf_[t]);
+    if (line_[t] && !lbuf_[t].empty()) Flush(*line_[t], lbuf_[t]);
+  }
+}
+
+const StreamAnalysis* TraceAnalysis::Done(const StreamAnalysis* s) const {
+  for (int t = 0; t < threads(); ++t)
+    if (!ebuf_[t].empty() || !lbuf_[t].empty())
+      throw std::logic_error("TraceAnalysis: Finish() must be called before reading results");
+  return s;
+}
+
+void StreamAnalysis::AddBatch(const uint64_t* ids, size_t n, int threads) {
+  // Chunks below a few thousand accesses are not worth a thread.
+  const int p = static_cast<int>(std::min<size_t>(std::max(threads, 1), n / 4096 + 1));
+  if (p <= 1) {
+    for (size_t i = 0; i < n; ++i) Add(ids[i]);
+    return;
+  }
+  const uint64_t base = hist.accesses();
+  auto begin = [&](int c) { return n * c / p; };
+  std::vector<ChunkSummary> chunks(p);
+  std::vector<ReuseHistogram> hists(p);
+  std::vector<ReuseProfile> profs(p);
+  const bool prof = profile.enabled();
+#pragma omp parallel for num_threads(p) schedule(static, 1)
+  for (int c = 0; c < p; ++c) {
+    ReuseHistogram& h = hists[c];
+    ReuseProfile& pr = profs[c];
+    if (prof) pr = profile.EmptyCopy();
+    const uint64_t at = base + begin(c);
+    chunks[c] = AnalyzeChunk(ids + begin(c), begin(c + 1) - begin(c), dense_limit,
+                             [&h, &pr, prof, at](size_t i, uint64_t d) {
+                               h.Add(d);
+                               if (prof) pr.AddAt(at + i, d);
+                             });
+  }
+  for (int c = 0; c < p; ++c) {
+    const uint64_t at = base + begin(c);
+    MergeChunk(&sd, chunks[c], [this, prof, at](size_t i, uint64_t d) {
+      hist.Add(d);
+      if (prof) profile.AddAt(at + i, d);
+    });
+    chunks[c] = ChunkSummary();
+    hist.Merge(hists[c]);
+    if (prof) profile.Merge(profs[c]);
+  }
+  profile.SetNext(base + n);
 }
 
 }  // namespace meshreuse

@@ -6,6 +6,7 @@
 //                            and meshlike are synthetic (analysis/synthetic_trace.h)
 //   TextbookFenwick/<trace>  the textbook analyzer (Fenwick tree over every time position, hash
 //                            map of last accesses) on the same trace, for the ratio
+//   ParallelSpeedup/<trace>  serial and 2-thread exact analysis alternated: the speedup
 //   Sweep/plain, Sweep/null  a hand-written Gauss-Seidel sweep with no sink at all, and
 //                            Smooth<NullSink>'s sweep: NullSink must cost nothing
 //   Sweep/analyze            one sweep streamed into the element analyzer (streaming cost)
@@ -13,6 +14,7 @@
 //   Memory/<sweeps>          analyzer bytes per distinct element after 1 and 100 sweeps
 #include <benchmark/benchmark.h>
 
+#include <chrono>
 #include <cstring>
 #include <filesystem>
 #include <map>
@@ -118,6 +120,30 @@ void TextbookFenwick(benchmark::State& state, std::string name) {
     benchmark::DoNotOptimize(h.finite());
   }
   state.SetItemsProcessed(state.iterations() * static_cast<int64_t>(trace.size()));
+}
+
+// The exact parallel analyzer (chunk-and-merge) against the serial one, interleaved: each
+// iteration analyses the trace serially and on `threads` threads (StreamAnalysis, histogram
+// included, one batch), and the ratio of the summed times is the speedup.
+void ParallelSpeedup(benchmark::State& state, std::string name) {
+  const std::vector<uint64_t>& trace = Trace(name);
+  const int threads = static_cast<int>(state.range(0));
+  using Clock = std::chrono::steady_clock;
+  double serial = 0, parallel = 0;
+  for (auto _ : state) {
+    for (int k = 0; k < 2; ++k) {
+      StreamAnalysis s(DenseLimit(name));
+      const auto t0 = Clock::now();
+      s.AddBatch(trace.data(), trace.size(), k == 0 ? 1 : threads);
+      const double secs = std::chrono::duration<double>(Clock::now() - t0).count();
+      (k == 0 ? serial : parallel) += secs;
+      benchmark::DoNotOptimize(s.hist.finite());
+    }
+  }
+  const double it = static_cast<double>(state.iterations());
+  state.counters["serial_Macc_s"] = static_cast<double>(trace.size()) * it / serial / 1e6;
+  state.counters["parallel_Macc_s"] = static_cast<double>(trace.size()) * it / parallel / 1e6;
+  state.counters["speedup"] = serial / parallel;
 }
 
 // A Gauss-Seidel sweep written without any sink: what Smooth<NullSink> must match.
@@ -245,6 +271,12 @@ int main(int argc, char** argv) {
                                  std::string(o))
         ->Unit(benchmark::kMillisecond);
   }
+  for (const char* o : {"ori-8", "bfs-8", "rdr-8", "random-8", "scan", "uniform", "meshlike"})
+    benchmark::RegisterBenchmark(("ParallelSpeedup/" + std::string(o)).c_str(), ParallelSpeedup,
+                                 std::string(o))
+        ->Arg(2)
+        ->Iterations(5)
+        ->Unit(benchmark::kMillisecond);
   benchmark::RegisterBenchmark("Sweep/plain", SweepPlain)->Unit(benchmark::kMillisecond);
   benchmark::RegisterBenchmark("Sweep/null", SweepNull)
       ->UseManualTime()

@@ -1,0 +1,67 @@
+// Exact stack distances on several cores: the chunk-and-merge method of PARDA (Niu, Dinan, Lu and
+// Sadayappan, IPDPS 2012). The trace is cut into P consecutive chunks, analysed independently:
+// an access whose previous access lies in the same chunk gets its exact distance there (the
+// distinct ids between two accesses of one chunk are all in that chunk). What a chunk cannot
+// decide is its first touches, and what it must pass on is the order in which it left its ids; its
+// ChunkSummary holds exactly these two lists. The merge is then a pure function of the stack
+// before the chunk and the chunk's summary:
+//   - first touch k of the chunk (the k-th distinct id it meets) has distance = its depth in the
+//     stack before the chunk, counting only ids the chunk has not met yet, plus k: exactly the
+//     distance it gets when the stack before the chunk is replayed bottom-up and then the chunk's
+//     first touches are accessed in order;
+//   - the stack after the chunk is the stack before with the chunk's ids moved to the top in the
+//     order of their last access: replaying the chunk's own stack bottom-up on top does that.
+// Merge realises both on one StackDistance holding the running stack, in O((first touches +
+// distinct ids of the chunk) log) time, serially, chunk after chunk: that serial part bounds the
+// scaling (see README, "The analyzer in parallel"). Since a stack is a list of ids, the same
+// summaries can be sent between machines (message passing) unchanged.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "analysis/stack_distance.h"
+
+namespace meshreuse {
+
+struct ChunkSummary {
+  std::vector<uint64_t> first_ids;        // the chunk's distinct ids in order of first access
+  std::vector<uint64_t> first_positions;  // where each first access stands in the chunk
+  std::vector<uint64_t> stack;            // the chunk's distinct ids, least recently used first
+};
+
+// Phase 1: distances decided inside ids[0, n): add(i, d) for each such access i (in order).
+template <class Add>
+ChunkSummary AnalyzeChunk(const uint64_t* ids, size_t n, uint64_t dense_limit, Add&& add) {
+  StackDistance sd(dense_limit);
+  ChunkSummary s;
+  for (size_t i = 0; i < n; ++i) {
+    const uint64_t d = sd.Access(ids[i]);
+    if (d == StackDistance::kCold) {
+      s.first_ids.push_back(ids[i]);
+      s.first_positions.push_back(i);
+    } else {
+      add(i, d);
+    }
+  }
+  s.stack = sd.StackBottomUp();
+  return s;
+}
+
+// Phase 2: `stack` holds the stack before the chunk and is left holding the stack after it;
+// add(first_positions[k], d) for each first touch (d = kCold when the id was never seen before).
+template <class Add>
+void MergeChunk(StackDistance* stack, const ChunkSummary& s, Add&& add) {
+  for (size_t k = 0; k < s.first_ids.size(); ++k)
+    add(s.first_positions[k], stack->Access(s.first_ids[k]));
+  for (uint64_t id : s.stack) stack->Touch(id);
+}
+
+// The stack distance of every access of ids, on `threads` OpenMP threads, continuing from the
+// stack in `running` (a fresh StackDistance for a whole trace); equal to the serial analyzer's
+// access for access. Memory: the output plus each chunk's distinct ids.
+std::vector<uint64_t> ParallelStackDistances(const std::vector<uint64_t>& ids, int threads,
+                                             uint64_t dense_limit, StackDistance* running);
+
+}  // namespace meshreuse
