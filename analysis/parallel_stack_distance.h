@@ -55,7 +55,7 @@ template <class Add>
 void MergeChunk(StackDistance* stack, const ChunkSummary& s, Add&& add) {
   for (size_t k = 0; k < s.first_ids.size(); ++k)
     add(s.first_positions[k], stack->Access(s.first_ids[k]));
-  for (uint64_t id : s.stack) stack->Touch(id);
+  stack->TouchAll(s.stack.data(), s.stack.size());
 }
 
 // The stack distance of every access of ids, on `threads` OpenMP threads, continuing from the

@@ -25,7 +25,33 @@ void ReuseHistogram::Merge(const ReuseHistogram& o) {
 }
 
 double ReuseHistogram::mean() const {
-  return finite_ ? static_cast<double>(static_cast<long double>(sum_) / finite_) : NAN;
+  if (!finite_) return NAN;
+  // Integer part exactly, then the remainder: the quotient to within an ulp of the double.
+  const unsigned __int128 q = sum_ / finite_, r = sum_ % finite_;
+  return static_cast<double>(static_cast<long double>(q) +
+                             static_cast<long double>(r) / static_cast<long double>(finite_));
+}
+
+std::vector<MrcPoint> MissRatioCurve(const ReuseHistogram& h) {
+  std::vector<MrcPoint> out;
+  uint64_t misses = h.accesses();
+  out.push_back({0, misses});
+  const std::vector<uint64_t>& c = h.counts();
+  for (size_t d = 0; d < c.size(); ++d)
+    if (c[d]) {
+      misses -= c[d];
+      out.push_back({d + 1, misses});
+    }
+  return out;
+}
+
+std::string ToDecimal(unsigned __int128 v) {
+  std::string s;
+  do {
+    s.insert(s.begin(), static_cast<char>('0' + static_cast<int>(v % 10)));
+    v /= 10;
+  } while (v);
+  return s;
 }
 
 uint64_t ReuseHistogram::max() const {
@@ -87,24 +113,36 @@ ReuseProfile::ReuseProfile(std::vector<uint64_t> lengths, int steps)
 }
 
 void ReuseProfile::AddAt(uint64_t position, uint64_t d) {
-  if (lengths_.empty() || position >= starts_.back()) return;  // past the announced length
-  if (position < starts_[iter_] || position >= starts_[iter_ + 1]) {
-    if (position >= starts_[iter_ + 1] && position < starts_[std::min(iter_ + 2, lengths_.size())])
-      ++iter_;  // the next iteration: the common case when accesses come in order
-    else
-      iter_ = static_cast<size_t>(std::upper_bound(starts_.begin(), starts_.end(), position) -
-                                  starts_.begin()) -
-              1;
+  Step* st;
+  if (position >= step_lo_ && position < step_hi_) {  // the common case: the same step as before
+    st = &steps_[step_];
+  } else {
+    if (lengths_.empty() || position >= starts_.back()) return;  // past the announced length
+    if (position < starts_[iter_] || position >= starts_[iter_ + 1]) {
+      if (position >= starts_[iter_ + 1] &&
+          position < starts_[std::min(iter_ + 2, lengths_.size())])
+        ++iter_;  // the next iteration: the common case when accesses come in order
+      else
+        iter_ = static_cast<size_t>(std::upper_bound(starts_.begin(), starts_.end(), position) -
+                                    starts_.begin()) -
+                1;
+    }
+    // Step s of an iteration of len accesses in k steps holds positions p with
+    // floor(p k / len) = s, i.e. p in [ceil(s len / k), ceil((s + 1) len / k)).
+    using U = unsigned __int128;
+    const uint64_t pos = position - starts_[iter_], len = lengths_[iter_];
+    const uint64_t k = std::min<uint64_t>(nsteps_, len);
+    const uint64_t s = static_cast<uint64_t>(U{pos} * k / len);
+    step_ = first_[iter_] + s;
+    step_lo_ = starts_[iter_] + static_cast<uint64_t>((U{s} * len + k - 1) / k);
+    step_hi_ = starts_[iter_] + static_cast<uint64_t>((U{s + 1} * len + k - 1) / k);
+    st = &steps_[step_];
   }
-  const uint64_t pos = position - starts_[iter_], len = lengths_[iter_];
-  const uint64_t k = std::min<uint64_t>(nsteps_, len);
-  const size_t s = static_cast<size_t>(static_cast<unsigned __int128>(pos) * k / len);
-  Step& st = steps_[first_[iter_] + s];
-  ++st.accesses;
+  ++st->accesses;
   if (d == StackDistance::kCold)
-    ++st.cold;
+    ++st->cold;
   else
-    st.sum += d;
+    st->sum += d;
 }
 
 ReuseProfile ReuseProfile::EmptyCopy() const {
@@ -112,6 +150,7 @@ ReuseProfile ReuseProfile::EmptyCopy() const {
   for (Step& s : p.steps_) s.accesses = s.cold = 0, s.sum = 0;
   p.iter_ = 0;
   p.next_ = 0;
+  p.step_lo_ = p.step_hi_ = 0;
   return p;
 }
 

@@ -31,7 +31,8 @@ class ReuseHistogram {
   uint64_t accesses() const { return finite_ + cold_; }
   uint64_t finite() const { return finite_; }
   uint64_t cold() const { return cold_; }
-  double mean() const;   // of the finite distances; NaN when there are none
+  double mean() const;  // of the finite distances, the double nearest sum/finite; NaN when none
+  unsigned __int128 sum() const { return sum_; }  // of the finite distances, exact
   uint64_t max() const;  // largest finite distance (0 when none)
   // Throws std::invalid_argument for x outside [0, 1] and std::domain_error when there are no
   // finite distances.
@@ -50,6 +51,16 @@ class ReuseHistogram {
   uint64_t finite_ = 0, cold_ = 0;
   unsigned __int128 sum_ = 0;  // exact: distances are integers (long double was x87, and slow)
 };
+
+// The miss-ratio curve of a fully associative LRU cache, exact: misses(c) = cold + distances >= c.
+// One point per capacity where the curve changes (c = 0, then d + 1 for every observed d), so the
+// curve between points is flat.
+struct MrcPoint {
+  uint64_t capacity, misses;
+};
+std::vector<MrcPoint> MissRatioCurve(const ReuseHistogram& h);
+
+std::string ToDecimal(unsigned __int128 v);
 
 // Mean reuse distance over time: each iteration (sweep) of the stream cut into `steps` equal
 // parts (an iteration shorter than that: one step per access), as the paper's carabiner profile
@@ -83,6 +94,8 @@ class ReuseProfile {
   std::vector<size_t> first_;  // index of each iteration's first step
   size_t iter_ = 0;            // the iteration of the last AddAt (a cursor: accesses come in order)
   uint64_t next_ = 0;
+  size_t step_ = 0;                       // the step of positions [step_lo_, step_hi_)
+  uint64_t step_lo_ = 0, step_hi_ = 0;
 };
 
 }  // namespace meshreuse

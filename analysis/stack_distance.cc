@@ -19,8 +19,8 @@ inline uint32_t Popcount(uint64_t x) { return static_cast<uint32_t>(__builtin_po
 constexpr uint32_t kGroup = 512;
 }  // namespace
 
-StackDistance::StackDistance(uint64_t dense_limit, uint32_t min_capacity)
-    : dense_limit_(std::min<uint64_t>(dense_limit, kHashedBit)),
+StackDistance::StackDistance(uint64_t dense_ids, uint32_t min_capacity)
+    : dense_ids_(std::min<uint64_t>(dense_ids, kHashedBit)),
       min_capacity_(std::max<uint32_t>(kGroup, (min_capacity + kGroup - 1) & ~(kGroup - 1))) {
   // A small window to start with: a stream's memory follows its own accesses (a trace announcing
   // 256 thread streams with a handful of records each costs a few kilobytes per stream).
@@ -46,12 +46,47 @@ uint32_t* StackDistance::FindHashed(uint64_t id, size_t* slot_index) {
   return keys_[j] == id ? &hashed_last_[slots_[j]] : nullptr;
 }
 
+void StackDistance::GrowDense(uint64_t id) {
+  const uint64_t old = dense_last_.size();
+  const uint64_t cap = id < dense_ids_ ? dense_ids_ : kHashedBit;
+  dense_last_.resize(std::max<uint64_t>(id + 1, std::min<uint64_t>(cap, 2 * old)), kNone);
+  if (hash_used_ == 0) return;
+  // Hashed ids now inside the array move there (their markers' owners too); the table is rebuilt
+  // from the rest. O(table), amortised by the doubling.
+  const uint64_t now = dense_last_.size();
+  std::vector<uint64_t> keep_keys;
+  std::vector<uint32_t> keep_slots;
+  for (size_t i = 0; i < keys_.size(); ++i) {
+    if (keys_[i] == kEmptyKey) continue;
+    if (keys_[i] >= now) {
+      keep_keys.push_back(keys_[i]);
+      keep_slots.push_back(slots_[i]);
+      continue;
+    }
+    const uint32_t slot = slots_[i];
+    const uint32_t pos = hashed_last_[slot];
+    dense_last_[keys_[i]] = pos;
+    if (pos != kNone) owner_[pos] = static_cast<uint32_t>(keys_[i]);
+    hashed_last_[slot] = kNone;
+    free_slots_.push_back(slot);
+  }
+  if (keep_keys.size() == hash_used_) return;
+  std::fill(keys_.begin(), keys_.end(), kEmptyKey);
+  const size_t mask = keys_.size() - 1;
+  for (size_t k = 0; k < keep_keys.size(); ++k) {
+    size_t j = Mix(keep_keys[k]) & mask;
+    while (keys_[j] != kEmptyKey) j = (j + 1) & mask;
+    keys_[j] = keep_keys[k];
+    slots_[j] = keep_slots[k];
+  }
+  hash_used_ = keep_keys.size();
+}
+
 uint32_t& StackDistance::LastOfSlow(uint64_t id, uint32_t* key) {
-  if (id < dense_limit_) {
-    if (id >= dense_last_.size())
-      dense_last_.resize(
-          std::max<uint64_t>(id + 1, std::min<uint64_t>(dense_limit_, 2 * dense_last_.size())),
-          kNone);
+  // Not covered by the array (the inline path takes those). Grow it over `id` when `id` is in the
+  // known-dense range, or when the array would stay within 8 entries per distinct id (+ 64 Ki).
+  if (id < dense_ids_ || (id < kHashedBit && id < 8 * (distinct_ + 8192))) {
+    GrowDense(id);
     *key = static_cast<uint32_t>(id);
     return dense_last_[id];
   }
@@ -142,8 +177,8 @@ template uint64_t StackDistance::Visit<false>(uint64_t);
 bool StackDistance::Remove(uint64_t id) {
   uint32_t* last = nullptr;
   size_t j = 0;
-  if (id < dense_limit_) {
-    if (id < dense_last_.size() && dense_last_[id] != kNone) last = &dense_last_[id];
+  if (id < dense_last_.size()) {
+    if (dense_last_[id] != kNone) last = &dense_last_[id];
   } else if (id != kEmptyKey) {
     last = FindHashed(id, &j);
   }
@@ -151,7 +186,7 @@ bool StackDistance::Remove(uint64_t id) {
   ClearMarker(*last);
   --live_;
   *last = kNone;
-  if (id >= dense_limit_) {  // free the slot; backward-shift deletion keeps probing exact
+  if (id >= dense_last_.size()) {  // free the slot; backward-shift deletion keeps probing exact
     free_slots_.push_back(slots_[j]);
     const size_t mask = keys_.size() - 1;
     size_t hole = j;
@@ -196,14 +231,47 @@ void StackDistance::CloseGroups() {
   }
 }
 
-void StackDistance::Compact() {
+void StackDistance::TouchAll(const uint64_t* ids, size_t n) {
+  if (n * 8 < live_ || n < 4096) {
+    for (size_t i = 0; i < n; ++i) Touch(ids[i]);
+    return;
+  }
+  // Take the ids out of the stack (bits only: the tree is rebuilt), renumber what is left, then
+  // append them in order.
+  accesses_ += n;
+  for (size_t i = 0; i < n; ++i) {
+    uint32_t key;
+    uint32_t& last = LastOf(ids[i], &key);
+    if (last == kNone) {
+      ++distinct_;
+    } else {
+      bits_[last >> 6] &= ~(uint64_t{1} << (last & 63));
+      --live_;
+    }
+    last = kNone;
+  }
+  Compact(n);
+  for (size_t i = 0; i < n; ++i) {
+    uint32_t key;
+    uint32_t& last = LastOf(ids[i], &key);
+    if (last != kNone) throw std::invalid_argument("TouchAll: the ids must be distinct");
+    bits_[t_ >> 6] |= uint64_t{1} << (t_ & 63);
+    owner_[t_] = key;
+    last = t_++;
+    ++live_;
+  }
+  // The appended markers are all live: groups wholly below t_ are full.
+  for (; closed_ < (t_ >> kGroupShift); ++closed_) TreeAdd(closed_, static_cast<int32_t>(kGroup));
+}
+
+void StackDistance::Compact(uint64_t extra) {
   ++compactions_;
   // A window of 4x the live markers: compaction (O(window)) then runs once per 3x live accesses;
   // the window costs 4 bytes of owner_ per position, so 16 bytes per distinct id.
   // The floor (min_capacity, fewer compactions) applies once the stream is that long, so the
   // window never exceeds 4x the larger of the live ids and the accesses so far.
-  uint64_t want =
-      std::max<uint64_t>(std::min<uint64_t>(min_capacity_, 4 * accesses_), 4 * live_ + 64);
+  uint64_t want = std::max<uint64_t>(std::min<uint64_t>(min_capacity_, 4 * accesses_),
+                                     4 * (live_ + extra) + 64);
   want = (want + kGroup - 1) & ~uint64_t{kGroup - 1};
   if (want >= kHashedBit) throw std::length_error("too many distinct ids for the analyzer");
   std::vector<uint32_t> owner(want);

@@ -14,7 +14,7 @@
 // enters the tree, in one update, when the clock leaves it, so an access costs one tree update (the
 // removal of the old marker), not two. When the time axis fills, live markers are renumbered
 // compactly (compaction) into a window 4x the live count, so memory follows the number of distinct
-// ids, never the trace length: about 21 bytes per distinct id for dense ids (below `dense_limit`, a
+// ids, never the trace length: about 21 bytes per distinct id for dense ids (a
 // direct array), plus a hash table entry for others. Counters are 64-bit; positions inside the
 // window are 32-bit.
 #pragma once
@@ -30,9 +30,12 @@ class StackDistance {
  public:
   static constexpr uint64_t kCold = std::numeric_limits<uint64_t>::max();
 
-  // Ids below dense_limit (at most 2^31) live in a direct array; larger ones in a hash table.
-  explicit StackDistance(uint64_t dense_limit = uint64_t{1} << 26,
-                         uint32_t min_capacity = 1u << 16);
+  // Ids live in a direct array (one 4-byte entry per id up to the largest covered) or a hash
+  // table. Ids below dense_ids (a known-dense range, e.g. vertex ids) are always direct; the array
+  // grows over larger ids (below 2^31) while it stays within 8 entries per distinct id seen (plus
+  // 64 Ki), so small-id traces of unknown range get the direct path too without letting one large
+  // id cost gigabytes; hashed ids move into the array when it grows over them.
+  explicit StackDistance(uint64_t dense_ids = 0, uint32_t min_capacity = 1u << 16);
   StackDistance(StackDistance&&) = default;
   StackDistance& operator=(StackDistance&&) = default;
   StackDistance(const StackDistance&) = delete;
@@ -41,6 +44,9 @@ class StackDistance {
   uint64_t Access(uint64_t id) { return Visit<true>(id); }
   // Moves `id` to the top of the stack without computing its distance (cheaper: no count).
   void Touch(uint64_t id) { Visit<false>(id); }
+  // Touch(ids[0]), ..., Touch(ids[n-1]) for distinct ids; when they are a sizeable part of the
+  // stack, by one sequential renumbering (as a compaction) instead of n scattered moves.
+  void TouchAll(const uint64_t* ids, size_t n);
   // Forgets `id` (its next access is cold again); false if it was not tracked. For samplers that
   // stop following an id (SHARDS fixed-size).
   bool Remove(uint64_t id);
@@ -71,6 +77,7 @@ class StackDistance {
   template <bool kDistance>
   uint64_t Visit(uint64_t id);
   uint32_t* FindHashed(uint64_t id, size_t* slot_index);
+  void GrowDense(uint64_t id);  // cover id, moving hashed ids in the new range into the array
   uint64_t LiveAfter(uint32_t p) const;  // live markers at positions > p (p < t_)
   void TreeAdd(uint32_t group, int32_t delta) {
     for (uint32_t i = group + 1; i < tree_.size(); i += i & (0u - i)) tree_[i] += delta;
@@ -80,9 +87,9 @@ class StackDistance {
     if ((p >> kGroupShift) < closed_) TreeAdd(p >> kGroupShift, -1);
   }
   void CloseGroups();  // every group wholly before t_ into the tree
-  void Compact();
+  void Compact(uint64_t extra = 0);  // renumber the live markers into a window for live + extra
 
-  uint64_t dense_limit_;
+  uint64_t dense_ids_;
   uint32_t min_capacity_;
   std::vector<uint32_t> dense_last_;   // by id
   std::vector<uint32_t> hashed_last_;  // by hash slot number

@@ -1,8 +1,6 @@
 // TraceAnalysis and the small parsers; see trace_analysis.h.
 #include "analysis/trace_analysis.h"
 
-#include <sys/stat.h>
-
 #include <stdexcept>
 
 #include "analysis/parallel_stack_distance.h"
@@ -24,14 +22,36 @@ ExternalFormat ParseExternalFormat(const std::string& s) {
   if (s == "text") return ExternalFormat::kText;
   if (s == "u32") return ExternalFormat::kU32;
   if (s == "u64") return ExternalFormat::kU64;
-  throw std::invalid_argument("unknown trace format '" + s + "' (text, u32 or u64)");
+  if (s == "parda") return ExternalFormat::kParda;
+  if (s == "oracle" || s == "oracleGeneral") return ExternalFormat::kOracle;
+  if (s == "lackey") return ExternalFormat::kLackey;
+  throw std::invalid_argument("unknown trace format '" + s +
+                              "' (text, u32, u64, parda, oracle or lackey)");
+}
+
+size_t ExternalRecordBytes(ExternalFormat fmt) {
+  switch (fmt) {
+    case ExternalFormat::kU32:
+      return 4;
+    case ExternalFormat::kU64:
+    case ExternalFormat::kParda:
+      return 8;
+    case ExternalFormat::kOracle:
+      return 24;
+    default:
+      return 0;
+  }
 }
 
 uint64_t ExternalTraceLength(const std::string& path, ExternalFormat fmt) {
-  if (fmt == ExternalFormat::kText || path == "-") return 0;
-  struct stat st {};
-  if (::stat(path.c_str(), &st) != 0 || !S_ISREG(st.st_mode)) return 0;
-  return static_cast<uint64_t>(st.st_size) / (fmt == ExternalFormat::kU32 ? 4 : 8);
+  const size_t w = ExternalRecordBytes(fmt);
+  if (w == 0 || path == "-") return 0;
+  try {
+    InputStream in(path);
+    return in.size() > 0 ? static_cast<uint64_t>(in.size()) / w : 0;
+  } catch (const InputError&) {
+    return 0;  // the reader reports it
+  }
 }
 
 TraceAnalysis::TraceAnalysis(const TraceAnalysisOptions& o) : opt_(o) {
@@ -46,11 +66,12 @@ TraceAnalysis::TraceAnalysis(const TraceAnalysisOptions& o) : opt_(o) {
                            !o.line_iteration_lengths[t].empty();
     std::unique_ptr<StreamAnalysis> e, l;
     if (static_cast<int>(o.granularity) & static_cast<int>(Granularity::kElement)) {
-      e = std::make_unique<StreamAnalysis>(o.dense_elements);
+      e = std::make_unique<StreamAnalysis>(o.dense_elements, o.exact,
+                                           o.sample ? &o.shards : nullptr);
       if (prof) e->profile = ReuseProfile(o.iteration_lengths[t], o.profile_steps);
     }
     if (static_cast<int>(o.granularity) & static_cast<int>(Granularity::kLine)) {
-      l = std::make_unique<StreamAnalysis>(0);
+      l = std::make_unique<StreamAnalysis>(0, o.exact, o.sample ? &o.shards : nullptr);
       if (line_prof) l->profile = ReuseProfile(o.line_iteration_lengths[t], o.profile_steps);
     }
     element_.push_back(std::move(e));
@@ -75,6 +96,8 @@ void TraceAnalysis::Finish() {
   for (int t = 0; t < threads(); ++t) {
     if (element_[t] && !ebuf_[t].empty()) Flush(*element_[t], ebuf_[t]);
     if (line_[t] && !lbuf_[t].empty()) Flush(*line_[t], lbuf_[t]);
+    for (StreamAnalysis* s : {element_[t].get(), line_[t].get()})
+      if (s && s->shards) s->shards->Finish();
   }
 }
 
@@ -86,9 +109,20 @@ const StreamAnalysis* TraceAnalysis::Done(const StreamAnalysis* s) const {
 }
 
 void StreamAnalysis::AddBatch(const uint64_t* ids, size_t n, int threads) {
+  if (shards)
+    for (size_t i = 0; i < n; ++i) shards->Access(ids[i]);
+  if (!exact) return;
   // Chunks below a few thousand accesses are not worth a thread.
   const int p = static_cast<int>(std::min<size_t>(std::max(threads, 1), n / 4096 + 1));
   if (p <= 1) {
+    if (shards) {  // sampled above already
+      for (size_t i = 0; i < n; ++i) {
+        const uint64_t d = sd.Access(ids[i]);
+        hist.Add(d);
+        if (profile.enabled()) profile.Add(d);
+      }
+      return;
+    }
     for (size_t i = 0; i < n; ++i) Add(ids[i]);
     return;
   }
@@ -100,8 +134,11 @@ void StreamAnalysis::AddBatch(const uint64_t* ids, size_t n, int threads) {
   const bool prof = profile.enabled();
 #pragma omp parallel for num_threads(p) schedule(static, 1)
   for (int c = 0; c < p; ++c) {
-    ReuseHistogram& h = hists[c];
-    ReuseProfile& pr = profs[c];
+    // The partial histogram and profile live on this thread's stack while they are filled:
+    // neighbouring elements of one vector would share cache lines between the threads (false
+    // sharing halved each thread's speed).
+    ReuseHistogram h;
+    ReuseProfile pr;
     if (prof) pr = profile.EmptyCopy();
     const uint64_t at = base + begin(c);
     chunks[c] = AnalyzeChunk(ids + begin(c), begin(c + 1) - begin(c), dense_limit,
@@ -109,6 +146,8 @@ void StreamAnalysis::AddBatch(const uint64_t* ids, size_t n, int threads) {
                                h.Add(d);
                                if (prof) pr.AddAt(at + i, d);
                              });
+    hists[c] = std::move(h);
+    profs[c] = std::move(pr);
   }
   for (int c = 0; c < p; ++c) {
     const uint64_t at = base + begin(c);

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "analysis/reuse_histogram.h"
+#include "analysis/shards.h"
 #include "analysis/stack_distance.h"
 #include "tracer/sink.h"
 
@@ -22,17 +23,26 @@ Granularity ParseGranularity(const std::string& s);  // element | line | both
 const char* GranularityName(Granularity g);
 
 struct StreamAnalysis {
-  explicit StreamAnalysis(uint64_t dense_limit) : sd(dense_limit), dense_limit(dense_limit) {
-    hist.Reserve(dense_limit);
+  // exact: the exact analyzer runs; sample: SHARDS runs too (both: its error can be measured).
+  explicit StreamAnalysis(uint64_t dense_limit, bool exact = true,
+                          const ShardsOptions* sample = nullptr)
+      : sd(exact ? dense_limit : 0), dense_limit(dense_limit), exact(exact) {
+    if (exact) hist.Reserve(dense_limit);
+    if (sample) shards = std::make_unique<Shards>(*sample);
   }
   StackDistance sd;  // the stream's LRU stack (its distinct() is the stream's distinct ids)
   ReuseHistogram hist;
   ReuseProfile profile;
   uint64_t dense_limit;
+  bool exact;
+  std::unique_ptr<Shards> shards;
   void Add(uint64_t id) {
-    const uint64_t d = sd.Access(id);
-    hist.Add(d);
-    if (profile.enabled()) profile.Add(d);
+    if (exact) {
+      const uint64_t d = sd.Access(id);
+      hist.Add(d);
+      if (profile.enabled()) profile.Add(d);
+    }
+    if (shards) shards->Access(id);
   }
   // The next n accesses at once, on `threads` OpenMP threads (parallel_stack_distance.h): the
   // same histogram and profile as n calls of Add.
@@ -54,6 +64,10 @@ struct TraceAnalysisOptions {
   // Finish() before reading the results.
   int workers = 1;
   size_t batch_per_worker = size_t{1} << 22;
+  // Sampling (SHARDS) beside or instead of the exact analysis.
+  bool exact = true;
+  bool sample = false;
+  ShardsOptions shards;
 };
 
 class TraceAnalysis {
@@ -70,7 +84,8 @@ class TraceAnalysis {
     Feed(*line_[thread], lbuf_[thread], first);
     if (last != first) Feed(*line_[thread], lbuf_[thread], last);
   }
-  void Finish();  // analyses what is buffered (workers > 1); results are complete after it
+  // Analyses what is buffered (workers > 1) and closes the samplers; call it once at the end.
+  void Finish();
   int threads() const { return static_cast<int>(element_.size()); }
   bool has_lines() const {
     return static_cast<int>(opt_.granularity) & static_cast<int>(Granularity::kLine);
@@ -107,14 +122,26 @@ struct AnalysisSink {
   }
 };
 
-// Other tools' traces: one id or address per record. Text: a decimal or 0x-hex number per line,
-// '#' comments and blank lines skipped ("-" reads stdin). u32 / u64: raw little-endian values.
-// Calls `add(value)` for each; throws InputError naming the file and line (text) or byte offset.
-enum class ExternalFormat { kText, kU32, kU64 };
+// Other tools' traces, each record one access (value, size in bytes):
+//   text    a decimal or 0x-hex id per line, '#' comments and blank lines skipped ("-": stdin)
+//   u32/u64 raw little-endian values, 4 or 8 bytes each
+//   parda   PARDA's binary input (Niu et al.): the 8-byte pointers it freads, little-endian on
+//           x86-64 -- the same bytes as u64
+//   oracle  libCacheSim's oracleGeneral: 24-byte packed little-endian records {uint32 clock,
+//           uint64 obj_id, uint32 obj_size, int64 next_access_vtime}; the id is obj_id
+//   lackey  valgrind --tool=lackey --trace-mem=yes output as is: " L addr,size", " S", " M" (a
+//           modify is a load then a store), "I" (instruction fetches, skipped unless
+//           `instructions`); valgrind's "==PID==" lines skipped
+// Any of them may be zstd-compressed (read transparently). Calls add(value, size); throws
+// InputError naming the file and the line (text, lackey) or record and byte offset (binary).
+enum class ExternalFormat { kText, kU32, kU64, kParda, kOracle, kLackey };
 ExternalFormat ParseExternalFormat(const std::string& s);
+size_t ExternalRecordBytes(ExternalFormat fmt);  // 0 for the line formats
 template <class F>
-void ReadExternalTrace(const std::string& path, ExternalFormat fmt, F&& add);
-uint64_t ExternalTraceLength(const std::string& path, ExternalFormat fmt);  // 0 if unknown (text)
+void ReadExternalTrace(const std::string& path, ExternalFormat fmt, F&& add,
+                       bool instructions = false);
+// Accesses in a binary trace (from its size, decompressed when zstd records it); 0 if unknown.
+uint64_t ExternalTraceLength(const std::string& path, ExternalFormat fmt);
 
 }  // namespace meshreuse
 

@@ -83,3 +83,17 @@ Mesh LayOut(const std::string& path, const std::string& ordering, uint64_t seed,
 }
 
 }  // namespace meshreuse::cli
+
+namespace meshreuse::cli {
+
+void CheckWritable(const std::string& path) {
+  const std::filesystem::path p(path);
+  const std::filesystem::path dir = p.has_parent_path() ? p.parent_path() : ".";
+  std::error_code ec;
+  if (!std::filesystem::is_directory(dir, ec))
+    throw po::error("cannot write '" + path + "': '" + dir.string() + "' is not a folder");
+  if (std::filesystem::is_directory(p, ec))
+    throw po::error("cannot write '" + path + "': it is a folder");
+}
+
+}  // namespace meshreuse::cli

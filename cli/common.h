@@ -14,6 +14,9 @@ namespace meshreuse::cli {
 
 Mesh LoadMesh(const std::string& path, const Progress& progress);
 void WriteText(const std::string& path, const std::string& text);
+// Before any work: an output file's folder must exist and be a folder (po::error otherwise), so a
+// long run does not fail at its last step.
+void CheckWritable(const std::string& path);
 std::vector<std::string> SplitList(const std::string& s);  // "a,b,,c" -> {a, b, c}
 // Throws a usage error (exit 2) for an empty list or a name the ordering registry does not know,
 // before any work is done.

@@ -34,17 +34,23 @@ struct Cursor {
 }  // namespace
 
 bool TraceReader::LooksLikeTrace(const std::string& path) {
-  std::FILE* f = std::fopen(path.c_str(), "rb");
-  if (!f) return false;
-  char m[8] = {};
-  const bool ok = std::fread(m, 1, 8, f) == 8 && std::memcmp(m, kTraceMagic, 8) == 0;
-  std::fclose(f);
-  return ok;
+  try {
+    InputStream in(path);
+    char m[8] = {};
+    return in.Read(m, 8) == 8 && std::memcmp(m, kTraceMagic, 8) == 0;
+  } catch (const InputError&) {
+    return false;
+  }
 }
 
 TraceReader::TraceReader(std::string path) : path_(std::move(path)) {
-  in_ = std::make_unique<InputFile>(path_);  // owns the handle: released however this ends
-  if (in_->size() < 0) throw InputError(path_, 0, "a meshreuse trace must be a regular file");
+  in_ = std::make_unique<InputStream>(path_);  // owns the handle: released however this ends
+  if (in_->size() < 0)
+    throw InputError(path_, 0,
+                     in_->compressed() ? "a compressed meshreuse trace must record its size in "
+                                         "the zstd frame header (meshreuse trace --compress and "
+                                         "the zstd tool do)"
+                                       : "a meshreuse trace must be a regular file");
   std::vector<char> fixed(48);
   const size_t got = in_->Read(fixed.data(), fixed.size());
   if (got < 8 || std::memcmp(fixed.data(), kTraceMagic, 8) != 0)

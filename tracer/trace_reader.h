@@ -1,4 +1,5 @@
-// Streaming reader of the binary trace: the header up front, then records in blocks, so memory
+// Streaming reader of the binary trace, plain or zstd-compressed (input_stream.h): the header up
+// front, then records in blocks, so memory
 // does not grow with the trace. Rejects, with InputError naming the file and the byte offset: a
 // wrong magic (not a meshreuse trace), an unknown version, a header that does not fit or
 // contradicts itself (per-sweep counts that do not add up to the record count, sweeps that do not
@@ -12,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "core/input_file.h"
+#include "tracer/input_stream.h"
 #include "tracer/trace_format.h"
 
 namespace meshreuse {
@@ -33,7 +34,7 @@ class TraceReader {
 
  private:
   std::string path_;
-  std::unique_ptr<InputFile> in_;
+  std::unique_ptr<InputStream> in_;
   TraceHeader header_;
   uint64_t left_ = 0;
 };

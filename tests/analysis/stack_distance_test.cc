@@ -146,6 +146,24 @@ TEST(StackDistance, ScanUniformAndMixedTracesMatchTheTextbook) {
   for (size_t i = 0; i < d.size(); ++i) ASSERT_EQ(d[i], i < 70000 ? kCold : 69999u);
 }
 
+// Ids of unknown range (dense_ids = 0): large ids first go to the hash table, then move into
+// the direct array as it grows over them (owners renumbered); distances stay exact throughout.
+TEST(StackDistance, HashedIdsMoveIntoTheArrayAsItGrows) {
+  std::vector<uint64_t> t;
+  for (uint64_t id = 399999; id > 300000; id -= 997) t.push_back(id);  // large ids first
+  const std::vector<uint64_t> u = UniformTrace(400000, 500000, 8);
+  t.insert(t.end(), u.begin(), u.end());
+  t.insert(t.end(), u.begin(), u.begin() + 1000);
+  t.push_back(uint64_t{1} << 40);  // stays hashed
+  t.push_back(uint64_t{1} << 40);
+  EXPECT_EQ(Distances(t, 0, 512), TextbookStackDistances(t));
+  // One huge id among few does not buy a huge array.
+  StackDistance sd(0);
+  sd.Access(2000000000);
+  sd.Access(1);
+  EXPECT_LT(sd.MemoryBytes(), size_t{1} << 20);
+}
+
 // An LRU stack as a plain list (bottom first), with removal: the reference for Remove and
 // StackBottomUp.
 struct ListStack {

@@ -139,12 +139,12 @@ PY
 grep -q '^input,ordering,thread,granularity,lo,hi,count' "$tmp/h.csv" && pass=$((pass + 1)) || { fail=$((fail + 1)); echo "FAIL histogram csv"; }
 printf '1\n2\n0x1\n# c\n3\n2\n' >"$tmp/ext.txt"
 check "analyze text" 0 "$bin" analyze "$tmp/ext.txt" --format text --granularity element --csv --quiet
-contains "analyze text" "$tmp/ext.txt,-,0,element,5,-,3,3,1.5,1,2,2,2"  # ids 1 2 1 3 2: distances 1, 2
+contains "analyze text" "$tmp/ext.txt,-,0,element,5,-,3,3,3,1.5,1,2,2,2"  # ids 1 2 1 3 2: distances 1, 2
 check "analyze stdin" 0 bash -c "printf '5\n5\n' | '$bin' analyze - --format text --granularity element --csv --quiet"
-contains "analyze stdin" "-,-,0,element,2,-,1,1,0.0,0,0,0,0"
+contains "analyze stdin" "-,-,0,element,2,-,1,1,0,0,0,0,0,0"
 /usr/bin/python3 -c 'import struct,sys; open(sys.argv[1],"wb").write(struct.pack("<4Q",7,8,7,8))' "$tmp/ext.u64"
 check "analyze u64" 0 "$bin" analyze "$tmp/ext.u64" --format u64 --granularity element --csv --quiet
-contains "analyze u64" ",element,4,-,2,2,1.0,1,1,1,1"
+contains "analyze u64" ",element,4,-,2,2,2,1,1,1,1,1"
 printf 'MRTRACEX' >"$tmp/bad.trace"
 check "analyze bad trace" 2 "$bin" analyze "$tmp/bad.trace" --quiet
 contains "analyze bad trace" "meshreuse: error: $tmp/bad.trace: not a meshreuse trace (wrong magic"

@@ -102,7 +102,7 @@ TEST_P(BrokenInput, FailsWithFileLineAndProblem) {
     } else if (c.kind == "perm") {
       ComputeOrdering("file:" + path, testing::TwoInterior(), 1);
     } else {
-      ReadExternalTrace(path, ParseExternalFormat(c.kind), [](uint64_t) {});
+      ReadExternalTrace(path, ParseExternalFormat(c.kind), [](uint64_t, uint32_t) {});
     }
     FAIL() << c.file << " was accepted";
   } catch (const InputError& e) {
@@ -214,7 +214,7 @@ TEST(HostileInput, DirectoriesAndDevicesAreRefusedByName) {
   expect([&] { ComputeOrdering("file:/dev/zero", testing::TwoInterior(), 1); }, "/dev/zero",
          "is a character device");
   for (ExternalFormat f : {ExternalFormat::kText, ExternalFormat::kU32, ExternalFormat::kU64})
-    expect([&] { ReadExternalTrace(tmp.path().string(), f, [](uint64_t) {}); }, tmp.path().string(),
+    expect([&] { ReadExternalTrace(tmp.path().string(), f, [](uint64_t, uint32_t) {}); }, tmp.path().string(),
            "is a directory, not a file");
   expect([&] { TraceReader r(tmp.path().string()); }, tmp.path().string(), "is a directory");
 }

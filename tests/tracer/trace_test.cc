@@ -476,11 +476,11 @@ TEST(ExternalTrace, TextAndBinary) {
   const std::string text = (dir / ("meshreuse-ext-" + std::to_string(::getpid()))).string();
   std::ofstream(text) << "# a comment\n1\n0x10\n  2  \n\n0X1f # trailing\n";
   std::vector<uint64_t> got;
-  ReadExternalTrace(text, ExternalFormat::kText, [&](uint64_t v) { got.push_back(v); });
+  ReadExternalTrace(text, ExternalFormat::kText, [&](uint64_t v, uint32_t) { got.push_back(v); });
   EXPECT_EQ(got, (std::vector<uint64_t>{1, 16, 2, 31}));
   std::ofstream(text) << "1\n2\nzz\n";
   try {
-    ReadExternalTrace(text, ExternalFormat::kText, [](uint64_t) {});
+    ReadExternalTrace(text, ExternalFormat::kText, [](uint64_t, uint32_t) {});
     ADD_FAILURE();
   } catch (const InputError& e) {
     EXPECT_EQ(e.line(), 3);
@@ -489,10 +489,10 @@ TEST(ExternalTrace, TextAndBinary) {
   const uint32_t u32[3] = {5, 0, 4000000000u};
   std::ofstream(text, std::ios::binary).write(reinterpret_cast<const char*>(u32), sizeof u32);
   got.clear();
-  ReadExternalTrace(text, ExternalFormat::kU32, [&](uint64_t v) { got.push_back(v); });
+  ReadExternalTrace(text, ExternalFormat::kU32, [&](uint64_t v, uint32_t) { got.push_back(v); });
   EXPECT_EQ(got, (std::vector<uint64_t>{5, 0, 4000000000u}));
   EXPECT_EQ(ExternalTraceLength(text, ExternalFormat::kU32), 3u);
-  EXPECT_THROW(ReadExternalTrace(text, ExternalFormat::kU64, [](uint64_t) {}),
+  EXPECT_THROW(ReadExternalTrace(text, ExternalFormat::kU64, [](uint64_t, uint32_t) {}),
                InputError);  // 12 bytes
   fs::remove(text);
 }

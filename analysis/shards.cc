@@ -1,0 +1,97 @@
+// Shards; see shards.h.
+#include "analysis/shards.h"
+
+#include <cmath>
+#include <stdexcept>
+
+namespace meshreuse {
+
+Shards::Shards(const ShardsOptions& o)
+    : opt_(o), seed_mix_(o.seed * 0x9E3779B97F4A7C15ull + 0x632BE59BD9B4E019ull), sd_(0) {
+  if (o.s_max == 0 && !(o.rate > 0 && o.rate <= 1))
+    throw std::invalid_argument("the sampling rate must be in (0, 1]");
+  threshold_ = o.s_max ? uint64_t{1} << 56
+                       : static_cast<uint64_t>(std::ldexp(o.rate, 56));
+  if (threshold_ == 0) threshold_ = 1;
+}
+
+void Shards::Sampled(uint64_t id, uint64_t h) {
+  ++samples_;
+  const double r = rate();
+  const uint64_t d = sd_.Access(id);
+  const double w = 1.0 / r;
+  total_ += w;
+  if (d == StackDistance::kCold) {
+    cold_ += w;
+    distinct_ += w;
+    if (opt_.s_max) {
+      heap_.emplace(h, id);
+      if (heap_.size() > opt_.s_max) {  // drop the largest hash; the threshold falls to it
+        threshold_ = heap_.top().first;
+        while (!heap_.empty() && heap_.top().first >= threshold_) {
+          sd_.Remove(heap_.top().second);
+          heap_.pop();
+        }
+      }
+    }
+    return;
+  }
+  weight_[static_cast<uint64_t>(std::llround(static_cast<double>(d) / r))] += w;
+}
+
+void Shards::Finish() {
+  if (finished_) return;
+  finished_ = true;
+  if (opt_.s_max || !opt_.adjust) return;
+  // SHARDS_adj: the expected weight is the access count; the shortfall (or excess) of the
+  // samples goes to the smallest distance.
+  const double diff = static_cast<double>(accesses_) - total_;
+  weight_[0] += diff;
+  total_ += diff;
+}
+
+double Shards::MissRatio(uint64_t capacity) const {
+  if (total_ <= 0) return NAN;
+  double miss = cold_;
+  for (auto it = weight_.lower_bound(capacity); it != weight_.end(); ++it) miss += it->second;
+  return std::min(1.0, std::max(0.0, miss / total_));
+}
+
+double Shards::Mean() const {
+  double s = 0, w = 0;
+  for (const auto& [d, x] : weight_) s += static_cast<double>(d) * x, w += x;
+  return w > 0 ? s / w : NAN;
+}
+
+uint64_t Shards::Quantile(double x) const {
+  if (!(x >= 0.0 && x <= 1.0)) throw std::invalid_argument("a quantile must be between 0 and 1");
+  double finite = 0;
+  for (const auto& kv : weight_) finite += kv.second;
+  if (weight_.empty() || finite <= 0) throw std::domain_error("no finite reuse distances");
+  double cum = 0;
+  for (const auto& [d, w] : weight_) {
+    cum += w;
+    if (cum >= x * finite * (1 - 1e-12)) return d;
+  }
+  return weight_.rbegin()->first;
+}
+
+double MrcMeanAbsoluteError(const ReuseHistogram& exact, const Shards& est) {
+  const uint64_t top = exact.max() + 1;
+  if (exact.accesses() == 0) return NAN;
+  // Both curves walked once from capacity 1 upwards: miss(c) = cold + count of distances >= c.
+  const std::vector<uint64_t>& counts = exact.counts();
+  double exact_miss = static_cast<double>(exact.accesses());  // capacity 0: every access misses
+  double est_miss = est.total_weight();
+  auto it = est.weights().begin();
+  double sum = 0;
+  for (uint64_t c = 1; c <= top; ++c) {
+    if (c - 1 < counts.size()) exact_miss -= static_cast<double>(counts[c - 1]);
+    while (it != est.weights().end() && it->first < c) est_miss -= it->second, ++it;
+    sum += std::fabs(exact_miss / static_cast<double>(exact.accesses()) -
+                     std::min(1.0, std::max(0.0, est_miss / est.total_weight())));
+  }
+  return sum / static_cast<double>(top);
+}
+
+}  // namespace meshreuse

@@ -1,0 +1,84 @@
+// Spatially hashed sampling of a reuse-distance stream: SHARDS (Waldspurger, Park, Garthwaite and
+// Ahmad, FAST 2015), for traces too large to analyse exactly. An id is sampled when its hash
+// (SplitMix64 of id ^ seed, the top 56 bits) is below a threshold T = R * 2^56: all accesses of a
+// sampled id are kept, so reuse distances among sampled ids, divided by R, estimate the true ones.
+//   - fixed rate: R given; each sample counts 1/R accesses; SHARDS_adj corrects the distance-0
+//     count by the difference between the accesses expected at rate R (N) and the samples' weight
+//     (the published bias fix).
+//   - fixed size: at most s_max ids are tracked; when one more arrives, the id with the largest
+//     hash is dropped and T lowered to its hash, so R falls as the trace goes on. A sample counts
+//     1/R at its time (the same relative weights as SHARDS' rescaling of the histogram by
+//     R_new/R_old), and the curve is normalised by the samples' total weight.
+// The estimate is a weighted histogram over scaled distances (round(d / R)): miss ratio at any
+// capacity, quantiles, mean. Memory: the exact analyzer over the sampled ids only.
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <queue>
+#include <utility>
+#include <vector>
+
+#include "analysis/reuse_histogram.h"
+#include "analysis/stack_distance.h"
+
+namespace meshreuse {
+
+struct ShardsOptions {
+  double rate = 0.01;   // fixed rate (used when s_max == 0), in (0, 1]
+  uint64_t s_max = 0;   // fixed size: ids tracked at most (0: fixed rate)
+  uint64_t seed = 1;
+  bool adjust = true;   // SHARDS_adj (fixed rate only)
+};
+
+class Shards {
+ public:
+  explicit Shards(const ShardsOptions& o);
+  void Access(uint64_t id) {
+    ++accesses_;
+    const uint64_t h = Hash(id);
+    if (h >= threshold_) return;
+    Sampled(id, h);
+  }
+  void Finish();  // applies SHARDS_adj; call once at the end
+
+  uint64_t accesses() const { return accesses_; }
+  uint64_t samples() const { return samples_; }
+  double rate() const { return static_cast<double>(threshold_) * 0x1.0p-56; }  // the final R
+  const ShardsOptions& options() const { return opt_; }
+  double total_weight() const { return total_; }
+  double cold_weight() const { return cold_; }
+  double distinct_estimate() const { return distinct_; }
+  const std::map<uint64_t, double>& weights() const { return weight_; }  // scaled d -> weight
+  double MissRatio(uint64_t capacity) const;  // distances >= capacity, and cold, over total
+  double Mean() const;                        // of the finite scaled distances
+  uint64_t Quantile(double x) const;          // as ReuseHistogram::Quantile, weighted
+  size_t MemoryBytes() const { return sd_.MemoryBytes() + heap_.size() * 16 + weight_.size() * 48; }
+
+ private:
+  uint64_t Hash(uint64_t id) const {
+    uint64_t x = id ^ seed_mix_;
+    x ^= x >> 30;
+    x *= 0xBF58476D1CE4E5B9ull;
+    x ^= x >> 27;
+    x *= 0x94D049BB133111EBull;
+    return (x ^ (x >> 31)) >> 8;
+  }
+  void Sampled(uint64_t id, uint64_t h);
+
+  ShardsOptions opt_;
+  uint64_t seed_mix_;
+  uint64_t threshold_;
+  StackDistance sd_;
+  std::priority_queue<std::pair<uint64_t, uint64_t>> heap_;  // (hash, id) of tracked ids
+  std::map<uint64_t, double> weight_;
+  double total_ = 0, cold_ = 0, distinct_ = 0;
+  uint64_t accesses_ = 0, samples_ = 0;
+  bool finished_ = false;
+};
+
+// The exact miss ratio at every capacity 1..max distance + 1 against the estimate: the mean
+// absolute difference (SHARDS' error measure).
+double MrcMeanAbsoluteError(const ReuseHistogram& exact, const Shards& estimate);
+
+}  // namespace meshreuse

@@ -1,0 +1,48 @@
+// An input file read as a byte stream, plain or zstd-compressed, told apart by zstd's magic number
+// (28 B5 2F FD) at its start: every trace reader reads through it, so a `.zst` trace (ours from
+// `trace --compress`, libCacheSim's oracleGeneral `.zst`, or any other format compressed with
+// the zstd tool) reads like the plain file. Opening follows InputFile (directories and devices
+// refused, "-" for standard input). A corrupt or truncated compressed stream is an InputError
+// naming the file and the compressed byte offset; decompression memory is bounded (windows above
+// 128 MiB are refused, as the zstd tool does by default).
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/input_file.h"
+
+namespace meshreuse {
+
+class InputStream {
+ public:
+  explicit InputStream(const std::string& path);
+  ~InputStream();
+  InputStream(const InputStream&) = delete;
+  InputStream& operator=(const InputStream&) = delete;
+
+  // Up to n bytes of the (decompressed) content; fewer only at its end.
+  size_t Read(void* buf, size_t n);
+  const std::string& path() const { return file_.path(); }
+  bool compressed() const { return zstd_ != nullptr; }
+  // Content bytes when known: a plain regular file's size, or the size a zstd frame header
+  // records (written by `trace --compress` and the zstd tool for files); -1 otherwise.
+  int64_t size() const { return size_; }
+
+ private:
+  size_t ReadRaw(void* buf, size_t n);  // the file's bytes, after the peeked ones
+  InputFile file_;
+  std::vector<char> peek_;  // bytes read to look for the magic, served first
+  size_t peek_at_ = 0;
+  int64_t size_ = -1;
+  struct Zstd;
+  std::unique_ptr<Zstd> zstd_;
+};
+
+// Compresses `src` into `dst` (via DST.tmp.PID, renamed when complete) at zstd level `level`,
+// recording the content size in the frame header. Throws InputError on I/O failure.
+void CompressFile(const std::string& src, const std::string& dst, int level = 3);
+
+}  // namespace meshreuse
