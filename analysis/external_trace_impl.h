@@ -18,7 +18,8 @@ namespace external_detail {
 constexpr uint64_t kReserved = ~uint64_t{0};
 
 // One lackey line: "I  0023C790,2", " L BE80199C,4", " S ...", " M ..." (hex address without 0x,
-// decimal size). valgrind's own messages ("==PID== ...", "--PID-- ...") and blank lines are skipped.
+// decimal size). valgrind's own messages ("==PID== ...", "--PID-- ...") and blank lines are
+// skipped.
 template <class F>
 void LackeyLine(const std::string& path, int64_t line, const char* b, const char* e,
                 bool instructions, F& add) {
@@ -33,7 +34,8 @@ void LackeyLine(const std::string& path, int64_t line, const char* b, const char
                          std::string(b - 1, e) + "'");
   while (b < e && (*b == ' ' || *b == '\t')) ++b;
   const char* comma = static_cast<const char*>(std::memchr(b, ',', e - b));
-  if (!comma) throw InputError(path, line, "expected ADDRESS,SIZE after '" + std::string(1, op) + "'");
+  if (!comma)
+    throw InputError(path, line, "expected ADDRESS,SIZE after '" + std::string(1, op) + "'");
   uint64_t addr = 0;
   uint32_t size = 0;
   auto r = std::from_chars(b, comma, addr, 16);

@@ -33,7 +33,7 @@ class ReuseHistogram {
   uint64_t cold() const { return cold_; }
   double mean() const;  // of the finite distances, the double nearest sum/finite; NaN when none
   unsigned __int128 sum() const { return sum_; }  // of the finite distances, exact
-  uint64_t max() const;  // largest finite distance (0 when none)
+  uint64_t max() const;                           // largest finite distance (0 when none)
   // Throws std::invalid_argument for x outside [0, 1] and std::domain_error when there are no
   // finite distances.
   uint64_t Quantile(double x) const;
@@ -94,7 +94,7 @@ class ReuseProfile {
   std::vector<size_t> first_;  // index of each iteration's first step
   size_t iter_ = 0;            // the iteration of the last AddAt (a cursor: accesses come in order)
   uint64_t next_ = 0;
-  size_t step_ = 0;                       // the step of positions [step_lo_, step_hi_)
+  size_t step_ = 0;  // the step of positions [step_lo_, step_hi_)
   uint64_t step_lo_ = 0, step_hi_ = 0;
 };
 

@@ -10,8 +10,7 @@ Shards::Shards(const ShardsOptions& o)
     : opt_(o), seed_mix_(o.seed * 0x9E3779B97F4A7C15ull + 0x632BE59BD9B4E019ull), sd_(0) {
   if (o.s_max == 0 && !(o.rate > 0 && o.rate <= 1))
     throw std::invalid_argument("the sampling rate must be in (0, 1]");
-  threshold_ = o.s_max ? uint64_t{1} << 56
-                       : static_cast<uint64_t>(std::ldexp(o.rate, 56));
+  threshold_ = o.s_max ? uint64_t{1} << 56 : static_cast<uint64_t>(std::ldexp(o.rate, 56));
   if (threshold_ == 0) threshold_ = 1;
 }
 

@@ -25,10 +25,10 @@
 namespace meshreuse {
 
 struct ShardsOptions {
-  double rate = 0.01;   // fixed rate (used when s_max == 0), in (0, 1]
-  uint64_t s_max = 0;   // fixed size: ids tracked at most (0: fixed rate)
+  double rate = 0.01;  // fixed rate (used when s_max == 0), in (0, 1]
+  uint64_t s_max = 0;  // fixed size: ids tracked at most (0: fixed rate)
   uint64_t seed = 1;
-  bool adjust = true;   // SHARDS_adj (fixed rate only)
+  bool adjust = true;  // SHARDS_adj (fixed rate only)
 };
 
 class Shards {

@@ -86,7 +86,7 @@ class StackDistance {
     bits_[p >> 6] &= ~(uint64_t{1} << (p & 63));
     if ((p >> kGroupShift) < closed_) TreeAdd(p >> kGroupShift, -1);
   }
-  void CloseGroups();  // every group wholly before t_ into the tree
+  void CloseGroups();                // every group wholly before t_ into the tree
   void Compact(uint64_t extra = 0);  // renumber the live markers into a window for live + extra
 
   uint64_t dense_ids_;

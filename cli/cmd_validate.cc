@@ -174,7 +174,8 @@ int SimulateCommand(const Args& args) {
     } else {
       CacheSimulation sim(levels, line_bytes, 1);
       progress.Say("simulating " + in + " as " + (format.empty() ? "text" : format));
-      ReadExternalTrace(in, fmt, [&sim](uint64_t v, uint32_t size) { sim.Access(0, v, size, false); });
+      ReadExternalTrace(in, fmt,
+                        [&sim](uint64_t v, uint32_t size) { sim.Access(0, v, size, false); });
       rows(in, "-", sim);
     }
   }

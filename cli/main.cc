@@ -95,8 +95,9 @@ int Main(int argc, char** argv) {
   } catch (const std::bad_alloc&) {
     // Readers never size anything from a header before its records arrive, so this is a genuinely
     // too-large input for this machine, or a bug.
-    std::fprintf(stderr, "meshreuse: error: out of memory (the input is larger than this machine "
-                         "can hold, or this is a bug: please report it)\n");
+    std::fprintf(stderr,
+                 "meshreuse: error: out of memory (the input is larger than this machine "
+                 "can hold, or this is a bug: please report it)\n");
     return 1;
   } catch (const ToolError& e) {
     std::fprintf(stderr, "meshreuse: error: %s\n", e.what());

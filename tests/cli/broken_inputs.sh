@@ -19,7 +19,7 @@ while IFS=$'\t' read -r file line msg kind; do
   case ${kind:-mesh} in
     mesh) cmds=("mesh info %s" "smooth %s") ;;
     trace) cmds=("analyze %s" "simulate %s") ;;
-    text|u32|u64) cmds=("analyze %s --format $kind" "simulate %s --format $kind") ;;
+    text|u32|u64|lackey|oracle|parda) cmds=("analyze %s --format $kind" "simulate %s --format $kind") ;;
     perm) cmds=("smooth $data/two_interior.node --ordering file:%s" "reorder $data/two_interior.node -o /nonexistent/x --ordering file:%s") ;;
   esac
   for tmpl in "${cmds[@]}"; do

@@ -158,6 +158,42 @@ check "analyze bad cache" 2 "$bin" analyze "$data/two_interior.node" --cache L1=
 check "analyze bad granularity" 2 "$bin" analyze "$data/two_interior.node" --granularity page
 check "trace unwritable" 2 "$bin" trace "$data/two_interior.node" -o /nonexistent-dir/t.trace --quiet
 
+# Issue 9: compressed traces, analyzer threads, the ecosystem's formats, sampling, exact outputs.
+check "trace --compress" 0 "$bin" trace "$data/two_interior.node" --ordering rdr --iterations 3 --threads 2 -o "$tmp/t.trace.zst" --compress --quiet
+contains "trace --compress" "MB compressed"
+"$bin" analyze "$tmp/t.trace" --csv --quiet | cut -d, -f2- >"$tmp/plain.csv"
+for args in "$tmp/t.trace.zst" "$tmp/t.trace --threads 2" "$tmp/t.trace.zst --threads 3"; do
+  # shellcheck disable=SC2086
+  if diff <("$bin" analyze $args --csv --quiet | cut -d, -f2-) "$tmp/plain.csv" >/dev/null; then pass=$((pass + 1)); else
+    fail=$((fail + 1)); echo "FAIL analyze $args: differs from the plain serial analysis"; fi
+done
+/usr/bin/python3 -c 'import struct,sys; open(sys.argv[1],"wb").write(b"".join(struct.pack("<Q", i % 5000) for i in range(60000)))' "$tmp/scan.u64"
+"$bin" analyze "$tmp/scan.u64" --format u64 --csv --quiet >"$tmp/scan1.csv"
+check "analyze u64 threads" 0 "$bin" analyze "$tmp/scan.u64" --format u64 --csv --quiet --threads 2
+if diff "$tmp/out" "$tmp/scan1.csv" >/dev/null; then pass=$((pass + 1)); else fail=$((fail + 1)); echo "FAIL analyze u64 --threads 2 differs"; fi
+contains "analyze u64 threads" ",element,60000,-,5000,5000,274945000,4999,4999,4999,4999,4999,"  # a scan: every warm distance 4999
+printf '==1== Lackey\nI  0040,2\n L 1000,8\n S 1000,8\n M 103e,4\n' >"$tmp/t.lackey"
+check "analyze lackey" 0 "$bin" analyze "$tmp/t.lackey" --format lackey --csv --quiet
+contains "analyze lackey" ",element,4,-,2,2,0,0,"  # addresses 1000 1000 103e 103e: distances 0, 0
+contains "analyze lackey" ",line,6,-,2,2,2,0.5,"  # lines 40 40 (40 41) (40 41): the modify straddles
+check "analyze lackey instructions" 0 "$bin" analyze "$tmp/t.lackey" --format lackey --instructions --granularity element --csv --quiet
+contains "analyze lackey instructions" ",element,5,-,3,3,"
+check "instructions without lackey" 2 "$bin" analyze "$tmp/scan.u64" --format u64 --instructions
+check "analyze oracle" 2 "$bin" analyze "$data/broken/oracle_reserved.oracle" --format oracle --quiet
+contains "analyze oracle" "record 1 (byte offset 24): the value 2^64-1 is reserved"
+check "sample" 0 "$bin" analyze "$tmp/scan.u64" --format u64 --granularity element --sample-rate 0.5 --seed 7 --sample-error --json --quiet
+contains "sample" '"sampling": "fixed-rate", "rate": 0.5'
+contains "sample" '"seed": 7, "accesses": 60000'
+check "sample size" 0 "$bin" analyze "$tmp/scan.u64" --format u64 --granularity element --sample-size 100 --csv --quiet
+contains "sample size" ",fixed-size,"
+check "sample both" 2 "$bin" analyze "$tmp/scan.u64" --format u64 --sample-size 100 --sample-rate 0.1
+check "sample rate range" 2 "$bin" analyze "$tmp/scan.u64" --format u64 --sample-rate 1.5
+check "mrc csv" 0 "$bin" analyze "$tmp/scan.u64" --format u64 --granularity element --mrc-csv "$tmp/mrc.csv" --quiet
+if [[ $(sed -n 2p "$tmp/mrc.csv") == *",element,0,60000,60000,1,0" && $(sed -n 3p "$tmp/mrc.csv") == *",element,5000,5000,60000,0.083333333333333329,0" ]]; then
+  pass=$((pass + 1)); else fail=$((fail + 1)); echo "FAIL mrc csv:"; head -3 "$tmp/mrc.csv"; fi
+check "mrc csv unwritable" 2 "$bin" analyze "$tmp/scan.u64" --format u64 --mrc-csv /nonexistent-dir/m.csv --quiet
+contains "mrc csv unwritable" "is not a folder"
+
 # The simulator: a mesh streamed and its trace file give the same rows; a fully associative level
 # (ways = lines) gives the line model's misses.
 check "simulate mesh" 0 "$bin" simulate "$data/two_interior.node" --orderings rdr --iterations 3 --threads 2 --cache L1=256/2,L2=1K/4 --csv --quiet

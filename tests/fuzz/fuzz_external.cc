@@ -11,8 +11,8 @@
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   using namespace meshreuse;
   if (size == 0) return 0;
-  const ExternalFormat formats[] = {ExternalFormat::kText,  ExternalFormat::kU32,
-                                    ExternalFormat::kU64,   ExternalFormat::kParda,
+  const ExternalFormat formats[] = {ExternalFormat::kText,   ExternalFormat::kU32,
+                                    ExternalFormat::kU64,    ExternalFormat::kParda,
                                     ExternalFormat::kOracle, ExternalFormat::kLackey};
   const ExternalFormat fmt = formats[data[0] % 6];
   const bool instructions = (data[0] / 6) % 2;
