@@ -265,7 +265,7 @@ int AnalyzeCommand(const Args& args) {
       "mrc-csv", po::value(&mrc_csv),
       "write the miss-ratio curves (capacity -> misses, miss ratio; exact, or the estimate when "
       "sampling)")("out", po::value(&out_dir),
-                   "write analyze.{csv,json}, histogram.csv, profile.csv, mrc.csv, run.json")(
+                   "write analyze.{csv,json}, histogram.csv, profile.csv, run.json")(
       "quiet,q", "no progress on stderr");
   AddTriangleOrderOption(desc, &triangle_order);
   po::positional_options_description pos;
@@ -445,7 +445,7 @@ int AnalyzeCommand(const Args& args) {
   // The side tables only when written (the curve has a point per distinct distance).
   const bool want_hist = !hist_csv.empty() || !out_dir.empty();
   const bool want_prof = !prof_csv.empty() || !out_dir.empty();
-  const bool want_mrc = !mrc_csv.empty() || !out_dir.empty();
+  const bool want_mrc = !mrc_csv.empty();  // not in --out: a point per distinct distance
   for (const Job& j : jobs)
     for (int tr = 0; tr < j.analysis->threads(); ++tr)
       for (int g = 0; g < 2; ++g) {
@@ -521,7 +521,6 @@ int AnalyzeCommand(const Args& args) {
     WriteText(out_dir + "/analyze.json", t.Json());
     WriteText(out_dir + "/histogram.csv", hist.Csv());
     WriteText(out_dir + "/profile.csv", prof.Csv());
-    WriteText(out_dir + "/mrc.csv", mrc.Csv());
     WriteText(out_dir + "/run.json",
               "{\n" + RunJsonHeader("meshreuse analyze") + "  \"config\": {\"orderings\": " +
                   JsonString(orderings) + ", \"seed\": " + std::to_string(seed) +
@@ -534,7 +533,7 @@ int AnalyzeCommand(const Args& args) {
                   ", \"sample_size\": " + std::to_string(sample_size) +
                   ", \"triangle_order\": " + JsonString(triangle_order) + "}\n}\n");
     progress.Say("wrote " + out_dir +
-                 "/{analyze.csv,analyze.json,histogram.csv,profile.csv,mrc.csv,run.json}");
+                 "/{analyze.csv,analyze.json,histogram.csv,profile.csv,run.json}");
   }
   return 0;
 }

@@ -4,6 +4,9 @@
   scripts/plot_reuse.py profile  PROFILE.csv  OUT   # mean distance per time step, each sweep in
                                                     # 100 steps (the paper's carabiner figure)
   scripts/plot_reuse.py histogram HISTOGRAM.csv OUT  # distance distributions, log-log
+  scripts/plot_reuse.py mrc MRC.csv OUT [NAME=CAP,...] # miss ratio against cache capacity (the
+                                                    # exact step curve of `analyze --mrc-csv`;
+                                                    # SHARDS estimates dashed), capacities marked
 
 OUT is a name without extension: OUT.png and OUT.pdf are written (to temporary names, then
 renamed). One line per input x ordering x thread x granularity found in the CSV. Needs Debian's
@@ -79,10 +82,33 @@ def plot_histogram(path, out):
     save(fig, out)
 
 
+def plot_mrc(path, out, marks=""):
+    fig, ax = plt.subplots(figsize=(7, 4.5))
+    for key, rows in series(path, ["input", "ordering", "thread", "granularity"]).items():
+        xs = [max(int(r["capacity"]), 0.5) for r in rows]
+        ys = [float(r["miss_ratio"]) for r in rows]
+        estimated = rows[0].get("estimated") == "1"
+        ax.step(xs, ys, where="post", linewidth=1, linestyle="--" if estimated else "-",
+                label=label(key) + (" SHARDS" if estimated else ""))
+    for mark in filter(None, marks.split(",")):
+        name, cap = mark.split("=")
+        ax.axvline(float(cap), color="grey", linewidth=0.8, linestyle=":")
+        ax.text(float(cap), 1.0, f" {name}", fontsize=8, va="top", color="grey")
+    ax.set_xscale("log")
+    ax.set_ylim(0, 1.02)
+    ax.set_xlabel("cache capacity (distinct elements or lines; 0 plotted at 0.5)")
+    ax.set_ylabel("miss ratio (fully associative LRU)")
+    ax.legend(fontsize=8, loc="center")
+    ax.grid(alpha=0.3)
+    save(fig, out)
+
+
 if __name__ == "__main__":
-    if len(sys.argv) != 4 or sys.argv[1] not in ("profile", "histogram"):
+    kinds = {"profile": plot_profile, "histogram": plot_histogram, "mrc": plot_mrc}
+    if len(sys.argv) not in (4, 5) or sys.argv[1] not in kinds or (
+            len(sys.argv) == 5 and sys.argv[1] != "mrc"):
         sys.exit(__doc__)
     try:
-        (plot_profile if sys.argv[1] == "profile" else plot_histogram)(sys.argv[2], sys.argv[3])
+        kinds[sys.argv[1]](*sys.argv[2:])
     except (OSError, KeyError, ValueError) as e:
         sys.exit(f"plot_reuse.py: {sys.argv[2]}: {e}")

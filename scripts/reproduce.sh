@@ -85,6 +85,11 @@ if [[ -n $carabiner ]]; then
     --out "$out/profile" $quiet >"$out/profile.txt"
   /usr/bin/python3 scripts/plot_reuse.py profile "$out/profile/profile.csv" "$out/profile/carabiner-profile" >&2
   /usr/bin/python3 scripts/plot_reuse.py histogram "$out/profile/histogram.csv" "$out/profile/carabiner-histogram" >&2
+  "$bin" analyze "$carabiner" --orderings "$orderings" --iterations 1 --granularity element \
+    --mrc-csv "$out/profile/mrc.csv" $quiet >/dev/null
+  # Capacities in elements of 66 B: Westmere-EX's 32 KiB, 256 KiB, 24 MiB.
+  /usr/bin/python3 scripts/plot_reuse.py mrc "$out/profile/mrc.csv" "$out/profile/carabiner-mrc" \
+    L1=496,L2=3971,L3=381300 >&2
 fi
 
 echo
@@ -92,8 +97,8 @@ echo "== Laplacian smoothing to convergence (tol 5e-6) under each ordering ($out
 cat "$out/compare.txt"
 echo
 echo "== Table 2: reuse distances (distinct vertices) of the first sweep ($out/table2)"
-cut -d, -f1,2,5,10-13 "$out/table2/analyze.csv" | sed 's|^[^,]*/||; s|\.node,|,|' | column -s, -t
+cut -d, -f1,2,5,11-14 "$out/table2/analyze.csv" | sed 's|^[^,]*/||; s|\.node,|,|' | column -s, -t
 echo
 echo "== Table 3: misses per sweep (x10^3) and inverse-model capacities (x10^3 elements), ours | paper ($out/table3)"
 cut -d, -f1-15 "$out/table3/table3.csv" | sed 's|\.node,|,|' | column -s, -t
-[[ -n $carabiner ]] && echo && echo "== Profile and histogram figures: $out/profile/carabiner-{profile,histogram}.{png,pdf}"
+[[ -n $carabiner ]] && echo && echo "== Profile, histogram and miss-ratio figures: $out/profile/carabiner-{profile,histogram,mrc}.{png,pdf}"
