@@ -112,11 +112,9 @@ ReuseProfile::ReuseProfile(std::vector<uint64_t> lengths, int steps)
   }
 }
 
-void ReuseProfile::AddAt(uint64_t position, uint64_t d) {
+void ReuseProfile::AddAtSlow(uint64_t position, uint64_t d) {
   Step* st;
-  if (position >= step_lo_ && position < step_hi_) {  // the common case: the same step as before
-    st = &steps_[step_];
-  } else {
+  {
     if (lengths_.empty() || position >= starts_.back()) return;  // past the announced length
     if (position < starts_[iter_] || position >= starts_[iter_ + 1]) {
       if (position >= starts_[iter_ + 1] &&

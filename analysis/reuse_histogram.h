@@ -70,8 +70,19 @@ class ReuseProfile {
  public:
   ReuseProfile() = default;
   ReuseProfile(std::vector<uint64_t> iteration_lengths, int steps = 100);
-  void Add(uint64_t d) { AddAt(next_++, d); }            // the access after the previous Add
-  void AddAt(uint64_t position, uint64_t d);             // position in the stream, 0-based
+  void Add(uint64_t d) { AddAt(next_++, d); }           // the access after the previous Add
+  void AddAt(uint64_t position, uint64_t d) {           // position in the stream, 0-based
+    if (position >= step_lo_ && position < step_hi_) {  // the same step as before: inline
+      Step& st = steps_[step_];
+      ++st.accesses;
+      if (d == ~uint64_t{0})
+        ++st.cold;
+      else
+        st.sum += d;
+      return;
+    }
+    AddAtSlow(position, d);
+  }
   void SetNext(uint64_t position) { next_ = position; }  // where the next Add() goes
   // The same iterations and steps, every count zero: a partial profile for one chunk.
   ReuseProfile EmptyCopy() const;
@@ -87,6 +98,7 @@ class ReuseProfile {
   bool enabled() const { return !lengths_.empty(); }
 
  private:
+  void AddAtSlow(uint64_t position, uint64_t d);
   std::vector<uint64_t> lengths_;
   std::vector<uint64_t> starts_;  // position of each iteration's first access; back() = total
   int nsteps_ = 100;

@@ -7,6 +7,7 @@
 //   TextbookFenwick/<trace>  the textbook analyzer (Fenwick tree over every time position, hash
 //                            map of last accesses) on the same trace, for the ratio
 //   ParallelSpeedup/<trace>  serial and 2-thread exact analysis alternated: the speedup
+//   FileRatio/<trace>        in-memory analysis and the u64-file pipeline alternated: the ratio
 //   Sweep/plain, Sweep/null  a hand-written Gauss-Seidel sweep with no sink at all, and
 //                            Smooth<NullSink>'s sweep: NullSink must cost nothing
 //   Sweep/analyze            one sweep streamed into the element analyzer (streaming cost)
@@ -146,6 +147,56 @@ void ParallelSpeedup(benchmark::State& state, std::string name) {
   state.counters["speedup"] = serial / parallel;
 }
 
+// Reading a trace file against analysing it in memory, interleaved: each iteration writes nothing
+// new, but times (a) StackDistance + histogram over the in-memory trace (the Analyzer figure) and
+// (b) what `analyze FILE --format u64 --granularity element` does after start-up: read the u64
+// file through InputStream, feed TraceAnalysis (histogram and profile). The ratio of the sums is the
+// whole-process overhead.
+void FileRatio(benchmark::State& state, std::string name) {
+  const std::vector<uint64_t>& trace = Trace(name);
+  const std::string path =
+      (std::filesystem::temp_directory_path() / ("meshreuse-bench-" + name + ".u64")).string();
+  {
+    std::FILE* f = std::fopen(path.c_str(), "wb");
+    if (!f || std::fwrite(trace.data(), 8, trace.size(), f) != trace.size()) {
+      state.SkipWithError("cannot write the u64 file");
+      return;
+    }
+    std::fclose(f);
+  }
+  using Clock = std::chrono::steady_clock;
+  double mem = 0, file = 0;
+  for (auto _ : state) {
+    auto t0 = Clock::now();
+    {
+      StackDistance sd(DenseLimit(name));
+      ReuseHistogram h;
+      h.Reserve(DenseLimit(name));
+      for (uint64_t id : trace) h.Add(sd.Access(id));
+      benchmark::DoNotOptimize(h.finite());
+    }
+    auto t1 = Clock::now();
+    {
+      TraceAnalysisOptions o;
+      o.granularity = Granularity::kElement;
+      o.iteration_lengths = {{ExternalTraceLength(path, ExternalFormat::kU64)}};
+      TraceAnalysis a(o);
+      ReadExternalTrace(path, ExternalFormat::kU64,
+                        [&a](uint64_t v, uint32_t) { a.AddElement(0, v); });
+      a.Finish();
+      benchmark::DoNotOptimize(a.element(0)->hist.finite());
+    }
+    auto t2 = Clock::now();
+    mem += std::chrono::duration<double>(t1 - t0).count();
+    file += std::chrono::duration<double>(t2 - t1).count();
+  }
+  std::remove(path.c_str());
+  const double it = static_cast<double>(state.iterations());
+  state.counters["memory_Macc_s"] = static_cast<double>(trace.size()) * it / mem / 1e6;
+  state.counters["file_Macc_s"] = static_cast<double>(trace.size()) * it / file / 1e6;
+  state.counters["ratio"] = file / mem;
+}
+
 // A Gauss-Seidel sweep written without any sink: what Smooth<NullSink> must match.
 // Weight and quality of triangle t at wq[2t], wq[2t+1], as the smoother keeps them.
 double PlainSweep(Mesh& m, std::vector<double>& wq) {
@@ -275,6 +326,11 @@ int main(int argc, char** argv) {
     benchmark::RegisterBenchmark(("ParallelSpeedup/" + std::string(o)).c_str(), ParallelSpeedup,
                                  std::string(o))
         ->Arg(2)
+        ->Iterations(5)
+        ->Unit(benchmark::kMillisecond);
+  for (const char* o : {"ori", "ori-8", "rdr-8", "uniform"})
+    benchmark::RegisterBenchmark(("FileRatio/" + std::string(o)).c_str(), FileRatio,
+                                 std::string(o))
         ->Iterations(5)
         ->Unit(benchmark::kMillisecond);
   benchmark::RegisterBenchmark("Sweep/plain", SweepPlain)->Unit(benchmark::kMillisecond);
