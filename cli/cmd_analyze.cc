@@ -402,13 +402,22 @@ int AnalyzeCommand(const Args& args) {
       const uint64_t len = ExternalTraceLength(in, fmt);
       if (len) o.iteration_lengths = o.line_iteration_lengths = {{len}};
       Job j{in, "-", 0, len ? 1 : 0, std::make_unique<TraceAnalysis>(o)};
-      progress.Say("analysing " + in + " as " + (format.empty() ? "text" : format));
+      progress.Say("analysing " + in + " as " + (format.empty() ? "text" : format) +
+                   (len ? " (" + Grouped(static_cast<long long>(len)) + " accesses)" : ""));
       TraceAnalysis* a = j.analysis.get();
+      const auto t0 = Clock::now();
+      uint64_t seen = 0;
       ReadExternalTrace(
           in, fmt,
-          [a](uint64_t v, uint32_t size) {
+          [&](uint64_t v, uint32_t size) {
             a->AddElement(0, v);
             a->AddAccess(0, v, size);
+            if ((++seen & 0xFFFFF) == 0) {
+              if (len)
+                progress.Fraction("analysing", static_cast<double>(seen) / len, Since(t0));
+              else if ((seen & 0x3FFFFFF) == 0)
+                progress.Say(Grouped(static_cast<long long>(seen)) + " accesses so far");
+            }
           },
           vm.count("instructions") > 0);
       a->Finish();

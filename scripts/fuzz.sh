@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Fuzzes every reader with libFuzzer (clang, AddressSanitizer + UndefinedBehaviorSanitizer): the
-# Triangle pair, Gmsh, the binary trace, other tools' traces (text/u32/u64) and permutation files
-# (harnesses in tests/fuzz/, each running everything downstream of the reader on what it accepts).
+# Triangle pair, Gmsh, the binary trace, other tools' traces (text, u32, u64, parda, oracle,
+# lackey; plain or zstd) and permutation files (harnesses in tests/fuzz/, each running everything
+# downstream of the reader on what it accepts).
 # Seeds come from tests/data; corpora grow in build/fuzz/corpus/ and are kept between runs.
 # Limits: 10 s per input, 512 MB of RSS (ASan's quarantine at 32 MB), no single allocation above
 # 64 MB (a header's count must never be trusted for memory). Fails (exit 1) on any finding;
@@ -37,6 +38,14 @@ for f in tests/data/broken/*.txt; do { printf '\0'; cat "$f"; } >"$c/external/se
 printf '\0# ids\n1\n2\n0x10\n1\n' >"$c/external/seed-text"
 { printf '\1'; /usr/bin/python3 -c 'import struct,sys; sys.stdout.buffer.write(struct.pack("<4I",1,2,1,3))'; } >"$c/external/seed-u32"
 { printf '\2'; cat tests/data/broken/reserved.u64; } >"$c/external/seed-u64"
+# Format byte: format = b % 6 (text u32 u64 parda oracle lackey), instructions = b / 6 % 2,
+# two workers = b / 12 % 2.
+for f in tests/data/broken/*.lackey; do { printf '\5'; cat "$f"; } >"$c/external/seed-$(basename "$f")"; done
+{ printf '\13'; printf '==1== Lackey\nI  0040,2\n L 1000,8\n S 1000,8\n M 103e,4\n'; } >"$c/external/seed-lackey"
+for f in tests/data/broken/*.oracle; do { printf '\4'; cat "$f"; } >"$c/external/seed-$(basename "$f")"; done
+for f in tests/data/broken/*.zst; do { printf '\16'; cat "$f"; } >"$c/external/seed-$(basename "$f")"; done
+{ printf '\16'; /usr/bin/python3 -c 'import struct,sys; sys.stdout.buffer.write(b"".join(struct.pack("<Q", i % 37) for i in range(400)))' | zstd -q -c; } >"$c/external/seed-u64-zst"
+cp tests/data/broken/truncated_trace.zst "$c/trace/seed-truncated_trace.zst"
 cp tests/data/broken/*.perm "$c/permutation/"
 /usr/bin/python3 -c 'print("\n".join(str(i) for i in range(336)))' >"$c/permutation/seed-identity"
 

@@ -4,6 +4,7 @@
 
 #include <unistd.h>
 #include <zstd.h>
+#include <zstd_errors.h>
 
 #include <cstdio>
 #include <cstring>
@@ -12,6 +13,9 @@ namespace meshreuse {
 
 namespace {
 constexpr unsigned char kZstdMagic[4] = {0x28, 0xB5, 0x2F, 0xFD};
+// 32 MiB: every zstd level up to 19 and --ultra -20/-21 decode within it; a frame asking more
+// (--ultra -22, --long) is refused rather than allowed ~100 MB from a few header bytes.
+constexpr int kWindowLogMax = 25;
 }
 
 struct InputStream::Zstd {
@@ -37,7 +41,7 @@ InputStream::InputStream(const std::string& path) : file_(path) {
     zstd_ = std::make_unique<Zstd>();
     zstd_->ds = ZSTD_createDStream();
     if (!zstd_->ds) throw InputError(path, 0, "cannot create a zstd decompression stream");
-    ZSTD_DCtx_setParameter(zstd_->ds, ZSTD_d_windowLogMax, 27);
+    ZSTD_DCtx_setParameter(zstd_->ds, ZSTD_d_windowLogMax, kWindowLogMax);
     const unsigned long long content = ZSTD_getFrameContentSize(peek_.data(), peek_.size());
     if (content != ZSTD_CONTENTSIZE_UNKNOWN && content != ZSTD_CONTENTSIZE_ERROR &&
         content <= static_cast<unsigned long long>(INT64_MAX))
@@ -80,6 +84,12 @@ size_t InputStream::Read(void* buf, size_t n) {
       z.ib = ZSTD_inBuffer{z.in.data(), got, 0};
     }
     const size_t ret = ZSTD_decompressStream(z.ds, &ob, &z.ib);
+    if (ZSTD_isError(ret) && ZSTD_getErrorCode(ret) == ZSTD_error_frameParameter_windowTooLarge)
+      throw InputError(path(), 0,
+                       "the zstd frame near compressed byte " +
+                           std::to_string(z.consumed + z.ib.pos) +
+                           " needs a window above 32 MiB (zstd --long or --ultra -22): "
+                           "decompress it first");
     if (ZSTD_isError(ret))
       throw InputError(path(), 0,
                        std::string("corrupt zstd stream near compressed byte ") +

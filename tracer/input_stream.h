@@ -3,8 +3,8 @@
 // `trace --compress`, libCacheSim's oracleGeneral `.zst`, or any other format compressed with
 // the zstd tool) reads like the plain file. Opening follows InputFile (directories and devices
 // refused, "-" for standard input). A corrupt or truncated compressed stream is an InputError
-// naming the file and the compressed byte offset; decompression memory is bounded (windows above
-// 128 MiB are refused, as the zstd tool does by default).
+// naming the file and the compressed byte offset; decompression memory is bounded (a frame needing a
+// window above 32 MiB, zstd --long or --ultra -22, is refused by name).
 #pragma once
 
 #include <cstdint>
