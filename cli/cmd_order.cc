@@ -27,7 +27,7 @@ int OrderingsCommand(const Args& args) {
     return 0;
   Table t({"name", "description", "reference"});
   for (const OrderingInfo& o : Orderings())
-    t.AddRow({std::string(o.name) + (o.takes_argument ? ":PATH" : ""), o.description, o.reference});
+    t.AddRow({std::string(o.name) + (o.argument == kArgument ? ":PATH" : o.argument == kOptionalArgument ? "[:ARG]" : ""), o.description, o.reference});
   std::printf("%s", t.Aligned().c_str());
   return 0;
 }

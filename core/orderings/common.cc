@@ -47,4 +47,21 @@ std::vector<int32_t> StableSortByKey(const std::vector<int32_t>& ids,
   return out;
 }
 
+std::vector<int32_t> RowsByKey(const Mesh& m, const std::vector<double>& key) {
+  std::vector<int32_t> nbr(m.v2v.idx.begin(), m.v2v.idx.end());
+  const int64_t* off = m.v2v.off.data();
+  for (int32_t v = 0; v < m.NumVertices(); ++v) {
+    int32_t* b = nbr.data() + off[v];
+    int32_t* e = nbr.data() + off[v + 1];
+    for (int32_t* p = b + 1; p < e; ++p) {
+      const int32_t u = *p;
+      const double ku = key[u];
+      int32_t* k = p;
+      for (; k > b && key[k[-1]] > ku; --k) *k = k[-1];
+      *k = u;
+    }
+  }
+  return nbr;
+}
+
 }  // namespace meshreuse::orderings

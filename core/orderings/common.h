@@ -19,4 +19,9 @@ std::vector<int32_t> BfsVisitOrder(const Mesh& m);
 std::vector<int32_t> StableSortByKey(const std::vector<int32_t>& ids,
                                      const std::vector<double>& key);
 
+// The v2v rows with each row sorted by (key, id): "the neighbours of v by increasing key" is row v
+// of the result (offsets m.v2v.off). Rows are short and in increasing id, so an insertion sort on
+// the key keeps ties by id.
+std::vector<int32_t> RowsByKey(const Mesh& m, const std::vector<double>& key);
+
 }  // namespace meshreuse::orderings

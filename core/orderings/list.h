@@ -1,7 +1,8 @@
 // The ordering registry's one table. Adding an ordering: write core/orderings/NAME.cc defining
 //   Permutation FUNCTION(const Mesh&, const OrderingContext&);
-// add it to core/CMakeLists.txt, and add one line here:
-//   MESHREUSE_ORDERING(FUNCTION, "name", takes_argument, "description", "reference")
+// and add one line here (the build picks the file up by itself):
+//   MESHREUSE_ORDERING(FUNCTION, "name", argument, "description", "reference")
+// argument: false (none), true (required, name:ARG) or kOptionalArgument.
 // Every test that loops over the registry picks it up. (No include guard: included twice.)
 MESHREUSE_ORDERING(OrderOri, "ori", false,
                    "identity: the generator's own numbering (Triangle's, for the shipped shapes)",
@@ -26,6 +27,24 @@ MESHREUSE_ORDERING(
     OrderHilbert, "hilbert", false,
     "vertices sorted along a Hilbert curve over a 2^16 x 2^16 grid of the bounding box",
     "Hilbert 1891; space-filling curve orderings")
+MESHREUSE_ORDERING(OrderRdrFrontier, "rdr-frontier", false,
+                   "Algorithm 2, but a dead-ended chain restarts from the worst placed, "
+                   "unprocessed vertex (the frontier), the global quality order only when none",
+                   "Aupy, Park, Raghavan, Algorithm 2, restart rule changed")
+MESHREUSE_ORDERING(OrderRdrWave, "rdr-wave", false,
+                   "a wavefront: BFS from the worst interior vertex, unplaced neighbours "
+                   "enqueued by increasing quality; the next wave from the worst unplaced one",
+                   "BFS with the paper's quality order as tie-break")
+MESHREUSE_ORDERING(
+    OrderMorton, "morton", false,
+    "vertices sorted along a Z-order (Morton) curve over a 2^16 x 2^16 grid of the bounding box",
+    "Morton 1966")
+MESHREUSE_ORDERING(OrderMetis, "metis", kOptionalArgument,
+                   "METIS k-way parts sized to a cache (metis:BYTES, default 256K = L2), parts "
+                   "by BFS over the part graph, BFS inside each part",
+                   "Karypis and Kumar 1998 (METIS_PartGraphKway)")
+MESHREUSE_ORDERING(OrderNd, "nd", false, "METIS nested dissection (separators last, recursively)",
+                   "Karypis and Kumar 1998 (METIS_NodeND); George 1973")
 MESHREUSE_ORDERING(OrderFile, "file", true,
                    "file:PATH, a user's permutation: one 0-based vertex id per line, in new order",
                    "")

@@ -27,20 +27,8 @@ Permutation RdrOrder(const Mesh& m, const std::vector<double>& quality) {
   const int32_t n = m.NumVertices();
   // Each neighbour row sorted once by (quality, id): then "unprocessed neighbours of v by
   // increasing quality" is row v with the processed ones skipped, and no sort runs in the chain.
-  // Rows are short and in increasing id, so an insertion sort on quality keeps ties by id.
-  std::vector<int32_t> nbr(m.v2v.idx.begin(), m.v2v.idx.end());
+  const std::vector<int32_t> nbr = orderings::RowsByKey(m, quality);
   const int64_t* off = m.v2v.off.data();
-  for (int32_t v = 0; v < n; ++v) {
-    int32_t* b = nbr.data() + off[v];
-    int32_t* e = nbr.data() + off[v + 1];
-    for (int32_t* p = b + 1; p < e; ++p) {
-      const int32_t u = *p;
-      const double qu = quality[u];
-      int32_t* k = p;
-      for (; k > b && quality[k[-1]] > qu; --k) *k = k[-1];
-      *k = u;
-    }
-  }
   // Byte flags: 2 x V bytes stay in L2, so the chain's misses are the rows alone.
   std::vector<uint8_t> processed(n, 0), sorted(n, 0);
   std::vector<int32_t> order;

@@ -11,7 +11,7 @@ namespace meshreuse {
 
 const std::vector<OrderingInfo>& Orderings() {
   static const std::vector<OrderingInfo> kTable = {
-#define MESHREUSE_ORDERING(fn, name, arg, desc, ref) {name, fn, arg, desc, ref},
+#define MESHREUSE_ORDERING(fn, name, arg, desc, ref) {name, fn, OrderingArgument(arg), desc, ref},
 #include "core/orderings/list.h"
 #undef MESHREUSE_ORDERING
   };
@@ -27,7 +27,10 @@ const OrderingInfo* FindOrdering(const std::string& name) {
 std::string OrderingNames() {
   std::string s;
   for (const OrderingInfo& o : Orderings())
-    s += (s.empty() ? "" : ", ") + std::string(o.name) + (o.takes_argument ? ":ARG" : "");
+    s += (s.empty() ? "" : ", ") + std::string(o.name) +
+         (o.argument == kArgument           ? ":ARG"
+          : o.argument == kOptionalArgument ? "[:ARG]"
+                                            : "");
   return s;
 }
 
@@ -40,9 +43,9 @@ Permutation ComputeOrdering(const std::string& spec, const Mesh& m, uint64_t see
   OrderingContext ctx;
   ctx.seed = seed;
   if (colon != std::string::npos) ctx.argument = spec.substr(colon + 1);
-  if (o->takes_argument && ctx.argument.empty())
+  if (o->argument == kArgument && ctx.argument.empty())
     throw std::invalid_argument("ordering '" + name + "' needs an argument: " + name + ":ARG");
-  if (!o->takes_argument && colon != std::string::npos)
+  if (o->argument == kNoArgument && colon != std::string::npos)
     throw std::invalid_argument("ordering '" + name + "' takes no argument");
   Permutation p = o->fn(m, ctx);
   if (p.size() != m.NumVertices())

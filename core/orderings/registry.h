@@ -13,17 +13,21 @@ namespace meshreuse {
 
 struct OrderingContext {
   uint64_t seed = 1;     // for randomised orderings; reported in every output
-  std::string argument;  // the part after ':' in "name:argument" (file:PATH)
+  std::string argument;  // the part after ':' in "name:argument" (file:PATH, metis:BYTES)
 };
+
+// Whether "name:argument" is refused, required or accepted (list.h's third column).
+enum OrderingArgument { kNoArgument = 0, kArgument = 1, kOptionalArgument = 2 };
 
 using OrderingFn = Permutation (*)(const Mesh&, const OrderingContext&);
 
 struct OrderingInfo {
   const char* name;
   OrderingFn fn;
-  bool takes_argument;
+  OrderingArgument argument;
   const char* description;
   const char* reference;
+  bool takes_argument() const { return argument == kArgument; }  // required
 };
 
 const std::vector<OrderingInfo>& Orderings();

@@ -229,7 +229,7 @@ TEST(HostileInput, CoordinatesNearTheLimitStayFiniteEverywhere) {
   EXPECT_TRUE(std::isfinite(q.mean));
   EXPECT_GT(q.min, 0.0);
   for (const OrderingInfo& o : Orderings())
-    if (!o.takes_argument) {
+    if (!o.takes_argument()) {
       EXPECT_EQ(ComputeOrdering(o.name, m, 1).size(), m.NumVertices()) << o.name;
     }
 }

@@ -57,7 +57,7 @@ inline void Exercise(RawMesh raw) {
     Smooth(s, o);
   }
   for (const OrderingInfo& o : Orderings()) {
-    if (o.takes_argument) continue;
+    if (o.takes_argument()) continue;
     const Permutation p = ComputeOrdering(o.name, m, 1);
     ApplyPermutation(m, p, TriangleOrder::kSorted);
   }
