@@ -25,43 +25,49 @@ namespace meshreuse {
 
 Permutation RdrOrder(const Mesh& m, const std::vector<double>& quality) {
   const int32_t n = m.NumVertices();
-  // Each neighbour row sorted once by (quality, id): then "unprocessed neighbours of v by
-  // increasing quality" is row v with the processed ones skipped, and no sort runs in the chain.
-  const std::vector<int32_t> nbr = orderings::RowsByKey(m, quality);
   const int64_t* off = m.v2v.off.data();
+  const int32_t* idx = m.v2v.idx.data();
   // Byte flags: 2 x V bytes stay in L2, so the chain's misses are the rows alone.
   std::vector<uint8_t> processed(n, 0), sorted(n, 0);
   std::vector<int32_t> order;
   order.reserve(n);
+  // "Unprocessed neighbours of head by increasing quality" is sorted when head is processed, over
+  // those neighbours only (each row once, at most a few dozen entries): no pass sorts every row.
+  // Ties by id: rows are in increasing id and the insertion sort is stable.
+  std::vector<std::pair<double, int32_t>> l;
   for (const int32_t i :
        orderings::StableSortByKey({m.interior.begin(), m.interior.end()}, quality)) {
+    if (order.size() == static_cast<size_t>(n)) break;  // every vertex placed: nothing can change
     if (processed[i]) continue;
     if (!sorted[i]) {
       order.push_back(i);
       sorted[i] = 1;
     }
-    // head = i, then l[0] of each l: process head, l = its unprocessed neighbours by quality,
-    // append the unsorted ones of l, continue from l[0]; stop when l is empty.
     int32_t head = i;
     while (true) {
       processed[head] = 1;
-      int32_t next = -1;
-      for (const int32_t* p = nbr.data() + off[head]; p != nbr.data() + off[head + 1]; ++p) {
+      l.clear();
+      for (const int32_t* p = idx + off[head]; p != idx + off[head + 1]; ++p) {
         const int32_t u = *p;
         if (processed[u]) continue;
-        if (next < 0) next = u;
-        __builtin_prefetch(off + u);  // the chain's next row offset, before it is needed
-        if (!sorted[u]) {
-          order.push_back(u);
-          sorted[u] = 1;
-        }
+        __builtin_prefetch(idx + off[u]);  // a candidate for the chain's next row
+        const double qu = quality[u];
+        size_t k = l.size();
+        l.emplace_back();
+        for (; k > 0 && l[k - 1].first > qu; --k) l[k] = l[k - 1];
+        l[k] = {qu, u};
       }
-      if (next < 0) break;
-      head = next;
+      if (l.empty()) break;
+      for (const auto& e : l)
+        if (!sorted[e.second]) {
+          order.push_back(e.second);
+          sorted[e.second] = 1;
+        }
+      head = l[0].second;
     }
   }
-  for (int32_t v = 0; v < n; ++v)  // never reached (see the file comment)
-    if (!sorted[v]) order.push_back(v);
+  for (int32_t v = 0; v < n && order.size() < static_cast<size_t>(n); ++v)
+    if (!sorted[v]) order.push_back(v);  // never reached (see the file comment)
   return Permutation::FromNewToOld(std::move(order));
 }
 
