@@ -27,7 +27,10 @@ int OrderingsCommand(const Args& args) {
     return 0;
   Table t({"name", "description", "reference"});
   for (const OrderingInfo& o : Orderings())
-    t.AddRow({std::string(o.name) + (o.argument == kArgument ? ":PATH" : o.argument == kOptionalArgument ? "[:ARG]" : ""), o.description, o.reference});
+    t.AddRow({std::string(o.name) + (o.argument == kArgument           ? ":PATH"
+                                     : o.argument == kOptionalArgument ? "[:ARG]"
+                                                                       : ""),
+              o.description, o.reference});
   std::printf("%s", t.Aligned().c_str());
   return 0;
 }
@@ -76,7 +79,7 @@ int ReorderCommand(const Args& args) {
 int CompareCommand(const Args& args) {
   po::options_description desc("options");
   std::string orderings = "ori,bfs,rdr,random", threads = "1", out_dir, mode_name = "gauss-seidel",
-              triangle_order, counters;
+              quality_name = "per-move", triangle_order, counters;
   CompareConfig cfg;
   desc.add_options()("mesh", po::value(&cfg.meshes)->required()->multitoken(), "mesh file(s)")(
       "orderings", po::value(&orderings)->default_value(orderings), "comma-separated orderings")(
@@ -85,8 +88,9 @@ int CompareCommand(const Args& args) {
       "seed", po::value(&cfg.seed)->default_value(1), "seed of randomised orderings")(
       "tol", po::value(&cfg.smooth.tol)->default_value(5e-6, "5e-6"), "stop rule, as for smooth")(
       "max-iters", po::value(&cfg.smooth.max_iters)->default_value(100),
-      "at most this many sweeps")("mode", po::value(&mode_name)->default_value("gauss-seidel"),
-                                  "gauss-seidel or jacobi")(
+      "at most this many sweeps")("quality", po::value(&quality_name)->default_value("per-move"),
+                                  "per-move (the paper's Algorithm 1) or per-sweep (lean)")(
+      "mode", po::value(&mode_name)->default_value("gauss-seidel"), "gauss-seidel or jacobi")(
       "out", po::value(&out_dir),
       "write compare.{csv,md,json}, summary.{csv,md} and run.json here")(
       "counters", po::value(&counters)->implicit_value("default"),
@@ -122,6 +126,7 @@ int CompareCommand(const Args& args) {
   if (std::isnan(cfg.smooth.tol)) throw po::error("--tol must be a number");
   try {
     cfg.smooth.mode = ParseUpdateMode(mode_name);
+    cfg.smooth.quality = ParseQualityMode(quality_name);
   } catch (const std::invalid_argument& e) {
     throw po::error(e.what());
   }
@@ -162,6 +167,7 @@ int CompareCommand(const Args& args) {
                   ", \"seed\": " + std::to_string(cfg.seed) + ", \"triangle_order\": " +
                   JsonString(triangle_order) + ", \"counters\": " + JsonString(counters) +
                   ", \"mode\": " + JsonString(UpdateModeName(cfg.smooth.mode)) +
+                  ", \"quality\": " + JsonString(QualityModeName(cfg.smooth.quality)) +
                   ", \"tol\": " + JsonNumber(cfg.smooth.tol) +
                   ", \"max_iters\": " + std::to_string(cfg.smooth.max_iters) + "},\n" +
                   "  \"results\": " + CompareJson(rows) + "\n}\n");

@@ -1,12 +1,25 @@
 // Non-template parts of the smoother: names of the update modes.
 #include "core/smoother.h"
 
+#include <algorithm>
+#include <cmath>
+
 #include <stdexcept>
 
 namespace meshreuse {
 
 const char* UpdateModeName(UpdateMode m) {
   return m == UpdateMode::kJacobi ? "jacobi" : "gauss-seidel";
+}
+
+const char* QualityModeName(QualityMode m) {
+  return m == QualityMode::kPerMove ? "per-move" : "per-sweep";
+}
+
+QualityMode ParseQualityMode(const std::string& s) {
+  if (s == "per-move") return QualityMode::kPerMove;
+  if (s == "per-sweep") return QualityMode::kPerSweep;
+  throw std::invalid_argument("unknown quality mode '" + s + "' (per-move or per-sweep)");
 }
 
 UpdateMode ParseUpdateMode(const std::string& s) {
@@ -53,5 +66,32 @@ std::vector<uint64_t> RefsPerSweep(const Mesh& m, int threads, UpdateMode mode) 
   }
   return n;
 }
+
+namespace smoother_detail {
+
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) && !defined(__SANITIZE_ADDRESS__)
+__attribute__((target_clones("avx512f", "avx2", "default")))
+#endif
+double WeightedQualitySum(const double* xy, const int32_t* tri, const double* wq, int64_t b,
+                          int64_t e) {
+  double s = 0.0;
+#pragma omp simd reduction(+ : s)
+  for (int64_t t = b; t < e; ++t) {
+    const int64_t i = 2 * int64_t{tri[3 * t]}, j = 2 * int64_t{tri[3 * t + 1]},
+                  k = 2 * int64_t{tri[3 * t + 2]};
+    const double ax = xy[i], ay = xy[i + 1], bx = xy[j], by = xy[j + 1], cx = xy[k],
+                 cy = xy[k + 1];
+    const double ab = (bx - ax) * (bx - ax) + (by - ay) * (by - ay);
+    const double bc = (cx - bx) * (cx - bx) + (cy - by) * (cy - by);
+    const double ca = (ax - cx) * (ax - cx) + (ay - cy) * (ay - cy);
+    const double lo = std::min(ab, std::min(bc, ca));
+    const double hi = std::max(ab, std::max(bc, ca));
+    const double q = hi > 0.0 ? std::sqrt(lo / (hi > 0.0 ? hi : 1.0)) : 0.0;
+    s += wq[2 * t] * q;
+  }
+  return s;
+}
+
+}  // namespace smoother_detail
 
 }  // namespace meshreuse

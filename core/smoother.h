@@ -57,6 +57,12 @@ namespace meshreuse {
 
 enum class UpdateMode { kGaussSeidel, kJacobi };
 const char* UpdateModeName(UpdateMode m);
+// When the global quality is computed: after every move from the moved vertex's triangles (the
+// paper's Algorithm 1, the default), or once per sweep by one pass over the triangles (as
+// Mesquite's termination criterion does: the lean sweep, moves only, then Q = sum w_t q_t).
+enum class QualityMode { kPerMove, kPerSweep };
+const char* QualityModeName(QualityMode m);
+QualityMode ParseQualityMode(const std::string& s);  // per-move | per-sweep
 // Accepts "gs", "gauss-seidel", "jacobi"; throws std::invalid_argument otherwise.
 UpdateMode ParseUpdateMode(const std::string& s);
 
@@ -73,6 +79,7 @@ struct SmoothOptions {
   int max_iters = 100;
   double tol = 5e-6;
   UpdateMode mode = UpdateMode::kGaussSeidel;
+  QualityMode quality = QualityMode::kPerMove;  // Gauss-Seidel only (Jacobi is always per sweep)
   int threads = 1;
   SweepRegion* region = nullptr;  // optional, not owned
   // Before the first sweep (after the setup, outside the timed region) write and read this many
@@ -100,6 +107,12 @@ struct SmoothResult {
 };
 
 namespace smoother_detail {
+
+// Sum over triangles t in [b, e) of wq[2t] * quality(t): the lean sweep's quality pass, with
+// `omp simd` lanes (built for AVX-512, AVX2 and baseline x86-64, chosen at run time), so its
+// rounding depends on the lane count: reproducible on one machine, not bit-equal across CPUs.
+double WeightedQualitySum(const double* xy, const int32_t* tri, const double* wq, int64_t b,
+                          int64_t e);
 
 struct Arrays {
   double* xy;
@@ -247,6 +260,49 @@ double GaussSeidelSweep(const Arrays& a, const AlignedVector<int32_t>& interior,
                       });
 }
 
+// Q = sum over triangles of w_t q_t, in one pass (the lean sweep's quality; the per-triangle
+// qualities are not stored).
+template <class Sink>
+double QualityPass(const Mesh& m, const double* wq, int threads, Sink& sink, SweepRegion* region) {
+  const double* xy = m.xy.data();
+  const int32_t* tri = m.tri.data();
+  if constexpr (!Sink::kEnabled) {
+    // Untraced: a vectorised loop (WeightedQualitySum), each thread its static share.
+    const int64_t nt = m.NumTriangles();
+    double sum = 0.0;
+#pragma omp parallel num_threads(threads) if (threads > 1) reduction(+ : sum)
+    {
+      const int tid = omp_get_thread_num();
+      int64_t b, e;
+      StaticRange(nt, omp_get_num_threads(), tid, &b, &e);
+      if (region) region->Enter(tid);
+      sum += WeightedQualitySum(xy, tri, wq, b, e);
+      if (region) region->Exit(tid);
+    }
+    return sum;
+  }
+  return ForStatic<3>(tri, m.NumTriangles(), threads, sink, region,
+                      [xy, tri, wq, &sink](const int32_t* c, int tid) {
+                        const int64_t t = (c - tri) / 3;
+                        const double q = TracedTriangleQuality(xy, tri, t, tid, sink);
+                        return Load(sink, tid, Array::kWeights, wq + 2 * t) * q;
+                      });
+}
+
+// The lean Gauss-Seidel sweep: moves only, in place; then QualityPass.
+template <class Sink>
+double LeanGaussSeidelSweep(Mesh& m, const double* wq, int threads, Sink& sink,
+                            SweepRegion* region) {
+  const Arrays a = ArraysOf(m);
+  ForStatic<1>(m.interior.data(), static_cast<int64_t>(m.interior.size()), threads, sink, region,
+               [a, &sink](const int32_t* item, int tid) {
+                 const int32_t v = Load(sink, tid, Array::kInterior, item);
+                 MoveToAverage(a, a.xy, a.xy, Array::kCoords, v, tid, sink);
+                 return 0.0;
+               });
+  return QualityPass(m, wq, threads, sink, region);
+}
+
 // Jacobi: new positions from the old buffer into `next`, swap, then all triangle qualities anew.
 template <class Sink>
 double JacobiSweep(Mesh& m, AlignedVector<double>& next, double* wq, int threads, Sink& sink,
@@ -324,7 +380,9 @@ SmoothResult Smooth(Mesh& mesh, const SmoothOptions& opt, Sink& sink,
     if constexpr (Sink::kEnabled) sink.BeginSweep(it);
     const auto t0 = Clock::now();
     double q_new;
-    if (opt.mode == UpdateMode::kGaussSeidel) {
+    if (opt.mode == UpdateMode::kGaussSeidel && opt.quality == QualityMode::kPerSweep) {
+      q_new = smoother_detail::LeanGaussSeidelSweep(mesh, wq.data(), threads, sink, opt.region);
+    } else if (opt.mode == UpdateMode::kGaussSeidel) {
       q_new = q + smoother_detail::GaussSeidelSweep(smoother_detail::ArraysOf(mesh), mesh.interior,
                                                     wq.data(), threads, sink, opt.region);
     } else {

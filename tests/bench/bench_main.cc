@@ -150,8 +150,8 @@ void ParallelSpeedup(benchmark::State& state, std::string name) {
 // Reading a trace file against analysing it in memory, interleaved: each iteration writes nothing
 // new, but times (a) StackDistance + histogram over the in-memory trace (the Analyzer figure) and
 // (b) what `analyze FILE --format u64 --granularity element` does after start-up: read the u64
-// file through InputStream, feed TraceAnalysis (histogram and profile). The ratio of the sums is the
-// whole-process overhead.
+// file through InputStream, feed TraceAnalysis (histogram and profile). The ratio of the sums is
+// the whole-process overhead.
 void FileRatio(benchmark::State& state, std::string name) {
   const std::vector<uint64_t>& trace = Trace(name);
   const std::string path =
@@ -195,6 +195,37 @@ void FileRatio(benchmark::State& state, std::string name) {
   state.counters["memory_Macc_s"] = static_cast<double>(trace.size()) * it / mem / 1e6;
   state.counters["file_Macc_s"] = static_cast<double>(trace.size()) * it / file / 1e6;
   state.counters["ratio"] = file / mem;
+}
+
+// The lean sweep (--quality per-sweep): the moves, then one quality pass over the triangles; ns per
+// interior vertex for each part and in all (the issue-10 goal: <= 15 ns on carabiner, 1 thread),
+// beside the default per-move sweep in the same iterations.
+void LeanSweep(benchmark::State& state, std::string ordering) {
+  Mesh m = Ordered(ordering).Clone();
+  const std::vector<double> tq = TriangleQualities(m), w = GlobalQualityWeights(m);
+  AlignedVector<double> wq(2 * tq.size());
+  for (size_t t = 0; t < tq.size(); ++t) wq[2 * t] = w[t], wq[2 * t + 1] = tq[t];
+  using Clock = std::chrono::steady_clock;
+  NullSink sink;
+  double lean = 0, pass = 0, per_move = 0;
+  for (auto _ : state) {
+    auto t0 = Clock::now();
+    benchmark::DoNotOptimize(smoother_detail::LeanGaussSeidelSweep(m, wq.data(), 1, sink, nullptr));
+    auto t1 = Clock::now();
+    benchmark::DoNotOptimize(smoother_detail::QualityPass(m, wq.data(), 1, sink, nullptr));
+    auto t2 = Clock::now();
+    benchmark::DoNotOptimize(smoother_detail::GaussSeidelSweep(
+        smoother_detail::ArraysOf(m), m.interior, wq.data(), 1, sink, nullptr));
+    auto t3 = Clock::now();
+    lean += std::chrono::duration<double>(t1 - t0).count();
+    pass += std::chrono::duration<double>(t2 - t1).count();
+    per_move += std::chrono::duration<double>(t3 - t2).count();
+  }
+  const double k =
+      1e9 / static_cast<double>(state.iterations()) / static_cast<double>(m.interior.size());
+  state.counters["lean_ns"] = lean * k;
+  state.counters["quality_pass_ns"] = pass * k;  // measured apart, for the split
+  state.counters["per_move_ns"] = per_move * k;
 }
 
 // A Gauss-Seidel sweep written without any sink: what Smooth<NullSink> must match.
@@ -329,9 +360,12 @@ int main(int argc, char** argv) {
         ->Iterations(5)
         ->Unit(benchmark::kMillisecond);
   for (const char* o : {"ori", "ori-8", "rdr-8", "uniform"})
-    benchmark::RegisterBenchmark(("FileRatio/" + std::string(o)).c_str(), FileRatio,
-                                 std::string(o))
+    benchmark::RegisterBenchmark(("FileRatio/" + std::string(o)).c_str(), FileRatio, std::string(o))
         ->Iterations(5)
+        ->Unit(benchmark::kMillisecond);
+  for (const char* o : {"ori", "bfs", "rdr-wave"})
+    benchmark::RegisterBenchmark(("LeanSweep/" + std::string(o)).c_str(), LeanSweep, std::string(o))
+        ->Iterations(50)
         ->Unit(benchmark::kMillisecond);
   benchmark::RegisterBenchmark("Sweep/plain", SweepPlain)->Unit(benchmark::kMillisecond);
   benchmark::RegisterBenchmark("Sweep/null", SweepNull)

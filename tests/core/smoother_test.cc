@@ -168,6 +168,44 @@ TEST(Smoother, SweepCallbackSeesEverySweep) {
   EXPECT_EQ(r.sweeps.size(), 5u);
 }
 
+// The lean sweep (--quality per-sweep) moves exactly as the default one (moves do not read the
+// quality), and its once-per-sweep quality is the direct definition's, on 1 and 2 threads; the
+// stop rule then stops at the same sweep.
+TEST(Smoother, LeanSweepMovesAlikeAndMeasuresQualityPerSweep) {
+  for (int threads : {1, 2}) {
+    Mesh a = Synthetic(7), b = Synthetic(7);
+    SmoothOptions per_move = Sweeps(12, UpdateMode::kGaussSeidel, threads), lean = per_move;
+    lean.quality = QualityMode::kPerSweep;
+    const SmoothResult ra = Smooth(a, per_move);
+    Mesh c = Synthetic(7);
+    const SmoothResult rb = Smooth(b, lean);
+    ASSERT_EQ(ra.sweeps.size(), rb.sweeps.size());
+    EXPECT_NEAR(rb.sweeps.back().quality, GlobalQuality(b), 1e-12);
+    if (threads == 1) {  // with 2, reads across the chunk border race (as in the paper)
+      EXPECT_EQ(a.xy, b.xy) << "the same moves in the same order";
+      for (size_t i = 0; i < rb.sweeps.size(); ++i)
+        EXPECT_NEAR(rb.sweeps[i].quality, ra.sweeps[i].quality, 1e-12) << "sweep " << i + 1;
+    }
+    // Sweep by sweep against the direct definition, one sweep at a time.
+    SmoothOptions one = lean;
+    one.max_iters = 1;
+    for (int k = 0; k < 3; ++k) {
+      const SmoothResult r = Smooth(c, one);
+      EXPECT_NEAR(r.sweeps[0].quality, GlobalQuality(c), 1e-13);
+    }
+    if (threads == 1) {  // with a tolerance, both stop at the same sweep
+      Mesh d = Synthetic(7), e = Synthetic(7);
+      SmoothOptions tol_move = per_move, tol_lean = lean;
+      tol_move.max_iters = tol_lean.max_iters = 100;
+      tol_move.tol = tol_lean.tol = 1e-5;
+      EXPECT_EQ(Smooth(d, tol_move).sweeps.size(), Smooth(e, tol_lean).sweeps.size());
+    }
+  }
+  EXPECT_EQ(ParseQualityMode("per-sweep"), QualityMode::kPerSweep);
+  EXPECT_EQ(ParseQualityMode("per-move"), QualityMode::kPerMove);
+  EXPECT_THROW(ParseQualityMode("sometimes"), std::invalid_argument);
+}
+
 TEST(Smoother, UpdateModeNames) {
   EXPECT_EQ(ParseUpdateMode("gs"), UpdateMode::kGaussSeidel);
   EXPECT_EQ(ParseUpdateMode("gauss-seidel"), UpdateMode::kGaussSeidel);
