@@ -1,4 +1,5 @@
 // meshreuse orderings | reorder | compare.
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -10,8 +11,10 @@
 #include "cli/common.h"
 #include "cli/options.h"
 #include "core/mesh_io.h"
+#include "core/orderings/rdr.h"
 #include "core/orderings/registry.h"
 #include "core/permutation.h"
+#include "core/quality.h"
 #include "reports/compare.h"
 #include "reports/run_info.h"
 #include "reports/table.h"
@@ -73,6 +76,19 @@ int ReorderCommand(const Args& args) {
   std::printf("wrote %s.perm\n", out.c_str());
   std::printf("ordering %s: %.3f ms to compute, %.3f ms to apply\n", ordering.c_str(),
               1e3 * order_s, 1e3 * apply_s);
+  if (ordering == "rdr" || ordering == "rdr-frontier") {  // the chains behind the order
+    RdrChains c;
+    (ordering == "rdr" ? RdrOrder : RdrFrontierOrder)(m, VertexQualities(m), &c);
+    std::vector<int64_t> n;
+    for (int64_t k : c.placed)
+      if (k > 0) n.push_back(k);
+    std::sort(n.begin(), n.end());
+    const auto small = std::lower_bound(n.begin(), n.end(), 10) - n.begin();
+    if (!n.empty())
+      std::printf("chains placing vertices: %zu, longest %lld, median %lld, fewer than ten: %lld\n",
+                  n.size(), static_cast<long long>(n.back()),
+                  static_cast<long long>(n[n.size() / 2]), static_cast<long long>(small));
+  }
   return 0;
 }
 

@@ -38,10 +38,11 @@ std::vector<std::string> SplitList(const std::string& s) {
 
 void CheckOrderings(const std::vector<std::string>& specs) {
   if (specs.empty()) throw boost::program_options::error("no ordering given");
-  for (const std::string& s : specs)
-    if (!FindOrdering(s.substr(0, s.find(':'))))
-      throw boost::program_options::error("unknown ordering '" + s +
-                                          "' (known: " + OrderingNames() + ")");
+  for (const std::string& s : specs) try {
+      CheckOrderingSpec(s);
+    } catch (const std::invalid_argument& e) {
+      throw boost::program_options::error(e.what());
+    }
 }
 
 std::string RunJsonHeader(const std::string& tool) {

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "core/mesh.h"
@@ -23,5 +24,8 @@ std::vector<int32_t> StableSortByKey(const std::vector<int32_t>& ids,
 // of the result (offsets m.v2v.off). Rows are short and in increasing id, so an insertion sort on
 // the key keeps ties by id.
 std::vector<int32_t> RowsByKey(const Mesh& m, const std::vector<double>& key);
+
+// metis's argument: bytes per part, K/M suffixes; "" gives 256 KiB. Throws std::invalid_argument.
+uint64_t ParseMetisPartBytes(const std::string& arg);
 
 }  // namespace meshreuse::orderings

@@ -17,9 +17,7 @@
 
 namespace meshreuse {
 
-namespace {
-
-uint64_t PartBytes(const std::string& arg) {
+uint64_t orderings::ParseMetisPartBytes(const std::string& arg) {
   if (arg.empty()) return 256 * 1024;
   size_t used = 0;
   unsigned long long v = 0;
@@ -37,8 +35,6 @@ uint64_t PartBytes(const std::string& arg) {
   return v * mult;
 }
 
-}  // namespace
-
 double SweepBytesPerVertex(const Mesh& m) {
   const double v = m.NumVertices(), t = m.NumTriangles();
   const double bytes = 16 * v + 8 * (v + 1) + 4.0 * m.v2v.idx.size() + 8 * (v + 1) +
@@ -48,7 +44,7 @@ double SweepBytesPerVertex(const Mesh& m) {
 
 Permutation OrderMetis(const Mesh& m, const OrderingContext& ctx) {
   const int32_t n = m.NumVertices();
-  const uint64_t part_bytes = PartBytes(ctx.argument);
+  const uint64_t part_bytes = orderings::ParseMetisPartBytes(ctx.argument);
   const double parts_wanted = n * SweepBytesPerVertex(m) / static_cast<double>(part_bytes);
   if (parts_wanted <= 1 || n < 4) return Permutation::FromNewToOld(orderings::BfsVisitOrder(m));
   orderings::MetisGraph g = orderings::ToMetis(m);

@@ -23,7 +23,7 @@
 
 namespace meshreuse {
 
-Permutation RdrOrder(const Mesh& m, const std::vector<double>& quality) {
+Permutation RdrOrder(const Mesh& m, const std::vector<double>& quality, RdrChains* chains) {
   const int32_t n = m.NumVertices();
   const int64_t* off = m.v2v.off.data();
   const int32_t* idx = m.v2v.idx.data();
@@ -39,6 +39,7 @@ Permutation RdrOrder(const Mesh& m, const std::vector<double>& quality) {
        orderings::StableSortByKey({m.interior.begin(), m.interior.end()}, quality)) {
     if (order.size() == static_cast<size_t>(n)) break;  // every vertex placed: nothing can change
     if (processed[i]) continue;
+    const size_t chain_start = order.size();
     if (!sorted[i]) {
       order.push_back(i);
       sorted[i] = 1;
@@ -65,6 +66,7 @@ Permutation RdrOrder(const Mesh& m, const std::vector<double>& quality) {
         }
       head = l[0].second;
     }
+    if (chains) chains->placed.push_back(static_cast<int64_t>(order.size() - chain_start));
   }
   for (int32_t v = 0; v < n && order.size() < static_cast<size_t>(n); ++v)
     if (!sorted[v]) order.push_back(v);  // never reached (see the file comment)

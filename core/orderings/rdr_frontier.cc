@@ -16,7 +16,7 @@
 
 namespace meshreuse {
 
-Permutation RdrFrontierOrder(const Mesh& m, const std::vector<double>& quality) {
+Permutation RdrFrontierOrder(const Mesh& m, const std::vector<double>& quality, RdrChains* chains) {
   const int32_t n = m.NumVertices();
   const std::vector<int32_t> nbr = orderings::RowsByKey(m, quality);
   const int64_t* off = m.v2v.off.data();
@@ -39,6 +39,7 @@ Permutation RdrFrontierOrder(const Mesh& m, const std::vector<double>& quality) 
       if (!processed[frontier.top().second]) head = frontier.top().second;
       frontier.pop();
     }
+    const size_t chain_start = order.size();
     if (head < 0) {  // the frontier is empty: the worst unprocessed interior vertex
       while (g < global.size() && processed[global[g]]) ++g;
       if (g == global.size()) break;
@@ -56,6 +57,7 @@ Permutation RdrFrontierOrder(const Mesh& m, const std::vector<double>& quality) 
       if (next < 0) break;
       head = next;
     }
+    if (chains) chains->placed.push_back(static_cast<int64_t>(order.size() - chain_start));
   }
   for (int32_t v = 0; v < n; ++v)
     if (!sorted[v]) order.push_back(v);

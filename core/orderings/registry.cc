@@ -3,6 +3,8 @@
 
 #include <stdexcept>
 
+#include "core/orderings/common.h"
+
 namespace meshreuse {
 
 #define MESHREUSE_ORDERING(fn, ...) Permutation fn(const Mesh&, const OrderingContext&);
@@ -32,6 +34,20 @@ std::string OrderingNames() {
           : o.argument == kOptionalArgument ? "[:ARG]"
                                             : "");
   return s;
+}
+
+void CheckOrderingSpec(const std::string& spec) {
+  const size_t colon = spec.find(':');
+  const std::string name = spec.substr(0, colon);
+  const OrderingInfo* o = FindOrdering(name);
+  if (!o)
+    throw std::invalid_argument("unknown ordering '" + spec + "' (known: " + OrderingNames() + ")");
+  const std::string arg = colon == std::string::npos ? "" : spec.substr(colon + 1);
+  if (o->argument == kArgument && arg.empty())
+    throw std::invalid_argument("ordering '" + name + "' needs an argument: " + name + ":ARG");
+  if (o->argument == kNoArgument && colon != std::string::npos)
+    throw std::invalid_argument("ordering '" + name + "' takes no argument");
+  if (name == "metis") orderings::ParseMetisPartBytes(arg);
 }
 
 Permutation ComputeOrdering(const std::string& spec, const Mesh& m, uint64_t seed) {

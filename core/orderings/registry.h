@@ -34,6 +34,11 @@ const std::vector<OrderingInfo>& Orderings();
 const OrderingInfo* FindOrdering(const std::string& name);  // nullptr when unknown
 std::string OrderingNames();                                // "ori, random, ..."
 
+// Checks "name" or "name:argument" without computing anything (for option checking before a long
+// run): the name, the argument's presence, and the argument itself where it can be checked
+// without the mesh (metis:BYTES). Throws std::invalid_argument.
+void CheckOrderingSpec(const std::string& spec);
+
 // Computes "name" or "name:argument". Throws std::invalid_argument for an unknown name or a
 // missing/unexpected argument, and whatever the ordering throws (file: InputError).
 Permutation ComputeOrdering(const std::string& spec, const Mesh& m, uint64_t seed = 1);

@@ -77,6 +77,15 @@ contains "generate without triangle" "triangle-bin"
 check "orderings" 0 "$bin" orderings
 contains "orderings" "rdr"
 contains "orderings" "Aupy, Park, Raghavan, Algorithm 2"
+for o in rdr-frontier rdr-wave morton "metis[:ARG]" nd; do contains "orderings" "$o"; done
+check "smooth lean" 0 "$bin" smooth "$data/two_interior.node" --quality per-sweep --max-iters 2 --tol -1 --out "$tmp/lean" --quiet
+contains "smooth lean" "sweeps 2"
+grep -q '"quality": "per-sweep"' "$tmp/lean/run.json" && pass=$((pass + 1)) || { fail=$((fail + 1)); echo "FAIL smooth lean: run.json lacks the quality mode"; }
+check "smooth bad quality" 2 "$bin" smooth "$data/two_interior.node" --quality sometimes
+contains "smooth bad quality" "unknown quality mode 'sometimes'"
+check "metis bytes" 0 "$bin" smooth "$data/two_interior.node" --ordering metis:1K --max-iters 1 --quiet
+check "metis bad bytes" 2 "$bin" smooth "$data/two_interior.node" --ordering metis:lots
+contains "metis bad bytes" "metis:BYTES needs a positive size"
 check "reorder" 0 "$bin" reorder "$data/two_interior.node" --ordering rdr -o "$tmp/r" --quiet
 for f in r.node r.ele r.perm; do
   [[ -s $tmp/$f ]] && pass=$((pass + 1)) || { fail=$((fail + 1)); echo "FAIL reorder: no $f"; }
