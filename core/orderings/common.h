@@ -25,6 +25,10 @@ std::vector<int32_t> StableSortByKey(const std::vector<int32_t>& ids,
 // the key keeps ties by id.
 std::vector<int32_t> RowsByKey(const Mesh& m, const std::vector<double>& key);
 
+// Vertices sorted by index(gx, gy) of their position on a 2^16 x 2^16 grid laid over the bounding
+// box (each axis scaled independently), ties by id: hilbert and morton.
+std::vector<int32_t> SortAlongCurve(const Mesh& m, uint64_t (*index)(uint32_t, uint32_t));
+
 // metis's argument: bytes per part, K/M suffixes; "" gives 256 KiB. Throws std::invalid_argument.
 uint64_t ParseMetisPartBytes(const std::string& arg);
 

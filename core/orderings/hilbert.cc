@@ -32,25 +32,7 @@ uint64_t HilbertIndex(uint32_t x, uint32_t y) {
 }  // namespace
 
 Permutation OrderHilbert(const Mesh& m, const OrderingContext&) {
-  const int32_t n = m.NumVertices();
-  double x0 = INFINITY, x1 = -INFINITY, y0 = INFINITY, y1 = -INFINITY;
-  for (int32_t v = 0; v < n; ++v) {
-    x0 = std::min(x0, m.xy[2 * int64_t{v}]), x1 = std::max(x1, m.xy[2 * int64_t{v}]);
-    y0 = std::min(y0, m.xy[2 * int64_t{v} + 1]), y1 = std::max(y1, m.xy[2 * int64_t{v} + 1]);
-  }
-  const double sx = x1 > x0 ? 65535.0 / (x1 - x0) : 0.0;
-  const double sy = y1 > y0 ? 65535.0 / (y1 - y0) : 0.0;
-  std::vector<double> key(n);  // d < 2^32 is exact in a double
-  std::vector<int32_t> ids(n);
-  for (int32_t v = 0; v < n; ++v) {
-    const auto gx =
-        static_cast<uint32_t>(std::clamp((m.xy[2 * int64_t{v}] - x0) * sx, 0.0, 65535.0));
-    const auto gy =
-        static_cast<uint32_t>(std::clamp((m.xy[2 * int64_t{v} + 1] - y0) * sy, 0.0, 65535.0));
-    key[v] = static_cast<double>(HilbertIndex(gx, gy));
-    ids[v] = v;
-  }
-  return Permutation::FromNewToOld(orderings::StableSortByKey(ids, key));
+  return Permutation::FromNewToOld(orderings::SortAlongCurve(m, HilbertIndex));
 }
 
 }  // namespace meshreuse
