@@ -1,5 +1,6 @@
 // Permutation and ApplyPermutation; see permutation.h. Applying costs O(V + T): a counting sort of
-// the triangles by smallest new corner, then the adjacency is rebuilt by BuildMesh.
+// the triangles by smallest new corner, then every array permuted in place of a rebuild (the
+// rebuild, ApplyPermutationByRebuild, stays as the tests' reference).
 #include "core/permutation.h"
 
 #include <algorithm>
@@ -58,7 +59,80 @@ const char* TriangleOrderName(TriangleOrder t) {
   return t == TriangleOrder::kFile ? "file" : "sorted";
 }
 
+namespace {
+
+// new triangle id of each old triangle: the identity for kFile, else a stable counting sort by the
+// smallest new corner.
+std::vector<int32_t> TriangleNewIds(const Mesh& m, const Permutation& p, TriangleOrder order) {
+  const int32_t nv = m.NumVertices(), nt = m.NumTriangles();
+  std::vector<int32_t> newt(nt);
+  if (order == TriangleOrder::kFile) {
+    for (int32_t t = 0; t < nt; ++t) newt[t] = t;
+    return newt;
+  }
+  std::vector<int64_t> start(static_cast<size_t>(nv) + 1, 0);
+  for (int32_t t = 0; t < nt; ++t) {
+    const int32_t* c = &m.tri[3 * int64_t{t}];
+    newt[t] = std::min({p.NewOf(c[0]), p.NewOf(c[1]), p.NewOf(c[2])});  // the key, for now
+    ++start[newt[t] + 1];
+  }
+  for (int32_t v = 0; v < nv; ++v) start[v + 1] += start[v];
+  for (int32_t t = 0; t < nt; ++t) newt[t] = static_cast<int32_t>(start[newt[t]]++);
+  return newt;
+}
+
+// Row i of the result = row p.OldOf(i) of `in`, each entry mapped through `map` and the row sorted.
+void PermuteCsr(const Csr& in, const Permutation& p, const int32_t* map, Csr* out) {
+  const int32_t n = p.size();
+  out->off.assign(static_cast<size_t>(n) + 1, 0);
+  for (int32_t i = 0; i < n; ++i) out->off[i + 1] = out->off[i] + in.RowSize(p.OldOf(i));
+  out->idx.resize(in.idx.size());
+#pragma omp parallel for schedule(static, 4096)
+  for (int32_t i = 0; i < n; ++i) {
+    const int32_t o = p.OldOf(i);
+    int32_t* dst = out->idx.data() + out->off[i];
+    const int64_t k = in.RowSize(o);
+    for (int64_t j = 0; j < k; ++j) {  // insertion: rows hold a handful of entries
+      const int32_t v = map[in.idx[in.off[o] + j]];
+      int64_t q = j;
+      for (; q > 0 && dst[q - 1] > v; --q) dst[q] = dst[q - 1];
+      dst[q] = v;
+    }
+  }
+}
+
+}  // namespace
+
 Mesh ApplyPermutation(const Mesh& m, const Permutation& p, TriangleOrder order) {
+  const int32_t nv = m.NumVertices(), nt = m.NumTriangles();
+  if (p.size() != nv)
+    throw std::invalid_argument("the permutation has " + std::to_string(p.size()) +
+                                " entries, the mesh " + std::to_string(nv) + " vertices");
+  Mesh r;
+  r.xy.resize(m.xy.size());
+  r.boundary.resize(m.boundary.size());
+#pragma omp parallel for schedule(static, 4096)
+  for (int32_t i = 0; i < nv; ++i) {
+    const int32_t o = p.OldOf(i);
+    r.xy[2 * int64_t{i}] = m.xy[2 * int64_t{o}];
+    r.xy[2 * int64_t{i} + 1] = m.xy[2 * int64_t{o} + 1];
+    r.boundary[i] = m.boundary[o];
+  }
+  const std::vector<int32_t> newt = TriangleNewIds(m, p, order);
+  r.tri.resize(m.tri.size());
+#pragma omp parallel for schedule(static, 4096)
+  for (int32_t t = 0; t < nt; ++t)
+    for (int k = 0; k < 3; ++k)
+      r.tri[3 * int64_t{newt[t]} + k] = p.NewOf(m.tri[3 * int64_t{t} + k]);
+  PermuteCsr(m.v2v, p, p.old_to_new().data(), &r.v2v);
+  PermuteCsr(m.v2t, p, newt.data(), &r.v2t);
+  r.interior.reserve(m.interior.size());
+  for (int32_t i = 0; i < nv; ++i)
+    if (!r.boundary[i]) r.interior.push_back(i);
+  return r;
+}
+
+Mesh ApplyPermutationByRebuild(const Mesh& m, const Permutation& p, TriangleOrder order) {
   const int32_t nv = m.NumVertices(), nt = m.NumTriangles();
   if (p.size() != nv)
     throw std::invalid_argument("the permutation has " + std::to_string(p.size()) +

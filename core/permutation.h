@@ -48,9 +48,15 @@ const char* TriangleOrderName(TriangleOrder t);
 
 // The reordered mesh: vertex new_id is old vertex p.OldOf(new_id). Triangles are renumbered
 // (corner order, hence orientation, kept) and placed by `order`. Throws std::invalid_argument if
-// sizes differ.
+// sizes differ. Permutes every array directly, in parallel (coordinates, boundary flags, both CSR
+// adjacencies -- rows moved, entries renumbered and re-sorted within each row -- triangles and the
+// interior list), O(V + T), no validation pass: the result equals ApplyPermutationByRebuild's.
 Mesh ApplyPermutation(const Mesh& m, const Permutation& p,
                       TriangleOrder order = TriangleOrder::kSorted);
+// The reference: the permuted vertex and triangle arrays handed to BuildMesh, which validates them
+// and rebuilds the adjacency from scratch (the implementation before issue 12; tests compare).
+Mesh ApplyPermutationByRebuild(const Mesh& m, const Permutation& p,
+                               TriangleOrder order = TriangleOrder::kSorted);
 
 // How far apart in memory the two ends of each mesh edge are under `p`: |new(u) - new(v)| over all
 // edges. A cheap locality diagnostic (the paper's "span of accesses", its Figure 4): a sweep reads

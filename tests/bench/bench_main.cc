@@ -8,6 +8,7 @@
 //                            map of last accesses) on the same trace, for the ratio
 //   ParallelSpeedup/<trace>  serial and 2-thread exact analysis alternated: the speedup
 //   FileRatio/<trace>        in-memory analysis and the u64-file pipeline alternated: the ratio
+//   ApplyRatio               ORI sweep, direct apply and rebuild alternated: applies in sweeps
 //   Sweep/plain, Sweep/null  a hand-written Gauss-Seidel sweep with no sink at all, and
 //                            Smooth<NullSink>'s sweep: NullSink must cost nothing
 //   Sweep/analyze            one sweep streamed into the element analyzer (streaming cost)
@@ -228,6 +229,36 @@ void LeanSweep(benchmark::State& state, std::string ordering) {
   state.counters["per_move_ns"] = per_move * k;
 }
 
+// Applying an ordering against one ORI sweep, interleaved: each iteration times one untraced ORI
+// sweep (the smoother's own timer), ApplyPermutation (direct) and ApplyPermutationByRebuild with
+// the BFS permutation; the counters are the two applies in ORI sweeps (issue 12: <= 1).
+void ApplyRatio(benchmark::State& state) {
+  const Mesh& base = BaseMesh();
+  const Permutation p = ComputeOrdering("bfs", base, 1);
+  Mesh m = base.Clone();
+  SmoothOptions o;
+  o.max_iters = 1;
+  o.tol = -1;
+  using Clock = std::chrono::steady_clock;
+  double sweep = 0, direct = 0, rebuild = 0;
+  for (auto _ : state) {
+    sweep += Smooth(m, o).sweeps[0].seconds;
+    auto t0 = Clock::now();
+    benchmark::DoNotOptimize(ApplyPermutation(base, p).NumVertices());
+    auto t1 = Clock::now();
+    benchmark::DoNotOptimize(ApplyPermutationByRebuild(base, p).NumVertices());
+    auto t2 = Clock::now();
+    direct += std::chrono::duration<double>(t1 - t0).count();
+    rebuild += std::chrono::duration<double>(t2 - t1).count();
+  }
+  const double it = static_cast<double>(state.iterations());
+  state.counters["sweep_ms"] = 1e3 * sweep / it;
+  state.counters["direct_ms"] = 1e3 * direct / it;
+  state.counters["rebuild_ms"] = 1e3 * rebuild / it;
+  state.counters["direct_sweeps"] = direct / sweep;
+  state.counters["rebuild_sweeps"] = rebuild / sweep;
+}
+
 // A Gauss-Seidel sweep written without any sink: what Smooth<NullSink> must match.
 // Weight and quality of triangle t at wq[2t], wq[2t+1], as the smoother keeps them.
 double PlainSweep(Mesh& m, std::vector<double>& wq) {
@@ -367,6 +398,9 @@ int main(int argc, char** argv) {
     benchmark::RegisterBenchmark(("LeanSweep/" + std::string(o)).c_str(), LeanSweep, std::string(o))
         ->Iterations(50)
         ->Unit(benchmark::kMillisecond);
+  benchmark::RegisterBenchmark("ApplyRatio", ApplyRatio)
+      ->Iterations(9)
+      ->Unit(benchmark::kMillisecond);
   benchmark::RegisterBenchmark("Sweep/plain", SweepPlain)->Unit(benchmark::kMillisecond);
   benchmark::RegisterBenchmark("Sweep/null", SweepNull)
       ->UseManualTime()
