@@ -114,16 +114,8 @@ void StreamAnalysis::AddBatch(const uint64_t* ids, size_t n, int threads) {
   if (!exact) return;
   // Chunks below a few thousand accesses are not worth a thread.
   const int p = static_cast<int>(std::min<size_t>(std::max(threads, 1), n / 4096 + 1));
-  if (p <= 1) {
-    if (shards) {  // sampled above already
-      for (size_t i = 0; i < n; ++i) {
-        const uint64_t d = sd.Access(ids[i]);
-        hist.Add(d);
-        if (profile.enabled()) profile.Add(d);
-      }
-      return;
-    }
-    for (size_t i = 0; i < n; ++i) Add(ids[i]);
+  if (p <= 1) {  // sampled above already
+    for (size_t i = 0; i < n; ++i) AddExact(ids[i]);
     return;
   }
   const uint64_t base = hist.accesses();

@@ -37,12 +37,13 @@ struct StreamAnalysis {
   bool exact;
   std::unique_ptr<Shards> shards;
   void Add(uint64_t id) {
-    if (exact) {
-      const uint64_t d = sd.Access(id);
-      hist.Add(d);
-      if (profile.enabled()) profile.Add(d);
-    }
+    if (exact) AddExact(id);
     if (shards) shards->Access(id);
+  }
+  void AddExact(uint64_t id) {
+    const uint64_t d = sd.Access(id);
+    hist.Add(d);
+    if (profile.enabled()) profile.Add(d);
   }
   // The next n accesses at once, on `threads` OpenMP threads (parallel_stack_distance.h): the
   // same histogram and profile as n calls of Add.

@@ -10,6 +10,7 @@
 
 #include "core/mesh.h"
 #include "core/mesh_io.h"
+#include "core/synthetic.h"
 
 namespace meshreuse::testing {
 
@@ -36,6 +37,26 @@ class TempDir {
 
 inline std::string DataPath(const std::string& name) {
   return std::string(MESHREUSE_TEST_DATA) + "/" + name;
+}
+
+// The meshes the ordering and permutation tests loop over: 24 synthetic meshes (holes, graded
+// cells, sizes 4..26 x 3..19, boundary vertices with no interior neighbour) plus two_interior and
+// two_components (a component without interior vertices).
+inline std::vector<Mesh> MeshCorpus() {
+  std::vector<Mesh> meshes;
+  for (uint64_t seed = 1; seed <= 24; ++seed) {
+    SyntheticOptions o;
+    o.nx = 4 + static_cast<int>(seed * 7 % 23);
+    o.ny = 3 + static_cast<int>(seed * 5 % 17);
+    o.holes = static_cast<int>(seed % 4);
+    o.graded = seed % 3 != 0;
+    o.seed = seed;
+    RawMesh raw = MakeSyntheticMesh(o);
+    if (!raw.tri.empty()) meshes.push_back(BuildMesh(std::move(raw)));
+  }
+  meshes.push_back(ReadMesh(DataPath("two_interior.node")));
+  meshes.push_back(ReadMesh(DataPath("two_components.node")));
+  return meshes;
 }
 
 // The hand-computed sweep's mesh: boundary vertices 0..5 on a 4 x 2 rectangle, interior 6 and 7.

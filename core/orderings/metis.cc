@@ -35,12 +35,18 @@ uint64_t orderings::ParseMetisPartBytes(const std::string& arg) {
   return v * mult;
 }
 
+namespace {
+
+// What the sweep reads per vertex on average: coordinates, both adjacency rows and their offsets,
+// the triangles' corners, weights and qualities, the interior list.
 double SweepBytesPerVertex(const Mesh& m) {
   const double v = m.NumVertices(), t = m.NumTriangles();
   const double bytes = 16 * v + 8 * (v + 1) + 4.0 * m.v2v.idx.size() + 8 * (v + 1) +
                        4.0 * m.v2t.idx.size() + 12 * t + 16 * t + 4.0 * m.interior.size();
   return v > 0 ? bytes / v : 0;
 }
+
+}  // namespace
 
 Permutation OrderMetis(const Mesh& m, const OrderingContext& ctx) {
   const int32_t n = m.NumVertices();

@@ -2,9 +2,10 @@
 // Boost.Graph's cuthill_mckee_ordering (libboost-graph-dev, header-only): per connected component
 // from a pseudo-peripheral vertex found by Boost's own search, a BFS queueing unvisited neighbours
 // by increasing degree; the order reversed. Until issue 10 this file had its own implementation
-// (George-Liu start, ties by id); on the 18 meshes of tests/core/orderings/new_orderings_test.cc
-// it had a larger bandwidth than Boost's on 10 and a smaller one on 3 (profile: larger on 10),
-// so the better, widely used one is used. The test checks rcm equals Boost's order.
+// (George-Liu start, ties by id); on the 18 meshes new_orderings_test.cc used then (16 synthetic,
+// two_interior, two_components) it had a larger bandwidth than Boost's on 10 and a smaller one on 3
+// (profile: larger on 10), so the better, widely used one is used. The test checks rcm equals
+// Boost's order.
 #include <boost/graph/compressed_sparse_row_graph.hpp>
 #include <boost/graph/cuthill_mckee_ordering.hpp>
 #include <utility>

@@ -21,23 +21,6 @@
 namespace meshreuse {
 namespace {
 
-std::vector<Mesh> Corpus() {
-  std::vector<Mesh> meshes;
-  for (uint64_t seed = 1; seed <= 16; ++seed) {
-    SyntheticOptions o;
-    o.nx = 5 + static_cast<int>(seed * 7 % 19);
-    o.ny = 4 + static_cast<int>(seed * 5 % 13);
-    o.holes = static_cast<int>(seed % 3);
-    o.graded = seed % 2;
-    o.seed = seed;
-    RawMesh raw = MakeSyntheticMesh(o);
-    if (!raw.tri.empty()) meshes.push_back(BuildMesh(std::move(raw)));
-  }
-  meshes.push_back(testing::TwoInterior());
-  meshes.push_back(ReadMesh(testing::DataPath("two_components.node")));
-  return meshes;
-}
-
 std::vector<double> RandomQualities(const Mesh& m, uint64_t seed) {
   SplitMix64 rng(seed);
   std::vector<double> q(m.NumVertices());
@@ -124,7 +107,7 @@ std::vector<int32_t> ReferenceWave(const Mesh& m, const std::vector<double>& q, 
 
 TEST(RdrVariants, MatchTheirDefinitionsAndTheRulesMatter) {
   int frontier_differs = 0, wave_differs = 0, meshes = 0;
-  for (const Mesh& m : Corpus())
+  for (const Mesh& m : testing::MeshCorpus())
     for (uint64_t seed : {1, 2, 3}) {
       const std::vector<double> q = RandomQualities(m, seed);
       ++meshes;
@@ -211,14 +194,14 @@ std::pair<int64_t, int64_t> BandwidthProfile(const Mesh& m, const std::vector<in
 // Boost's RCM, built here independently of core/orderings/rcm.cc's wiring (the reversal, the new ->
 // old direction): the registered rcm must equal it, and its bandwidth and profile must be below
 // a random order's on the corpus. (The in-house RCM this replaced had a larger bandwidth than
-// Boost's on 10 of these 18 meshes and a smaller one on 3.)
+// Boost's on 10 of the 18 meshes this test used then and a smaller one on 3.)
 TEST(Rcm, IsBoostGraphsOrder) {
   using Graph =
       boost::adjacency_list<boost::vecS, boost::vecS, boost::undirectedS,
                             boost::property<boost::vertex_color_t, boost::default_color_type,
                                             boost::property<boost::vertex_degree_t, int>>>;
   int k = 0;
-  for (const Mesh& m : Corpus()) {
+  for (const Mesh& m : testing::MeshCorpus()) {
     Graph g;
     for (int32_t v = 0; v < m.NumVertices(); ++v) boost::add_vertex(g);
     for (int32_t v = 0; v < m.NumVertices(); ++v)

@@ -24,23 +24,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::vector<Mesh> Corpus() {
-  std::vector<Mesh> meshes;
-  for (uint64_t seed = 1; seed <= 24; ++seed) {
-    SyntheticOptions o;
-    o.nx = 4 + static_cast<int>(seed * 7 % 23);
-    o.ny = 3 + static_cast<int>(seed * 5 % 17);
-    o.holes = static_cast<int>(seed % 4);
-    o.graded = seed % 3 != 0;
-    o.seed = seed;
-    RawMesh raw = MakeSyntheticMesh(o);
-    if (!raw.tri.empty()) meshes.push_back(BuildMesh(std::move(raw)));
-  }
-  meshes.push_back(testing::TwoInterior());
-  meshes.push_back(ReadMesh(testing::DataPath("two_components.node")));
-  return meshes;
-}
-
 // A boundary vertex whose neighbours are all boundary vertices (RDR may never reach it).
 bool HasIsolatedBoundaryVertex(const Mesh& m) {
   for (int32_t v = 0; v < m.NumVertices(); ++v) {
@@ -73,7 +56,7 @@ class EveryOrdering : public ::testing::TestWithParam<OrderingInfo> {
 
 TEST_P(EveryOrdering, BijectionDeterministicAndJacobiInvariant) {
   const OrderingInfo& o = GetParam();
-  const std::vector<Mesh> corpus = Corpus();
+  const std::vector<Mesh> corpus = testing::MeshCorpus();
   int isolated = 0;
   for (size_t k = 0; k < corpus.size(); ++k) {
     const Mesh& m = corpus[k];
@@ -160,7 +143,7 @@ TEST(Rdr, HandWorkedUnreachedVerticesGoLast) {
 }
 
 TEST(Rdr, StartsAtTheWorstInteriorVertex) {
-  const std::vector<Mesh> corpus = Corpus();
+  const std::vector<Mesh> corpus = testing::MeshCorpus();
   for (const Mesh& m : corpus) {
     const std::vector<double> q = VertexQualities(m);
     int32_t worst = m.interior[0];
