@@ -53,6 +53,10 @@ const char* TriangleOrderName(TriangleOrder t);
 // interior list), O(V + T), no validation pass: the result equals ApplyPermutationByRebuild's.
 Mesh ApplyPermutation(const Mesh& m, const Permutation& p,
                       TriangleOrder order = TriangleOrder::kSorted);
+// The same into `out`, reusing its arrays: a working copy that is reordered again and again (as
+// `compare` does before each run) costs no allocation, and when its sizes already match, not even
+// a page fault. `out` must not be `m`.
+void ApplyPermutationInto(const Mesh& m, const Permutation& p, TriangleOrder order, Mesh* out);
 // The reference: the permuted vertex and triangle arrays handed to BuildMesh, which validates them
 // and rebuilds the adjacency from scratch (the implementation before issue 12; tests compare).
 Mesh ApplyPermutationByRebuild(const Mesh& m, const Permutation& p,

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <map>
 #include <set>
 
@@ -139,6 +140,59 @@ TEST(ApplyPermutation, DirectEqualsRebuild) {
       }
     }
   EXPECT_GE(compared, 26 * 12 * 2);  // 26 meshes x 12 orderings (file: aside) x 2
+}
+
+// A working copy reused across meshes and orderings (as compare does): whatever it held before --
+// a bigger mesh, a smaller one, the same mesh in another order -- the result is the fresh one.
+TEST(ApplyPermutation, IntoAReusedWorkingCopyEqualsFresh) {
+  const std::vector<Mesh> meshes = testing::MeshCorpus();
+  Mesh work;
+  int compared = 0;
+  for (int pass = 0; pass < 2; ++pass)
+    for (size_t k = 0; k < meshes.size(); ++k) {
+      const size_t j = pass == 0 ? k : meshes.size() - 1 - k;  // sizes grow, then shrink
+      for (const char* name : {"random", "bfs", "rdr", "ori"})
+        for (TriangleOrder t : {TriangleOrder::kSorted, TriangleOrder::kFile}) {
+          SCOPED_TRACE("mesh " + std::to_string(j) + " " + name + " " + TriangleOrderName(t));
+          const Permutation p = ComputeOrdering(name, meshes[j], 5);
+          ApplyPermutationInto(meshes[j], p, t, &work);
+          ExpectSameMesh(work, ApplyPermutationByRebuild(meshes[j], p, t));
+          ++compared;
+        }
+    }
+  EXPECT_EQ(compared, 2 * 26 * 4 * 2);
+  Mesh& self = work;
+  EXPECT_THROW(ApplyPermutationInto(self, Permutation::Identity(self.NumVertices()),
+                                    TriangleOrder::kSorted, &self),
+               std::invalid_argument);
+}
+
+// A fan: vertex 0 at the centre of 300 triangles, so under the identity it is the smallest corner
+// (the sort key) of all of them -- past the one-byte rank the fast placement uses; the wide path
+// must give the same mesh. Reversed, the ranks are small again.
+TEST(ApplyPermutation, AFanOfThreeHundredTrianglesAtOneVertex) {
+  RawMesh raw;
+  const int kRing = 300;
+  raw.xy = {0.0, 0.0};
+  for (int k = 0; k < kRing; ++k) {
+    const double a = 2 * M_PI * k / kRing;
+    raw.xy.push_back(std::cos(a));
+    raw.xy.push_back(std::sin(a));
+  }
+  for (int k = 0; k < kRing; ++k) {
+    raw.tri.push_back(0);
+    raw.tri.push_back(1 + k);
+    raw.tri.push_back(1 + (k + 1) % kRing);
+  }
+  const Mesh fan = BuildMesh(std::move(raw));
+  ASSERT_EQ(fan.v2t.RowSize(0), kRing);
+  std::vector<int32_t> reversed(fan.NumVertices());
+  for (int32_t i = 0; i < fan.NumVertices(); ++i) reversed[i] = fan.NumVertices() - 1 - i;
+  for (const Permutation& p :
+       {Permutation::Identity(fan.NumVertices()), Permutation::FromNewToOld(reversed),
+        ComputeOrdering("random", fan, 2)})
+    for (TriangleOrder t : {TriangleOrder::kSorted, TriangleOrder::kFile})
+      ExpectSameMesh(ApplyPermutation(fan, p, t), ApplyPermutationByRebuild(fan, p, t));
 }
 
 TEST(EdgeSpan, ExactOnTheTinyMesh) {
