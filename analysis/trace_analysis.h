@@ -55,6 +55,11 @@ struct TraceAnalysisOptions {
   Granularity granularity = Granularity::kBoth;
   uint32_t line_bytes = 64;     // a power of two
   uint64_t dense_elements = 0;  // element ids below this use direct arrays (0: hash everything)
+  // Line ids are (address >> log2 line_bytes) - line_base: the swept arrays' canonical addresses
+  // start at AddressCanonicalizer::kCanonicalBase, and starting their lines near id 0 lets the
+  // analyzer's direct array cover them (above, every line id would be hashed or the array would
+  // span 2^26 empty ids: 270 MB). A bijection, so every distance is unchanged.
+  uint64_t line_base = 0;
   // iteration_lengths[t] = element accesses of each iteration in thread t's stream, and
   // line_iteration_lengths[t] its line accesses (loads and stores); empty: no profile.
   std::vector<std::vector<uint64_t>> iteration_lengths;
@@ -80,8 +85,8 @@ class TraceAnalysis {
   // An access of `size` bytes (0 counts as 1) at `address`: one line, or two if it straddles.
   void AddAccess(int thread, uint64_t address, uint32_t size) {
     if (!line_[thread]) return;
-    const uint64_t first = address >> line_shift_;
-    const uint64_t last = (address + (size ? size - 1 : 0)) >> line_shift_;
+    const uint64_t first = (address >> line_shift_) - opt_.line_base;
+    const uint64_t last = ((address + (size ? size - 1 : 0)) >> line_shift_) - opt_.line_base;
     Feed(*line_[thread], lbuf_[thread], first);
     if (last != first) Feed(*line_[thread], lbuf_[thread], last);
   }

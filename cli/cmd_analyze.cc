@@ -340,6 +340,7 @@ int AnalyzeCommand(const Args& args) {
         common(o);
         o.threads = threads;
         o.dense_elements = static_cast<uint64_t>(m.NumVertices());
+        o.line_base = AddressCanonicalizer::kCanonicalBase / line_bytes;
         if (so.mode == UpdateMode::kGaussSeidel)
           for (uint64_t n : AccessesPerSweep(m, threads))
             o.iteration_lengths.push_back(std::vector<uint64_t>(iterations, n));
@@ -372,6 +373,7 @@ int AnalyzeCommand(const Args& args) {
       // Direct arrays for ids below the vertex count (0, unknown: the hash table); never more
       // than the records, so a header's count cannot make memory exceed what the file holds.
       o.dense_elements = std::min<uint64_t>(h.vertices, h.records);
+      o.line_base = AddressCanonicalizer::kCanonicalBase / line_bytes;  // traces are canonical
       Job j{in, h.ordering.empty() ? "?" : h.ordering, static_cast<int64_t>(h.vertices),
             static_cast<int>(h.iteration_starts.size()), std::make_unique<TraceAnalysis>(o)};
       progress.Say("analysing trace " + in + " (" + Grouped(static_cast<long long>(h.records)) +

@@ -106,7 +106,7 @@ int SmoothCommand(const Args& args) {
       progress.Say("laying out in " + ordering + " order, triangles " +
                    TriangleOrderName(tri_order));
       const auto t0 = std::chrono::steady_clock::now();
-      m = ApplyPermutation(m, ComputeOrdering(ordering, m, seed), tri_order);
+      ApplyPermutationInPlace(&m, ComputeOrdering(ordering, m, seed), tri_order);
       reorder_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     }
     std::printf("== %s: %s vertices, %s triangles, ordering %s%s, %d thread%s, %s\n", path.c_str(),

@@ -80,7 +80,8 @@ Mesh LayOut(const std::string& path, const std::string& ordering, uint64_t seed,
   Mesh m = LoadMesh(path, progress);
   if (ordering == "ori" && triangles == TriangleOrder::kFile) return m;
   progress.Say("laying out in " + ordering + " order, triangles " + TriangleOrderName(triangles));
-  return ApplyPermutation(m, ComputeOrdering(ordering, m, seed), triangles);
+  ApplyPermutationInPlace(&m, ComputeOrdering(ordering, m, seed), triangles);
+  return m;
 }
 
 }  // namespace meshreuse::cli

@@ -122,11 +122,11 @@ class GmshReader {
     f_.ParseDouble(z, "the z coordinate");
     if (!tag_to_id_.emplace(tag, static_cast<int32_t>(raw_.vertex_tag.size())).second)
       f_.Fail("node " + std::to_string(tag) + " is defined twice");
-    if (raw_.vertex_tag.size() >= static_cast<size_t>(INT32_MAX)) f_.Fail("too many nodes");
+    if (raw_.vertex_tag.size() >= INT32_MAX) f_.Fail("too many nodes");
     raw_.xy.push_back(f_.ParseDouble(x, "the x coordinate"));
     raw_.xy.push_back(f_.ParseDouble(y, "the y coordinate"));
-    raw_.vertex_tag.push_back(tag);
-    raw_.vertex_line.push_back(f_.line());
+    raw_.vertex_tag.Push(tag);
+    raw_.vertex_line.Push(f_.line());
   }
 
   void ReadNodes2() {
@@ -198,7 +198,7 @@ class GmshReader {
       raw_.tri.push_back(it->second);
     }
     if (raw_.tri.size() / 3 > static_cast<size_t>(INT32_MAX)) f_.Fail("too many triangles");
-    raw_.triangle_line.push_back(f_.line());
+    raw_.triangle_line.Push(f_.line());
   }
 
   void ReadElements2() {

@@ -26,15 +26,9 @@ namespace {
 
 struct Where {
   const RawMesh& raw;
-  int64_t TriLine(int64_t t) const {
-    return t < static_cast<int64_t>(raw.triangle_line.size()) ? raw.triangle_line[t] : 0;
-  }
-  int64_t VertexLine(int64_t v) const {
-    return v < static_cast<int64_t>(raw.vertex_line.size()) ? raw.vertex_line[v] : 0;
-  }
-  std::string Tag(int64_t v) const {
-    return std::to_string(v < static_cast<int64_t>(raw.vertex_tag.size()) ? raw.vertex_tag[v] : v);
-  }
+  int64_t TriLine(int64_t t) const { return raw.triangle_line.At(t); }
+  int64_t VertexLine(int64_t v) const { return raw.vertex_line.At(v); }
+  std::string Tag(int64_t v) const { return std::to_string(raw.vertex_tag.At(v, v)); }
   std::string TriName(int64_t t) const {
     const int64_t line = TriLine(t);
     return line > 0 ? "line " + std::to_string(line) : "triangle " + std::to_string(t);
@@ -45,16 +39,19 @@ struct Where {
 };
 
 // CSR of vertex -> incident triangles by counting sort; rows come out in increasing triangle id.
+// The offsets serve as the fill cursors (each ends at the next row's start) and are shifted back
+// afterwards: no second array of V cursors.
 Csr BuildV2T(int32_t nv, const AlignedVector<int32_t>& tri) {
   Csr c;
   c.off.assign(static_cast<size_t>(nv) + 1, 0);
   for (int32_t v : tri) ++c.off[v + 1];
   for (int32_t v = 0; v < nv; ++v) c.off[v + 1] += c.off[v];
   c.idx.resize(tri.size());
-  std::vector<int64_t> fill(c.off.begin(), c.off.end() - 1);
   const int64_t nt = static_cast<int64_t>(tri.size() / 3);
   for (int64_t t = 0; t < nt; ++t)
-    for (int k = 0; k < 3; ++k) c.idx[fill[tri[3 * t + k]]++] = static_cast<int32_t>(t);
+    for (int k = 0; k < 3; ++k) c.idx[c.off[tri[3 * t + k]]++] = static_cast<int32_t>(t);
+  for (int32_t v = nv; v > 0; --v) c.off[v] = c.off[v - 1];
+  c.off[0] = 0;
   return c;
 }
 
@@ -111,19 +108,22 @@ Mesh BuildMesh(RawMesh raw, BuildReport* report) {
   }
 
   // Drop unused vertices, keeping the order of the rest (the ORI ordering is the file's order).
-  std::vector<int32_t> new_id(nv_raw, -1);
-  std::vector<int32_t> kept;
-  kept.reserve(nv_raw);
-  for (int64_t v = 0; v < nv_raw; ++v)
-    if (used[v]) {
-      new_id[v] = static_cast<int32_t>(kept.size());
-      kept.push_back(static_cast<int32_t>(v));
-    }
+  // Only then are the renumbering arrays built: a mesh that uses every vertex needs none.
   Mesh m;
   if (report)
     for (std::string& w : raw.warnings) report->warnings.push_back(std::move(w));
-  const int32_t nv = static_cast<int32_t>(kept.size());
+  int64_t n_used = 0;
+  for (uint8_t u : used) n_used += u;
+  const int32_t nv = static_cast<int32_t>(n_used);
+  std::vector<int32_t> kept;
   if (nv != nv_raw) {
+    std::vector<int32_t> new_id(nv_raw, -1);
+    kept.reserve(nv);
+    for (int64_t v = 0; v < nv_raw; ++v)
+      if (used[v]) {
+        new_id[v] = static_cast<int32_t>(kept.size());
+        kept.push_back(static_cast<int32_t>(v));
+      }
     if (report) {
       std::string msg = raw.vertex_file + ": dropped " + std::to_string(nv_raw - nv) +
                         " vertices that no triangle uses (first: vertex ";
@@ -135,28 +135,39 @@ Mesh BuildMesh(RawMesh raw, BuildReport* report) {
         }
       report->warnings.push_back(msg + ")");
     }
-    m.xy.resize(2 * static_cast<size_t>(nv));
-    for (int32_t v = 0; v < nv; ++v) {
-      m.xy[2 * v] = raw.xy[2 * kept[v]];
-      m.xy[2 * v + 1] = raw.xy[2 * kept[v] + 1];
+    for (int32_t v = 0; v < nv; ++v) {  // in place: kept[v] >= v
+      raw.xy[2 * int64_t{v}] = raw.xy[2 * int64_t{kept[v]}];
+      raw.xy[2 * int64_t{v} + 1] = raw.xy[2 * int64_t{kept[v]} + 1];
     }
+    raw.xy.resize(2 * static_cast<size_t>(nv));
+    raw.xy.shrink_to_fit();
     for (int32_t& c : raw.tri) c = new_id[c];
-    std::vector<double>().swap(raw.xy);
-  } else {
-    m.xy.assign(raw.xy.begin(), raw.xy.end());
-    std::vector<double>().swap(raw.xy);
   }
-  m.tri.assign(raw.tri.begin(), raw.tri.end());
-  std::vector<int32_t>().swap(raw.tri);
+  used = std::vector<uint8_t>();
+  m.xy = std::move(raw.xy);
+  m.tri = std::move(raw.tri);
   m.v2t = BuildV2T(nv, m.tri);
+  // Tags of mesh vertices, for messages: the raw vertex's.
+  auto raw_of = [&](int32_t v) { return kept.empty() ? v : kept[v]; };
 
   // One pass over vertices: distinct neighbours (v2v), each edge's triangle count (boundary and
   // non-manifold edges) and duplicate triangles (checked at the triangle's smallest corner).
-  auto raw_tag = [&](int32_t v) { return where.Tag(kept[v]); };
+  auto raw_tag = [&](int32_t v) { return where.Tag(raw_of(v)); };
   m.boundary.assign(nv, 0);
   m.v2v.off.assign(static_cast<size_t>(nv) + 1, 0);
-  m.v2v.idx.reserve(m.tri.size());
-  std::vector<int32_t> stamp(nv, -1), count(nv, 0), first_tri(nv, -1), row;
+  // A manifold mesh has 3T + (boundary edges) entries; the reserve covers that with room, and
+  // pages of it never written cost no memory. Past it the vector grows as any would.
+  m.v2v.idx.reserve(m.tri.size() + m.tri.size() / 4 + 1024);
+  std::vector<int32_t> stamp(nv, -1), row;
+  std::vector<uint8_t> count(nv, 0);  // triangles on the edge v-u seen so far (stops at 3)
+  // The first triangle at v that has the edge v-u, for the non-manifold message.
+  auto first_with = [&](int32_t v, int32_t u) {
+    for (const int32_t* q = m.v2t.RowBegin(v); q != m.v2t.RowEnd(v); ++q) {
+      const int32_t* d = &m.tri[3 * static_cast<int64_t>(*q)];
+      if (d[0] == u || d[1] == u || d[2] == u) return *q;
+    }
+    return -1;
+  };
   for (int32_t v = 0; v < nv; ++v) {
     row.clear();
     const int32_t* tb = m.v2t.RowBegin(v);
@@ -184,12 +195,11 @@ Mesh BuildMesh(RawMesh raw, BuildReport* report) {
         if (stamp[u] != v) {
           stamp[u] = v;
           count[u] = 1;
-          first_tri[u] = *p;
           row.push_back(u);
         } else if (++count[u] > 2) {
           where.TriError(*p, "non-manifold edge: the edge " + raw_tag(v) + "-" + raw_tag(u) +
                                  " already has two triangles (first at " +
-                                 where.TriName(first_tri[u]) + ")");
+                                 where.TriName(first_with(v, u)) + ")");
         }
       }
     }
@@ -200,9 +210,11 @@ Mesh BuildMesh(RawMesh raw, BuildReport* report) {
     }
     m.v2v.off[v + 1] = static_cast<int64_t>(m.v2v.idx.size());
   }
-  m.v2v.idx.shrink_to_fit();
-  for (int32_t v = 0; v < nv; ++v)
-    if (!m.boundary[v]) m.interior.push_back(v);
+  int64_t n_interior = 0;
+  for (uint8_t b : m.boundary) n_interior += !b;
+  m.interior.resize(static_cast<size_t>(n_interior));
+  for (int32_t v = 0, k = 0; v < nv; ++v)
+    if (!m.boundary[v]) m.interior[k++] = v;
   if (report) report->kept = std::move(kept);
   return m;
 }

@@ -7,7 +7,9 @@
 // vertices in storage order (the smoother's iteration space, DESIGN.md "Smoothing sweep").
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
+#include <initializer_list>
 #include <string>
 #include <vector>
 
@@ -25,17 +27,57 @@ struct Csr {
   const int32_t* RowEnd(int32_t r) const { return idx.data() + off[r + 1]; }
 };
 
+// A number per item (its source line, the file's own id) kept as runs of consecutive numbers:
+// a file without comments or gaps costs one run whatever its size, where a plain array would cost
+// 8 bytes per item (a third of a mesh's memory while it is read). Values must be pushed in item
+// order; any sequence works, only its memory depends on the runs.
+class RunIndex {
+ public:
+  RunIndex() = default;
+  RunIndex(std::initializer_list<int64_t> values) {
+    for (int64_t v : values) Push(v);
+  }
+  void Push(int64_t value) {
+    if (size_ == 0 || value != last_ + 1) {
+      first_item_.push_back(size_);
+      first_value_.push_back(value);
+    }
+    last_ = value;
+    ++size_;
+  }
+  int64_t size() const { return size_; }
+  bool empty() const { return size_ == 0; }
+  size_t runs() const { return first_item_.size(); }
+  // The number of item i; `missing` when there is no item i (e.g. a generated mesh).
+  int64_t At(int64_t i, int64_t missing = 0) const {
+    if (i < 0 || i >= size_) return missing;
+    const size_t r = static_cast<size_t>(
+        std::upper_bound(first_item_.begin(), first_item_.end(), i) - first_item_.begin() - 1);
+    return first_value_[r] + (i - first_item_[r]);
+  }
+  std::vector<int64_t> ToVector() const {
+    std::vector<int64_t> v(static_cast<size_t>(size_));
+    for (int64_t i = 0; i < size_; ++i) v[i] = At(i);
+    return v;
+  }
+
+ private:
+  std::vector<int64_t> first_item_, first_value_;
+  int64_t size_ = 0, last_ = 0;
+};
+
 // What a reader hands to BuildMesh: raw arrays plus where each item came from, so topology errors
-// can name a file and a line. Lines and tags may be empty (generated meshes).
+// can name a file and a line. Lines and tags may be empty (generated meshes). Coordinates and
+// triangles are the arrays the Mesh keeps: BuildMesh moves them in rather than copying.
 struct RawMesh {
-  std::vector<double> xy;              // 2 per vertex, interleaved x, y
-  std::vector<int32_t> tri;            // 3 per triangle, 0-based indices into the vertices
-  std::string vertex_file;             // where vertices came from (e.g. the .node file)
-  std::string triangle_file;           // where triangles came from (e.g. the .ele file)
-  std::vector<int64_t> vertex_line;    // source line per vertex
-  std::vector<int64_t> triangle_line;  // source line per triangle
-  std::vector<int64_t> vertex_tag;     // the file's own vertex number, for messages
-  std::vector<std::string> warnings;   // from the reader (e.g. skipped element types)
+  AlignedVector<double> xy;           // 2 per vertex, interleaved x, y
+  AlignedVector<int32_t> tri;         // 3 per triangle, 0-based indices into the vertices
+  std::string vertex_file;            // where vertices came from (e.g. the .node file)
+  std::string triangle_file;          // where triangles came from (e.g. the .ele file)
+  RunIndex vertex_line;               // source line per vertex
+  RunIndex triangle_line;             // source line per triangle
+  RunIndex vertex_tag;                // the file's own vertex number, for messages
+  std::vector<std::string> warnings;  // from the reader (e.g. skipped element types)
 };
 
 class Mesh {
@@ -63,8 +105,8 @@ class Mesh {
 
 struct BuildReport {
   std::vector<std::string> warnings;
-  std::vector<int32_t>
-      kept;  // mesh vertex -> raw vertex (identity unless unused ones were dropped)
+  // mesh vertex -> raw vertex when unused vertices were dropped; empty when none was (identity).
+  std::vector<int32_t> kept;
 };
 
 // Validates the raw input and builds the adjacency in O(V + T). Throws InputError naming the file

@@ -137,14 +137,122 @@ void PermuteRows(const Csr& in, const Permutation& p, const int32_t* map, Csr* o
   }
 }
 
+// New triangle ids. kFile: the identity. kSorted: stably by smallest new corner (the key). The
+// triangles whose key is NewOf(o) are in row o of v2t, in increasing old id: counting them per
+// vertex, a scan in new order and each triangle's rank among its key's give the stable sort in
+// parallel.
+AlignedVector<int32_t> NewTriangleIds(const Mesh& m, const Permutation& p, TriangleOrder order) {
+  const int32_t nv = m.NumVertices(), nt = m.NumTriangles();
+  AlignedVector<int32_t> newt(static_cast<size_t>(nt));
+  if (order == TriangleOrder::kFile) {
+#pragma omp parallel for schedule(static, 4096)
+    for (int32_t t = 0; t < nt; ++t) newt[t] = t;
+    return newt;
+  }
+  AlignedVector<int32_t> key(static_cast<size_t>(nt));
+#pragma omp parallel for schedule(static, 4096)
+  for (int32_t t = 0; t < nt; ++t) {
+    const int32_t* c = &m.tri[3 * int64_t{t}];
+    key[t] = std::min({p.NewOf(c[0]), p.NewOf(c[1]), p.NewOf(c[2])});
+  }
+  // Per triangle its rank among the triangles of its key (their order in the key's old row): one
+  // byte, written where it is counted, so the placement needs no second pass over the rows.
+  AlignedVector<int32_t> start(static_cast<size_t>(nv) + 1);  // nt < 2^31
+  AlignedVector<uint8_t> rank(static_cast<size_t>(nt));
+  start[0] = 0;
+  bool wide = false;  // some vertex is the key of 255 triangles or more (a huge fan)
+#pragma omp parallel for schedule(static, 4096) reduction(|| : wide)
+  for (int32_t o = 0; o < nv; ++o) {
+    __builtin_prefetch(&start[NewAhead(p, o) + 1], 1);
+    const int32_t i = p.NewOf(o);
+    int32_t k = 0;
+    for (const int32_t* q = m.v2t.RowBegin(o); q != m.v2t.RowEnd(o); ++q)
+      if (key[*q] == i) rank[*q] = static_cast<uint8_t>(k < 255 ? k++ : (wide = true, k++));
+    start[i + 1] = k;
+  }
+  InclusiveScan(start.data() + 1, nv);
+  if (wide) {  // ranks did not fit a byte: place from the rows instead
+#pragma omp parallel for schedule(static, 4096)
+    for (int32_t o = 0; o < nv; ++o) {
+      const int32_t i = p.NewOf(o);
+      int32_t s = start[i];
+      for (const int32_t* q = m.v2t.RowBegin(o); q != m.v2t.RowEnd(o); ++q)
+        if (key[*q] == i) newt[*q] = s++;
+    }
+  } else {
+#pragma omp parallel for schedule(static, 4096)
+    for (int32_t t = 0; t < nt; ++t) {
+      if (t + kAhead < nt) __builtin_prefetch(&start[key[t + kAhead]]);
+      newt[t] = start[key[t]] + rank[t];
+    }
+  }
+  return newt;
+}
+
+// The renumbered corners in old triangle order: sequential reads, scattered stores.
+void PermuteTriangles(const Mesh& m, const Permutation& p, const AlignedVector<int32_t>& newt,
+                      AlignedVector<int32_t>* tri) {
+  const int32_t nt = m.NumTriangles();
+  tri->resize(m.tri.size());
+#pragma omp parallel for schedule(static, 4096)
+  for (int32_t t = 0; t < nt; ++t) {
+    if (t + kAhead < nt) __builtin_prefetch(&(*tri)[3 * int64_t{newt[t + kAhead]}], 1);
+    const int32_t* c = &m.tri[3 * int64_t{t}];
+    int32_t* d = &(*tri)[3 * int64_t{newt[t]}];
+    d[0] = p.NewOf(c[0]), d[1] = p.NewOf(c[1]), d[2] = p.NewOf(c[2]);
+  }
+}
+
+// Row offsets of `in` laid out in new order: sizes scattered to their new rows, then a scan.
+void PermuteOffsets(const Csr& in, const Permutation& p, AlignedVector<int64_t>* off) {
+  const int32_t n = p.size();
+  off->resize(static_cast<size_t>(n) + 1);
+  (*off)[0] = 0;
+#pragma omp parallel for schedule(static, 4096)
+  for (int32_t o = 0; o < n; ++o) {
+    __builtin_prefetch(&(*off)[NewAhead(p, o) + 1], 1);
+    (*off)[p.NewOf(o) + 1] = in.RowSize(o);
+  }
+  InclusiveScan(off->data() + 1, n);
+}
+
+// Non-boundary vertices in increasing id: count per block, scan, fill.
+void InteriorOf(const std::vector<uint8_t>& boundary, AlignedVector<int32_t>* interior) {
+  const int64_t nv = static_cast<int64_t>(boundary.size());
+  const int threads = omp_get_max_threads();
+  std::vector<int64_t> block(static_cast<size_t>(threads) + 1, 0);
+#pragma omp parallel num_threads(threads)
+  {
+    const int t = omp_get_thread_num(), n = omp_get_num_threads();
+    const int64_t b = nv * t / n, e = nv * (t + 1) / n;
+    int64_t s = 0;
+    for (int64_t i = b; i < e; ++i) s += !boundary[i];
+    block[t + 1] = s;
+#pragma omp barrier
+#pragma omp single
+    {
+      for (int k = 0; k < n; ++k) block[k + 1] += block[k];
+      interior->resize(static_cast<size_t>(block[n]));
+    }
+    int32_t* out = interior->data() + block[t];
+    for (int64_t i = b; i < e; ++i)
+      if (!boundary[i]) *out++ = static_cast<int32_t>(i);
+  }
+}
+
+void CheckSizes(const Mesh& m, const Permutation& p) {
+  if (p.size() != m.NumVertices())
+    throw std::invalid_argument("the permutation has " + std::to_string(p.size()) +
+                                " entries, the mesh " + std::to_string(m.NumVertices()) +
+                                " vertices");
+}
+
 }  // namespace
 
 void ApplyPermutationInto(const Mesh& m, const Permutation& p, TriangleOrder order, Mesh* r) {
-  const int32_t nv = m.NumVertices(), nt = m.NumTriangles();
-  if (p.size() != nv)
-    throw std::invalid_argument("the permutation has " + std::to_string(p.size()) +
-                                " entries, the mesh " + std::to_string(nv) + " vertices");
+  CheckSizes(m, p);
   if (r == &m) throw std::invalid_argument("ApplyPermutationInto: the target is the source");
+  const int32_t nv = m.NumVertices();
   // One pass over the old vertices: coordinates, flags and both adjacencies' row sizes.
   r->xy.resize(m.xy.size());
   r->boundary.resize(m.boundary.size());
@@ -166,88 +274,49 @@ void ApplyPermutationInto(const Mesh& m, const Permutation& p, TriangleOrder ord
   }
   InclusiveScan(r->v2v.off.data() + 1, nv);
   InclusiveScan(r->v2t.off.data() + 1, nv);
-
-  // New triangle ids. kSorted: stably by smallest new corner (the key). The triangles whose key is
-  // NewOf(o) are in row o of v2t, in increasing old id: counting them per vertex, a scan in new
-  // order and a fill from each old row give the stable sort in parallel; the renumbered corners
-  // follow.
-  r->tri.resize(m.tri.size());
-  AlignedVector<int32_t> newt(static_cast<size_t>(nt));
-  if (order == TriangleOrder::kFile) {
-#pragma omp parallel for schedule(static, 4096)
-    for (int32_t t = 0; t < nt; ++t) {
-      newt[t] = t;
-      for (int k = 0; k < 3; ++k) r->tri[3 * int64_t{t} + k] = p.NewOf(m.tri[3 * int64_t{t} + k]);
-    }
-  } else {
-    AlignedVector<int32_t> key(static_cast<size_t>(nt));
-#pragma omp parallel for schedule(static, 4096)
-    for (int32_t t = 0; t < nt; ++t) {
-      const int32_t* c = &m.tri[3 * int64_t{t}];
-      key[t] = std::min({p.NewOf(c[0]), p.NewOf(c[1]), p.NewOf(c[2])});
-    }
-    // Per triangle its rank among the triangles of its key (their order in the key's old row):
-    // one byte, written where it is counted, so the placement needs no second pass over the rows.
-    AlignedVector<int32_t> start(static_cast<size_t>(nv) + 1);  // nt < 2^31
-    AlignedVector<uint8_t> rank(static_cast<size_t>(nt));
-    start[0] = 0;
-    bool wide = false;  // some vertex is the key of 255 triangles or more (a huge fan)
-#pragma omp parallel for schedule(static, 4096) reduction(|| : wide)
-    for (int32_t o = 0; o < nv; ++o) {
-      __builtin_prefetch(&start[NewAhead(p, o) + 1], 1);
-      const int32_t i = p.NewOf(o);
-      int32_t k = 0;
-      for (const int32_t* q = m.v2t.RowBegin(o); q != m.v2t.RowEnd(o); ++q)
-        if (key[*q] == i) rank[*q] = static_cast<uint8_t>(k < 255 ? k++ : (wide = true, k++));
-      start[i + 1] = k;
-    }
-    InclusiveScan(start.data() + 1, nv);
-    if (wide) {  // ranks did not fit a byte: place from the rows instead
-#pragma omp parallel for schedule(static, 4096)
-      for (int32_t o = 0; o < nv; ++o) {
-        const int32_t i = p.NewOf(o);
-        int32_t s = start[i];
-        for (const int32_t* q = m.v2t.RowBegin(o); q != m.v2t.RowEnd(o); ++q)
-          if (key[*q] == i) newt[*q] = s++;
-      }
-    } else {
-#pragma omp parallel for schedule(static, 4096)
-      for (int32_t t = 0; t < nt; ++t) {
-        if (t + kAhead < nt) __builtin_prefetch(&start[key[t + kAhead]]);
-        newt[t] = start[key[t]] + rank[t];
-      }
-    }
-    // The corners in old triangle order: sequential reads, scattered stores.
-#pragma omp parallel for schedule(static, 4096)
-    for (int32_t t = 0; t < nt; ++t) {
-      if (t + kAhead < nt) __builtin_prefetch(&r->tri[3 * int64_t{newt[t + kAhead]}], 1);
-      const int32_t* c = &m.tri[3 * int64_t{t}];
-      int32_t* d = &r->tri[3 * int64_t{newt[t]}];
-      d[0] = p.NewOf(c[0]), d[1] = p.NewOf(c[1]), d[2] = p.NewOf(c[2]);
-    }
-  }
+  const AlignedVector<int32_t> newt = NewTriangleIds(m, p, order);
+  PermuteTriangles(m, p, newt, &r->tri);
   PermuteRows(m.v2v, p, p.old_to_new().data(), &r->v2v);
   PermuteRows(m.v2t, p, newt.data(), &r->v2t);
-  AlignedVector<int32_t>().swap(newt);
+  InteriorOf(r->boundary, &r->interior);
+}
 
-  // Interior vertices in increasing new id: count per block, scan, fill.
-  r->interior.resize(m.interior.size());
-  const int threads = omp_get_max_threads();
-  std::vector<int64_t> block(static_cast<size_t>(threads) + 1, 0);
-#pragma omp parallel num_threads(threads)
+void ApplyPermutationInPlace(Mesh* m, const Permutation& p, TriangleOrder order) {
+  CheckSizes(*m, p);
+  const int32_t nv = m->NumVertices();
+  // Array by array, each new one built from the old mesh and swapped in, the old one freed: the
+  // peak is the mesh plus its largest array plus the triangle ids.
+  AlignedVector<int32_t> newt = NewTriangleIds(*m, p, order);
   {
-    const int t = omp_get_thread_num(), n = omp_get_num_threads();
-    const int64_t b = int64_t{nv} * t / n, e = int64_t{nv} * (t + 1) / n;
-    int64_t s = 0;
-    for (int64_t i = b; i < e; ++i) s += !r->boundary[i];
-    block[t + 1] = s;
-#pragma omp barrier
-#pragma omp single
-    for (int k = 0; k < n; ++k) block[k + 1] += block[k];
-    int32_t* out = r->interior.data() + block[t];
-    for (int64_t i = b; i < e; ++i)
-      if (!r->boundary[i]) *out++ = static_cast<int32_t>(i);
+    AlignedVector<int32_t> tri;
+    PermuteTriangles(*m, p, newt, &tri);
+    m->tri.swap(tri);
   }
+  for (int pass = 0; pass < 2; ++pass) {  // v2v, then v2t (which needs newt)
+    Csr& in = pass == 0 ? m->v2v : m->v2t;
+    Csr c;
+    PermuteOffsets(in, p, &c.off);
+    PermuteRows(in, p, pass == 0 ? p.old_to_new().data() : newt.data(), &c);
+    in = std::move(c);
+  }
+  newt = AlignedVector<int32_t>();
+  {
+    AlignedVector<double> xy(m->xy.size());
+#pragma omp parallel for schedule(static, 4096)
+    for (int32_t o = 0; o < nv; ++o) {
+      __builtin_prefetch(&xy[2 * int64_t{NewAhead(p, o)}], 1);
+      xy[2 * int64_t{p.NewOf(o)}] = m->xy[2 * int64_t{o}];
+      xy[2 * int64_t{p.NewOf(o)} + 1] = m->xy[2 * int64_t{o} + 1];
+    }
+    m->xy.swap(xy);
+  }
+  {
+    std::vector<uint8_t> boundary(m->boundary.size());
+#pragma omp parallel for schedule(static, 4096)
+    for (int32_t o = 0; o < nv; ++o) boundary[p.NewOf(o)] = m->boundary[o];
+    m->boundary.swap(boundary);
+  }
+  InteriorOf(m->boundary, &m->interior);
 }
 
 Mesh ApplyPermutation(const Mesh& m, const Permutation& p, TriangleOrder order) {

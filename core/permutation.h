@@ -57,6 +57,11 @@ Mesh ApplyPermutation(const Mesh& m, const Permutation& p,
 // `compare` does before each run) costs no allocation, and when its sizes already match, not even
 // a page fault. `out` must not be `m`.
 void ApplyPermutationInto(const Mesh& m, const Permutation& p, TriangleOrder order, Mesh* out);
+// The same in place, for a mesh that is not needed in its old order (smooth, analyze, reorder):
+// each array is rebuilt and swapped in by turn, so the peak is the mesh plus about 40 bytes a
+// vertex, not two meshes.
+void ApplyPermutationInPlace(Mesh* m, const Permutation& p,
+                             TriangleOrder order = TriangleOrder::kSorted);
 // The reference: the permuted vertex and triangle arrays handed to BuildMesh, which validates them
 // and rebuilds the adjacency from scratch (the implementation before issue 12; tests compare).
 Mesh ApplyPermutationByRebuild(const Mesh& m, const Permutation& p,

@@ -23,20 +23,34 @@ std::vector<double> VertexQualities(const Mesh& m) {
   return vq;
 }
 
+// The same sums as VertexQualities in the same order, so the same bits, without its two arrays
+// (24 bytes a vertex at the peak of a smoothing run): each vertex's triangles are evaluated where
+// they are summed, in parallel over blocks, and the block's vertex qualities then added in order.
 double GlobalQuality(const Mesh& m) {
-  const std::vector<double> vq = VertexQualities(m);
+  const int32_t nv = m.NumVertices();
+  if (nv == 0) return 0.0;
+  constexpr int32_t kBlock = 1 << 16;
+  std::vector<double> vq(std::min(nv, kBlock));
   double s = 0.0;
-  for (double q : vq) s += q;
-  return vq.empty() ? 0.0 : s / static_cast<double>(vq.size());
+  for (int32_t b = 0; b < nv; b += kBlock) {
+    const int32_t e = std::min(nv, b + kBlock);
+#pragma omp parallel for schedule(static, 1024)
+    for (int32_t v = b; v < e; ++v) {
+      double sum = 0.0;
+      for (const int32_t* p = m.v2t.RowBegin(v); p != m.v2t.RowEnd(v); ++p)
+        sum += TriangleQuality(m.xy.data(), &m.tri[3 * int64_t{*p}]);
+      const int64_t n = m.v2t.RowSize(v);
+      vq[v - b] = n > 0 ? sum / static_cast<double>(n) : 0.0;
+    }
+    for (int32_t v = b; v < e; ++v) s += vq[v - b];
+  }
+  return s / static_cast<double>(nv);
 }
 
 std::vector<double> GlobalQualityWeights(const Mesh& m) {
   const int32_t nt = m.NumTriangles();
-  const double inv_v = 1.0 / static_cast<double>(m.NumVertices());
-  std::vector<double> w(nt, 0.0);
-  for (int32_t t = 0; t < nt; ++t)
-    for (int k = 0; k < 3; ++k)
-      w[t] += inv_v / static_cast<double>(m.v2t.RowSize(m.tri[3 * int64_t{t} + k]));
+  std::vector<double> w(nt);
+  for (int32_t t = 0; t < nt; ++t) w[t] = GlobalQualityWeight(m, t);
   return w;
 }
 

@@ -39,6 +39,13 @@ double GlobalQuality(const Mesh& m);
 // corner). Global quality = sum_t weight[t] * q[t], which lets a sweep update it from the moved
 // vertex's triangles alone.
 std::vector<double> GlobalQualityWeights(const Mesh& m);
+inline double GlobalQualityWeight(const Mesh& m, int32_t t) {
+  const double inv_v = 1.0 / static_cast<double>(m.NumVertices());
+  double w = 0.0;
+  for (int k = 0; k < 3; ++k)
+    w += inv_v / static_cast<double>(m.v2t.RowSize(m.tri[3 * int64_t{t} + k]));
+  return w;
+}
 
 struct QualitySummary {
   double min = 0, mean = 0, max = 0;  // over vertices

@@ -345,12 +345,12 @@ SmoothResult Smooth(Mesh& mesh, const SmoothOptions& opt, Sink& sink,
   AlignedVector<double> wq;
   double q = 0.0;
   {
-    const std::vector<double> q0 = TriangleQualities(mesh), w0 = GlobalQualityWeights(mesh);
-    wq.resize(2 * q0.size());
-    for (size_t t = 0; t < q0.size(); ++t) {
-      wq[2 * t] = w0[t];
-      wq[2 * t + 1] = q0[t];
-      q += w0[t] * q0[t];
+    const int32_t nt = mesh.NumTriangles();
+    wq.resize(2 * static_cast<size_t>(nt));
+    for (int32_t t = 0; t < nt; ++t) {
+      wq[2 * int64_t{t}] = GlobalQualityWeight(mesh, t);
+      wq[2 * int64_t{t} + 1] = TriangleQuality(mesh.xy.data(), &mesh.tri[3 * int64_t{t}]);
+      q += wq[2 * int64_t{t}] * wq[2 * int64_t{t} + 1];
     }
   }
   AlignedVector<double> next;

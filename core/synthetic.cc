@@ -62,7 +62,7 @@ RawMesh MakeSyntheticMesh(const SyntheticOptions& opt) {
       raw.xy.push_back(Y[j] + dy);
     }
   for (int32_t& v : tri) v = id[v];
-  raw.tri = std::move(tri);
+  raw.tri.assign(tri.begin(), tri.end());
   return raw;
 }
 

@@ -90,8 +90,6 @@ RawMesh ReadTriangleFiles(const std::string& node_path, const std::string& ele_p
   const int64_t cols = 3 + nattr + nmark;
   const int64_t fits = node.Reservable(nv, 6);  // "1 0 0\n": containers grow as lines come
   raw.xy.reserve(2 * fits);
-  raw.vertex_line.reserve(fits);
-  raw.vertex_tag.reserve(fits);
   int64_t base = 0;
   std::string_view line, tok[kMaxCols];
   for (int64_t i = 0; i < nv; ++i) {
@@ -108,8 +106,8 @@ RawMesh ReadTriangleFiles(const std::string& node_path, const std::string& ele_p
     raw.xy.push_back(node.ParseDouble(tok[2], "the y coordinate"));
     for (int64_t a = 0; a < nattr; ++a) node.ParseDouble(tok[3 + a], "an attribute");
     if (nmark) node.ParseInt(tok[3 + nattr], "the boundary marker");
-    raw.vertex_line.push_back(node.line());
-    raw.vertex_tag.push_back(id);
+    raw.vertex_line.Push(node.line());
+    raw.vertex_tag.Push(id);
   }
   ExpectEnd(node, nv, "vertex");
 
@@ -129,7 +127,6 @@ RawMesh ReadTriangleFiles(const std::string& node_path, const std::string& ele_p
   const int64_t ecols = 1 + per + eattr;
   const int64_t tfits = ele.Reservable(nt, 8);  // "1 1 2 3\n"
   raw.tri.reserve(3 * tfits);
-  raw.triangle_line.reserve(tfits);
   int64_t tbase = 0;
   for (int64_t t = 0; t < nt; ++t) {
     if (!ele.NextDataLine(&line))
@@ -150,7 +147,7 @@ RawMesh ReadTriangleFiles(const std::string& node_path, const std::string& ele_p
       if (k < 3) raw.tri.push_back(static_cast<int32_t>(c - base));
     }
     for (int64_t a = 0; a < eattr; ++a) ele.ParseDouble(tok[1 + per + a], "an attribute");
-    raw.triangle_line.push_back(ele.line());
+    raw.triangle_line.Push(ele.line());
   }
   ExpectEnd(ele, nt, "triangle");
   return raw;

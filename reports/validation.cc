@@ -105,6 +105,7 @@ std::vector<OrderingValidation> RunValidation(
     ao.threads = cfg.threads;
     ao.line_bytes = cfg.line_bytes;
     ao.dense_elements = static_cast<uint64_t>(laid.NumVertices());
+    ao.line_base = AddressCanonicalizer::kCanonicalBase / ao.line_bytes;
     TraceAnalysis analysis(ao);
     CacheSimulation sim(cfg.levels, cfg.line_bytes, cfg.threads);
     {

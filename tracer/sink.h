@@ -73,9 +73,12 @@ struct ArrayLayout {
 // placement of arrays modulo a cache's set span is the one thing that differs from a given run.
 class AddressCanonicalizer {
  public:
+  // Where the first array is placed: above any small id a hand-fed sink might use, so the two
+  // cannot collide. Analyses subtract it (TraceAnalysisOptions::line_base) to keep ids dense.
+  static constexpr uint64_t kCanonicalBase = uint64_t{1} << 32;
   AddressCanonicalizer() = default;
   explicit AddressCanonicalizer(const ArrayLayout& l) : layout_(l) {
-    uint64_t next = uint64_t{1} << 32;
+    uint64_t next = kCanonicalBase;
     for (int i = 0; i < kArrays; ++i) {
       int same = -1;  // two tags on one array (weights and qualities): one place
       for (int j = 0; j < i && same < 0; ++j)

@@ -323,6 +323,7 @@ void SweepAnalyze(benchmark::State& state) {
     TraceAnalysisOptions ao;
     ao.granularity = Granularity::kElement;
     ao.dense_elements = static_cast<uint64_t>(m.NumVertices());
+    ao.line_base = AddressCanonicalizer::kCanonicalBase / ao.line_bytes;
     TraceAnalysis a(ao);
     AnalysisSink sink{&a};
     const SmoothResult r = Smooth(m, o, sink);
@@ -343,6 +344,7 @@ void StreamingRatio(benchmark::State& state) {
     TraceAnalysisOptions ao;
     ao.granularity = Granularity::kElement;
     ao.dense_elements = static_cast<uint64_t>(b.NumVertices());
+    ao.line_base = AddressCanonicalizer::kCanonicalBase / ao.line_bytes;
     TraceAnalysis an(ao);
     AnalysisSink sink{&an};
     traced += Smooth(b, o, sink).sweeps[0].seconds;
@@ -362,6 +364,7 @@ void Memory(benchmark::State& state) {
     TraceAnalysisOptions ao;
     ao.granularity = Granularity::kElement;
     ao.dense_elements = static_cast<uint64_t>(m.NumVertices());
+    ao.line_base = AddressCanonicalizer::kCanonicalBase / ao.line_bytes;
     TraceAnalysis a(ao);
     AnalysisSink sink{&a};
     Smooth(m, o, sink);

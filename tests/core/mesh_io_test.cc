@@ -52,7 +52,7 @@ TEST(Readers, AllFormatsGiveTheSameMesh) {
 TEST(Readers, Gmsh41SkipsLinesAndKeepsTags) {
   std::vector<std::string> warnings;
   const RawMesh raw = ReadGmsh(DataPath("two_interior41.msh"));
-  EXPECT_EQ(raw.vertex_tag, (std::vector<int64_t>{1, 2, 3, 4, 5, 6, 7, 8}));
+  EXPECT_EQ(raw.vertex_tag.ToVector(), (std::vector<int64_t>{1, 2, 3, 4, 5, 6, 7, 8}));
   EXPECT_EQ(raw.tri.size(), 24u);
   ASSERT_EQ(raw.warnings.size(), 1u);
   EXPECT_NE(raw.warnings[0].find("skipped 2 elements"), std::string::npos);

@@ -144,7 +144,7 @@ TEST(ApplyPermutation, DirectEqualsRebuild) {
 
 // A working copy reused across meshes and orderings (as compare does): whatever it held before --
 // a bigger mesh, a smaller one, the same mesh in another order -- the result is the fresh one.
-TEST(ApplyPermutation, IntoAReusedWorkingCopyEqualsFresh) {
+TEST(ApplyPermutation, IntoAReusedWorkingCopyOrInPlaceEqualsFresh) {
   const std::vector<Mesh> meshes = testing::MeshCorpus();
   Mesh work;
   int compared = 0;
@@ -161,6 +161,16 @@ TEST(ApplyPermutation, IntoAReusedWorkingCopyEqualsFresh) {
         }
     }
   EXPECT_EQ(compared, 2 * 26 * 4 * 2);
+  // In place, from a clone of each mesh: the same result.
+  for (size_t k = 0; k < meshes.size(); ++k)
+    for (const char* name : {"random", "rdr"})
+      for (TriangleOrder t : {TriangleOrder::kSorted, TriangleOrder::kFile}) {
+        SCOPED_TRACE(std::string("in place: mesh ") + std::to_string(k) + " " + name);
+        const Permutation p = ComputeOrdering(name, meshes[k], 7);
+        Mesh m = meshes[k].Clone();
+        ApplyPermutationInPlace(&m, p, t);
+        ExpectSameMesh(m, ApplyPermutationByRebuild(meshes[k], p, t));
+      }
   Mesh& self = work;
   EXPECT_THROW(ApplyPermutationInto(self, Permutation::Identity(self.NumVertices()),
                                     TriangleOrder::kSorted, &self),
@@ -191,8 +201,12 @@ TEST(ApplyPermutation, AFanOfThreeHundredTrianglesAtOneVertex) {
   for (const Permutation& p :
        {Permutation::Identity(fan.NumVertices()), Permutation::FromNewToOld(reversed),
         ComputeOrdering("random", fan, 2)})
-    for (TriangleOrder t : {TriangleOrder::kSorted, TriangleOrder::kFile})
+    for (TriangleOrder t : {TriangleOrder::kSorted, TriangleOrder::kFile}) {
       ExpectSameMesh(ApplyPermutation(fan, p, t), ApplyPermutationByRebuild(fan, p, t));
+      Mesh m = fan.Clone();
+      ApplyPermutationInPlace(&m, p, t);
+      ExpectSameMesh(m, ApplyPermutationByRebuild(fan, p, t));
+    }
 }
 
 TEST(EdgeSpan, ExactOnTheTinyMesh) {
