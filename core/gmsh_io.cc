@@ -1,15 +1,17 @@
-// Gmsh .msh ASCII, versions 2.2 and 4.1 (https://gmsh.info/doc/texinfo/gmsh.html, "MSH file
-// format"). Only $MeshFormat, $Nodes and $Elements are read; other sections are skipped to their
-// $End line. Triangles are element type 2 (3 nodes) and 9 (6 nodes: the corners come first); other
-// element types (points, lines, quads, volumes) are skipped and counted in a warning. Node tags
-// are arbitrary positive integers and are mapped to 0-based ids in file order; z (and 4.1's
-// parametric coordinates) must be numbers and are then ignored, as are element tags and physical
-// tags, which must be integers. Counts are checked against the bytes that follow before anything
-// is reserved for them, and all arithmetic on them is overflow-free, so memory follows the file.
+// Gmsh .msh ASCII, versions 2.2 and 4.1 (binary 4.1: gmsh_binary_io.cc)
+// (https://gmsh.info/doc/texinfo/gmsh.html, "MSH file format"). Only $MeshFormat, $Nodes and
+// $Elements are read; other sections are skipped to their $End line. Triangles are element type 2
+// (3 nodes) and 9 (6 nodes: the corners come first); other element types (points, lines, quads,
+// volumes) are skipped and counted in a warning. Node tags are arbitrary positive integers and are
+// mapped to 0-based ids in file order; z (and 4.1's parametric coordinates) must be numbers and are
+// then ignored, as are element tags and physical tags, which must be integers. Counts are checked
+// against the bytes that follow before anything is reserved for them, and all arithmetic on them is
+// overflow-free, so memory follows the file.
 #include <string>
 #include <unordered_map>
 
 #include "core/error.h"
+#include "core/input_file.h"
 #include "core/mesh_io.h"
 #include "core/text_file.h"
 
@@ -94,7 +96,7 @@ class GmshReader {
       f_.Fail("unsupported .msh version " + version + " (supported: 2.2 and 4.1 ASCII)");
     }
     if (f_.ParseInt(tok[1], "the file type") != 0)
-      f_.Fail("binary .msh files are not supported; save the mesh as ASCII");
+      f_.Fail("binary .msh " + version + " is not supported; save it as binary 4.1 or as ASCII");
     ExpectEnd("MeshFormat");
   }
 
@@ -260,6 +262,18 @@ class GmshReader {
 
 }  // namespace
 
-RawMesh ReadGmsh(const std::string& path) { return GmshReader(path).Read(); }
+// Binary files start "$MeshFormat\n4.1 1 ": those go to the binary reader, the rest (ASCII, or a
+// binary version we do not read, which the ASCII reader names) here.
+RawMesh ReadGmsh(const std::string& path) {
+  if (path != "-") {
+    InputFile f(path);
+    char head[32] = {};
+    const size_t n = f.Read(head, sizeof head - 1);
+    const std::string h(head, n);
+    for (const char* start : {"$MeshFormat\n4.1 1 ", "$MeshFormat\r\n4.1 1 "})
+      if (h.rfind(start, 0) == 0) return ReadGmshBinary(path);
+  }
+  return GmshReader(path).Read();
+}
 
 }  // namespace meshreuse

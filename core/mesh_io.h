@@ -2,8 +2,8 @@
 // problem is an InputError naming the file and line. Writers write to a temporary name next to the
 // target and rename it when complete, so a failed write never leaves a half-written file.
 // Formats: Triangle .node/.ele (Shewchuk; any attribute and marker columns, numbering from 0 or 1,
-// linear or quadratic triangles), Gmsh .msh 2.2 and 4.1 ASCII (triangles; other element types are
-// skipped and counted), VTK legacy ASCII (write only, for ParaView).
+// linear or quadratic triangles), Gmsh .msh 2.2 and 4.1 ASCII and 4.1 binary (triangles; other
+// element types are skipped and counted), VTK legacy ASCII (write only, for ParaView).
 #pragma once
 
 #include <cstdio>
@@ -17,6 +17,7 @@ namespace meshreuse {
 
 RawMesh ReadTriangleFiles(const std::string& node_path, const std::string& ele_path);
 RawMesh ReadGmsh(const std::string& msh_path);
+RawMesh ReadGmshBinary(const std::string& msh_path);  // 4.1 binary; ReadGmsh picks it itself
 
 // Picks the reader from the path: FILE.msh; FILE.node or FILE.ele (the other one beside it); or a
 // prefix P with P.node and P.ele.

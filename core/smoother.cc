@@ -3,7 +3,6 @@
 
 #include <algorithm>
 #include <cmath>
-
 #include <stdexcept>
 
 namespace meshreuse {
@@ -69,18 +68,18 @@ std::vector<uint64_t> RefsPerSweep(const Mesh& m, int threads, UpdateMode mode) 
 
 namespace smoother_detail {
 
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) && !defined(__SANITIZE_ADDRESS__)
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) && \
+    !defined(__SANITIZE_ADDRESS__)
 __attribute__((target_clones("avx512f", "avx2", "default")))
 #endif
-double WeightedQualitySum(const double* xy, const int32_t* tri, const double* wq, int64_t b,
-                          int64_t e) {
+double
+WeightedQualitySum(const double* xy, const int32_t* tri, const double* wq, int64_t b, int64_t e) {
   double s = 0.0;
 #pragma omp simd reduction(+ : s)
   for (int64_t t = b; t < e; ++t) {
     const int64_t i = 2 * int64_t{tri[3 * t]}, j = 2 * int64_t{tri[3 * t + 1]},
                   k = 2 * int64_t{tri[3 * t + 2]};
-    const double ax = xy[i], ay = xy[i + 1], bx = xy[j], by = xy[j + 1], cx = xy[k],
-                 cy = xy[k + 1];
+    const double ax = xy[i], ay = xy[i + 1], bx = xy[j], by = xy[j + 1], cx = xy[k], cy = xy[k + 1];
     const double ab = (bx - ax) * (bx - ax) + (by - ay) * (by - ay);
     const double bc = (cx - bx) * (cx - bx) + (cy - by) * (cy - by);
     const double ca = (ax - cx) * (ax - cx) + (ay - cy) * (ay - cy);

@@ -7,8 +7,12 @@
 // nodes of quadratic triangles existing vertices (they are then ignored: the corners are the first
 // three). A header's count is checked against the bytes that follow before anything is allocated
 // for it (a vertex line needs at least 6 bytes, a triangle line 8), so memory follows the file.
+// The two files are parsed on two threads.
+#include <atomic>
 #include <cstdio>
+#include <exception>
 #include <string>
+#include <thread>
 
 #include "core/error.h"
 #include "core/mesh_io.h"
@@ -68,6 +72,88 @@ void ExpectEnd(TextFile& f, int64_t count, const char* items) {
 
 }  // namespace
 
+namespace {
+
+// The .ele, on its own thread: it needs from the .node only the vertex count and numbering base,
+// known once the .node's header and first vertex are read. `stop` is set when the .node failed.
+void ReadEle(const std::string& node_path, const std::string& ele_path, int64_t nv, int64_t base,
+             const std::atomic<bool>& stop, RawMesh* out) {
+  RawMesh& raw = *out;
+  TextFile ele(ele_path);
+  std::string_view line, tok[kMaxCols];
+  const Header eh = ReadHeader(ele, 1, 3, ".ele");
+  const int64_t nt = eh.v[0];
+  if (nt == 0) ele.Fail("the header says the file has no triangles");
+  if (nt > INT32_MAX) ele.Fail("too many triangles for 32-bit ids");
+  const int64_t per = eh.n >= 2 ? eh.v[1] : 3;
+  if (per != 3 && per != 6)
+    ele.Fail("nodes per triangle must be 3 or 6, found " + std::to_string(per));
+  const int64_t eattr = eh.n >= 3 ? eh.v[2] : 0;
+  if (eattr > kMaxCols - 7)
+    ele.Fail("too many attribute columns (" + std::to_string(eattr) + "; at most " +
+             std::to_string(kMaxCols - 7) + ")");
+  const int64_t ecols = 1 + per + eattr;
+  const int64_t tfits = ele.Reservable(nt, 8);  // "1 1 2 3\n"
+  raw.tri.reserve(3 * tfits);
+  int64_t tbase = 0;
+  for (int64_t t = 0; t < nt; ++t) {
+    if ((t & 0xFFFF) == 0 && stop.load(std::memory_order_relaxed)) return;
+    if (!ele.NextDataLine(&line))
+      ele.Fail("file ends after " + std::to_string(t) + " of the " + std::to_string(nt) +
+               " triangles the header announces (truncated file or wrong count)");
+    const int n = Tokens(line).Split(tok, kMaxCols);
+    if (n != ecols)
+      ele.Fail("expected " + std::to_string(ecols) + " columns (id, " + std::to_string(per) +
+               " vertices, " + std::to_string(eattr) + " attributes), found " + std::to_string(n));
+    CheckSequenceNumber(ele, tok[0], t, &tbase, "triangle");
+    for (int k = 0; k < per; ++k) {  // quadratic triangles: the corners are the first three
+      const int64_t c = ele.ParseInt(tok[1 + k], k < 3 ? "a triangle corner" : "a triangle node");
+      if (c < base || c >= base + nv)
+        ele.Fail("triangle " + std::string(tok[0]) + " refers to vertex " +
+                 std::string(tok[1 + k]) + ", which does not exist (" + node_path +
+                 " has vertices " + std::to_string(base) + ".." + std::to_string(base + nv - 1) +
+                 ")");
+      if (k < 3) raw.tri.push_back(static_cast<int32_t>(c - base));
+    }
+    for (int64_t a = 0; a < eattr; ++a) ele.ParseDouble(tok[1 + per + a], "an attribute");
+    raw.triangle_line.Push(ele.line());
+  }
+  ExpectEnd(ele, nt, "triangle");
+}
+
+// Runs ReadEle on a thread; joins it (asking it to stop) on every way out of the .node's reader.
+class EleThread {
+ public:
+  void Start(const std::string& node_path, const std::string& ele_path, int64_t nv, int64_t base) {
+    thread_ = std::thread([=] {
+      try {
+        ReadEle(node_path, ele_path, nv, base, stop_, &raw_);
+      } catch (...) {
+        error_ = std::current_exception();
+      }
+    });
+  }
+  RawMesh Join() {
+    thread_.join();
+    if (error_) std::rethrow_exception(error_);
+    return std::move(raw_);
+  }
+  ~EleThread() {
+    if (thread_.joinable()) {
+      stop_ = true;
+      thread_.join();
+    }
+  }
+
+ private:
+  std::thread thread_;
+  std::atomic<bool> stop_{false};
+  std::exception_ptr error_;
+  RawMesh raw_;
+};
+
+}  // namespace
+
 RawMesh ReadTriangleFiles(const std::string& node_path, const std::string& ele_path) {
   RawMesh raw;
   raw.vertex_file = node_path;
@@ -92,6 +178,10 @@ RawMesh ReadTriangleFiles(const std::string& node_path, const std::string& ele_p
   raw.xy.reserve(2 * fits);
   int64_t base = 0;
   std::string_view line, tok[kMaxCols];
+  // The .ele is read on a second thread from the first vertex on (its ids are checked against the
+  // numbering base that line fixes); its errors are reported only if the .node has none, as when
+  // the files were read one after the other.
+  EleThread ele;
   for (int64_t i = 0; i < nv; ++i) {
     if (!node.NextDataLine(&line))
       node.Fail("file ends after " + std::to_string(i) + " of the " + std::to_string(nv) +
@@ -108,48 +198,12 @@ RawMesh ReadTriangleFiles(const std::string& node_path, const std::string& ele_p
     if (nmark) node.ParseInt(tok[3 + nattr], "the boundary marker");
     raw.vertex_line.Push(node.line());
     raw.vertex_tag.Push(id);
+    if (i == 0) ele.Start(node_path, ele_path, nv, base);
   }
   ExpectEnd(node, nv, "vertex");
-
-  // --- .ele
-  TextFile ele(ele_path);
-  const Header eh = ReadHeader(ele, 1, 3, ".ele");
-  const int64_t nt = eh.v[0];
-  if (nt == 0) ele.Fail("the header says the file has no triangles");
-  if (nt > INT32_MAX) ele.Fail("too many triangles for 32-bit ids");
-  const int64_t per = eh.n >= 2 ? eh.v[1] : 3;
-  if (per != 3 && per != 6)
-    ele.Fail("nodes per triangle must be 3 or 6, found " + std::to_string(per));
-  const int64_t eattr = eh.n >= 3 ? eh.v[2] : 0;
-  if (eattr > kMaxCols - 7)
-    ele.Fail("too many attribute columns (" + std::to_string(eattr) + "; at most " +
-             std::to_string(kMaxCols - 7) + ")");
-  const int64_t ecols = 1 + per + eattr;
-  const int64_t tfits = ele.Reservable(nt, 8);  // "1 1 2 3\n"
-  raw.tri.reserve(3 * tfits);
-  int64_t tbase = 0;
-  for (int64_t t = 0; t < nt; ++t) {
-    if (!ele.NextDataLine(&line))
-      ele.Fail("file ends after " + std::to_string(t) + " of the " + std::to_string(nt) +
-               " triangles the header announces (truncated file or wrong count)");
-    const int n = Tokens(line).Split(tok, kMaxCols);
-    if (n != ecols)
-      ele.Fail("expected " + std::to_string(ecols) + " columns (id, " + std::to_string(per) +
-               " vertices, " + std::to_string(eattr) + " attributes), found " + std::to_string(n));
-    CheckSequenceNumber(ele, tok[0], t, &tbase, "triangle");
-    for (int k = 0; k < per; ++k) {  // quadratic triangles: the corners are the first three
-      const int64_t c = ele.ParseInt(tok[1 + k], k < 3 ? "a triangle corner" : "a triangle node");
-      if (c < base || c >= base + nv)
-        ele.Fail("triangle " + std::string(tok[0]) + " refers to vertex " +
-                 std::string(tok[1 + k]) + ", which does not exist (" + node_path +
-                 " has vertices " + std::to_string(base) + ".." + std::to_string(base + nv - 1) +
-                 ")");
-      if (k < 3) raw.tri.push_back(static_cast<int32_t>(c - base));
-    }
-    for (int64_t a = 0; a < eattr; ++a) ele.ParseDouble(tok[1 + per + a], "an attribute");
-    raw.triangle_line.Push(ele.line());
-  }
-  ExpectEnd(ele, nt, "triangle");
+  RawMesh tris = ele.Join();  // the .ele's error, if any, now that the .node has none
+  raw.tri = std::move(tris.tri);
+  raw.triangle_line = std::move(tris.triangle_line);
   return raw;
 }
 

@@ -8,6 +8,7 @@
 //                            map of last accesses) on the same trace, for the ratio
 //   ParallelSpeedup/<trace>  serial and 2-thread exact analysis alternated: the speedup
 //   FileRatio/<trace>        in-memory analysis and the u64-file pipeline alternated: the ratio
+//   Read/raw, Read/mesh      reading --mesh's file(s): into a RawMesh, and built; MB/s of input
 //   ApplyRatio               ORI sweep, apply into a reused working copy, apply into a new mesh and
 //                            the rebuild, alternated: medians, and each apply in ORI sweeps
 //   Sweep/plain, Sweep/null  a hand-written Gauss-Seidel sweep with no sink at all, and
@@ -378,6 +379,26 @@ void Memory(benchmark::State& state) {
   }
 }
 
+// Reading the mesh file(s) --mesh names (Triangle .node + .ele, or .msh) into a RawMesh, and into a
+// built Mesh: bytes per second of input (the issue-12 goal: >= 200 MB/s).
+void ReadSpeed(benchmark::State& state, bool build) {
+  namespace fs = std::filesystem;
+  if (!fs::exists(g_mesh)) return state.SkipWithError("no mesh file (--mesh=PATH)");
+  int64_t bytes = static_cast<int64_t>(fs::file_size(g_mesh));
+  const fs::path p(g_mesh);
+  if (p.extension() == ".node")
+    bytes += static_cast<int64_t>(fs::file_size(fs::path(p).replace_extension(".ele")));
+  for (auto _ : state) {
+    if (build)
+      benchmark::DoNotOptimize(ReadMesh(g_mesh).NumVertices());
+    else
+      benchmark::DoNotOptimize(ReadRawMesh(g_mesh).xy.size());
+  }
+  state.SetBytesProcessed(bytes * state.iterations());
+  state.counters["MB_per_s"] = benchmark::Counter(
+      static_cast<double>(bytes) * 1e-6 * state.iterations(), benchmark::Counter::kIsRate);
+}
+
 }  // namespace
 }  // namespace meshreuse
 
@@ -414,6 +435,8 @@ int main(int argc, char** argv) {
     benchmark::RegisterBenchmark(("LeanSweep/" + std::string(o)).c_str(), LeanSweep, std::string(o))
         ->Iterations(50)
         ->Unit(benchmark::kMillisecond);
+  benchmark::RegisterBenchmark("Read/raw", ReadSpeed, false)->Unit(benchmark::kMillisecond);
+  benchmark::RegisterBenchmark("Read/mesh", ReadSpeed, true)->Unit(benchmark::kMillisecond);
   benchmark::RegisterBenchmark("ApplyRatio", ApplyRatio)
       ->Iterations(9)
       ->Unit(benchmark::kMillisecond);

@@ -40,6 +40,7 @@ TEST(Readers, AllFormatsGiveTheSameMesh) {
   ExpectSameMesh(ref, ReadMesh(DataPath("two_interior.ele")));    // by the .ele name
   ExpectSameMesh(ref, ReadMesh(DataPath("two_interior")));        // by prefix
   ExpectSameMesh(ref, ReadMesh(DataPath("two_interior41.msh")));
+  ExpectSameMesh(ref, ReadMesh(DataPath("two_interior41_bin.msh")));  // gmsh -bin wrote it
   std::vector<std::string> warnings;
   ExpectSameMesh(ref, ReadMesh(DataPath("two_interior22.msh"), &warnings));
   ASSERT_EQ(warnings.size(), 2u);
@@ -56,6 +57,30 @@ TEST(Readers, Gmsh41SkipsLinesAndKeepsTags) {
   EXPECT_EQ(raw.tri.size(), 24u);
   ASSERT_EQ(raw.warnings.size(), 1u);
   EXPECT_NE(raw.warnings[0].find("skipped 2 elements"), std::string::npos);
+}
+
+// A mesh Gmsh made (tests/data/plate.geo: a plate with a hole, several entities, points, lines
+// and triangles), saved by Gmsh as 4.1 binary, 4.1 ASCII and 2.2 ASCII: the same triangles and
+// tags, and the same coordinates to the 16 digits Gmsh writes in ASCII.
+TEST(Readers, GmshBinaryEqualsGmshAscii) {
+  const RawMesh bin = ReadGmsh(DataPath("plate_bin.msh"));
+  EXPECT_EQ(bin.xy.size(), 2u * 995);
+  EXPECT_EQ(bin.tri.size(), 3u * 1844);
+  for (const char* ascii : {"plate41.msh", "plate22.msh"}) {
+    SCOPED_TRACE(ascii);
+    const RawMesh a = ReadGmsh(DataPath(ascii));
+    ASSERT_EQ(a.xy.size(), bin.xy.size());
+    for (size_t i = 0; i < a.xy.size(); ++i)  // Gmsh's ASCII has 16 significant digits
+      ASSERT_NEAR(a.xy[i], bin.xy[i], 1e-15 * std::max(1.0, std::fabs(bin.xy[i]))) << i;
+    EXPECT_EQ(a.tri, bin.tri);
+    EXPECT_EQ(a.vertex_tag.ToVector(), bin.vertex_tag.ToVector());
+    ASSERT_EQ(a.warnings.size(), 1u);
+    ASSERT_EQ(bin.warnings.size(), 1u);
+    EXPECT_EQ(a.warnings[0].substr(a.warnings[0].find("skipped")),
+              bin.warnings[0].substr(bin.warnings[0].find("skipped")));
+  }
+  // Contiguous tags (Gmsh's own): one run, no per-vertex memory.
+  EXPECT_EQ(bin.vertex_tag.runs(), 1u);
 }
 
 struct BrokenCase {
@@ -214,8 +239,8 @@ TEST(HostileInput, DirectoriesAndDevicesAreRefusedByName) {
   expect([&] { ComputeOrdering("file:/dev/zero", testing::TwoInterior(), 1); }, "/dev/zero",
          "is a character device");
   for (ExternalFormat f : {ExternalFormat::kText, ExternalFormat::kU32, ExternalFormat::kU64})
-    expect([&] { ReadExternalTrace(tmp.path().string(), f, [](uint64_t, uint32_t) {}); }, tmp.path().string(),
-           "is a directory, not a file");
+    expect([&] { ReadExternalTrace(tmp.path().string(), f, [](uint64_t, uint32_t) {}); },
+           tmp.path().string(), "is a directory, not a file");
   expect([&] { TraceReader r(tmp.path().string()); }, tmp.path().string(), "is a directory");
 }
 

@@ -1,4 +1,4 @@
-// libFuzzer harness: a Gmsh .msh file (2.2 or 4.1 ASCII).
+// libFuzzer harness: a Gmsh .msh file (2.2 or 4.1 ASCII, 4.1 binary: ReadGmsh picks the reader).
 #include "core/mesh_io.h"
 #include "tests/fuzz/fuzz_util.h"
 
