@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <string>
 
 #include "core/error.h"
@@ -227,8 +228,16 @@ Mesh BuildMesh(RawMesh raw, BuildReport* report) {
   m.boundary.resize(nv);
   m.v2v.off.resize(static_cast<size_t>(nv) + 1);
   m.v2v.off[0] = 0;
+  // One pass writes each row at a slot bounded by its triangle count: a vertex whose triangles
+  // form one fan has at most one neighbour more than triangles, so row v starts at
+  // v2t.off[v] + v. The rows are then moved down in order (each only ever moves left), which
+  // costs a sequential pass where a second visit would repeat every scattered triangle read.
+  // A vertex with several fans (a bowtie) may not fit: then rows are sized first, and filled.
+  const int64_t bound = m.v2t.off[nv] + nv;
+  m.v2v.idx.resize(static_cast<size_t>(bound));
   int32_t first_bad = nv;
-#pragma omp parallel reduction(min : first_bad)
+  bool spill = false;
+#pragma omp parallel reduction(min : first_bad) reduction(|| : spill)
   {
     std::vector<Nbr> row;
 #pragma omp for schedule(static, 4096)
@@ -242,6 +251,12 @@ Mesh BuildMesh(RawMesh raw, BuildReport* report) {
       for (const Nbr& n : row) on_boundary |= n.count == 1;
       m.boundary[v] = on_boundary;
       m.v2v.off[v + 1] = static_cast<int64_t>(row.size());
+      if (static_cast<int64_t>(row.size()) > m.v2t.RowSize(v) + 1) {
+        spill = true;
+        continue;
+      }
+      int32_t* out = m.v2v.idx.data() + m.v2t.off[v] + v;
+      for (const Nbr& n : row) *out++ = n.u;
     }
   }
   if (first_bad < nv) {
@@ -249,16 +264,23 @@ Mesh BuildMesh(RawMesh raw, BuildReport* report) {
     visit(first_bad, row, true);  // throws
   }
   for (int32_t v = 0; v < nv; ++v) m.v2v.off[v + 1] += m.v2v.off[v];
-  m.v2v.idx.resize(static_cast<size_t>(m.v2v.off[nv]));
+  if (!spill) {
+    for (int32_t v = 0; v < nv; ++v)  // off[v] <= v2t.off[v] + v: a forward move never overlaps
+      std::memmove(m.v2v.idx.data() + m.v2v.off[v], m.v2v.idx.data() + m.v2t.off[v] + v,
+                   sizeof(int32_t) * static_cast<size_t>(m.v2v.RowSize(v)));
+    m.v2v.idx.resize(static_cast<size_t>(m.v2v.off[nv]));
+  } else {
+    m.v2v.idx.resize(static_cast<size_t>(m.v2v.off[nv]));
 #pragma omp parallel
-  {
-    std::vector<Nbr> row;
+    {
+      std::vector<Nbr> row;
 #pragma omp for schedule(static, 4096)
-    for (int32_t v = 0; v < nv; ++v) {
-      prefetch_triangles(v + kAhead);
-      visit(v, row, false, false);
-      int32_t* out = m.v2v.idx.data() + m.v2v.off[v];
-      for (const Nbr& n : row) *out++ = n.u;
+      for (int32_t v = 0; v < nv; ++v) {
+        prefetch_triangles(v + kAhead);
+        visit(v, row, false, false);
+        int32_t* out = m.v2v.idx.data() + m.v2v.off[v];
+        for (const Nbr& n : row) *out++ = n.u;
+      }
     }
   }
   int64_t n_interior = 0;

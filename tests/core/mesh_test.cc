@@ -76,6 +76,29 @@ TEST(BuildMesh, MatchesNaiveOnManySyntheticMeshes) {
   }
 }
 
+// Bowties: vertex 0 is the apex of two (then three) fans that share no edge, so it has more
+// neighbours than triangles + 1 -- the case the single-pass row layout cannot hold, built by the
+// sizing pass instead. Rows and boundary as the naive construction gives them.
+TEST(BuildMesh, VertexWithSeveralFans) {
+  RawMesh raw;
+  raw.xy = {0, 0, 1, 0, 1, 1, -1, 0, -1, -1, 0, 1, -1, 1};
+  raw.tri = {0, 1, 2, 0, 3, 4};
+  const Mesh two = BuildMesh(raw);
+  EXPECT_EQ(two.v2v.RowSize(0), 4);
+  EXPECT_EQ(std::vector<int32_t>(two.v2v.RowBegin(0), two.v2v.RowEnd(0)),
+            (std::vector<int32_t>{1, 2, 3, 4}));
+  raw.tri.insert(raw.tri.end(), {0, 5, 6});
+  const Mesh three = BuildMesh(raw);
+  EXPECT_EQ(std::vector<int32_t>(three.v2v.RowBegin(0), three.v2v.RowEnd(0)),
+            (std::vector<int32_t>{1, 2, 3, 4, 5, 6}));
+  EXPECT_EQ(std::vector<int32_t>(three.v2v.RowBegin(6), three.v2v.RowEnd(6)),
+            (std::vector<int32_t>{0, 5}));
+  EXPECT_EQ(three.v2v.off.back(), 18);  // 9 edges, both ways
+  ExpectMatchesNaive(two);
+  ExpectMatchesNaive(three);
+  EXPECT_EQ(three.NumBoundary(), 7);
+}
+
 TEST(BuildMesh, BoundaryIsTopologicalNotFromMarkers) {
   // two_interior.node marks vertices 7 and 8 with marker 0 and the rest 1; two_interior0.node has
   // no markers at all. Both give the same boundary.
