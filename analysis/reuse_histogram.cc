@@ -12,7 +12,8 @@ namespace meshreuse {
 static_assert(StackDistance::kCold == ~uint64_t{0}, "Add() tests for cold by value");
 
 void ReuseHistogram::Grow(uint64_t d) {
-  const uint64_t want = std::max<uint64_t>(d + 1, 2 * counts_.size());
+  // By a quarter: the counts are zero-filled (resident) to their size.
+  const uint64_t want = std::max<uint64_t>(d + 1, counts_.size() + counts_.size() / 4 + 1024);
   counts_.resize(counts_.capacity() > d ? std::min<uint64_t>(want, counts_.capacity()) : want, 0);
 }
 

@@ -26,7 +26,7 @@ StackDistance::StackDistance(uint64_t dense_ids, uint32_t min_capacity)
   // 256 thread streams with a handful of records each costs a few kilobytes per stream).
   capacity_ = kGroup;
   bits_.assign(capacity_ / 64, 0);
-  owner_.assign(capacity_, 0);
+  owner_.Resize(capacity_);
   tree_.assign(capacity_ / kGroup + 1, 0);
   keys_.assign(16, kEmptyKey);
   slots_.assign(16, 0);
@@ -35,7 +35,7 @@ StackDistance::StackDistance(uint64_t dense_ids, uint32_t min_capacity)
 size_t StackDistance::MemoryBytes() const {
   return dense_last_.capacity() * 4 + hashed_last_.capacity() * 4 + free_slots_.capacity() * 4 +
          keys_.capacity() * 8 + slots_.capacity() * 4 + bits_.capacity() * 8 +
-         owner_.capacity() * 4 + tree_.capacity() * 4;
+         owner_.size() * 4 + tree_.capacity() * 4;
 }
 
 uint32_t* StackDistance::FindHashed(uint64_t id, size_t* slot_index) {
@@ -49,10 +49,13 @@ uint32_t* StackDistance::FindHashed(uint64_t id, size_t* slot_index) {
 void StackDistance::GrowDense(uint64_t id) {
   const uint64_t old = dense_last_.size();
   const uint64_t cap = id < dense_ids_ ? dense_ids_ : kHashedBit;
-  dense_last_.resize(std::max<uint64_t>(id + 1, std::min<uint64_t>(cap, 2 * old)), kNone);
+  // Growth by a quarter, not a doubling: the array is written (resident) to its size, and at the
+  // end of a stream a doubling leaves up to half of it unused.
+  dense_last_.resize(std::max<uint64_t>(id + 1, std::min<uint64_t>(cap, old + old / 4 + 1024)),
+                     kNone);
   if (hash_used_ == 0) return;
   // Hashed ids now inside the array move there (their markers' owners too); the table is rebuilt
-  // from the rest. O(table), amortised by the doubling.
+  // from the rest. O(table), amortised by the geometric growth.
   const uint64_t now = dense_last_.size();
   std::vector<uint64_t> keep_keys;
   std::vector<uint32_t> keep_slots;
@@ -266,27 +269,31 @@ void StackDistance::TouchAll(const uint64_t* ids, size_t n) {
 
 void StackDistance::Compact(uint64_t extra) {
   ++compactions_;
-  // A window of 4x the live markers: compaction (O(window)) then runs once per 3x live accesses;
-  // the window costs 4 bytes of owner_ per position, so 16 bytes per distinct id.
+  // A window of kWindow x the live markers: compaction (O(window)) then runs once per
+  // (kWindow - 1) x live accesses; the window costs 4 bytes of owner_ per position. At 2x, 8 bytes
+  // per distinct id and two positions scanned per access (4x: 16 bytes, 1.33 positions; measured
+  // no slower on the mesh traces, issue 12, while a third of `analyze MESH`'s analyzer memory).
   // The floor (min_capacity, fewer compactions) applies once the stream is that long, so the
-  // window never exceeds 4x the larger of the live ids and the accesses so far.
-  uint64_t want = std::max<uint64_t>(std::min<uint64_t>(min_capacity_, 4 * accesses_),
-                                     4 * (live_ + extra) + 64);
+  // window never exceeds kWindow x the larger of the live ids and the accesses so far.
+  constexpr uint64_t kWindow = 2;
+  uint64_t want = std::max<uint64_t>(std::min<uint64_t>(min_capacity_, kWindow * accesses_),
+                                     kWindow * (live_ + extra) + 64);
   want = (want + kGroup - 1) & ~uint64_t{kGroup - 1};
   if (want >= kHashedBit) throw std::length_error("too many distinct ids for the analyzer");
-  std::vector<uint32_t> owner(want);
+  // In place: live markers move down in position order (k never passes the position read), then
+  // the window takes its new size by realloc.
   uint32_t k = 0;
   for (uint32_t w = 0; w < bits_.size(); ++w)
     for (uint64_t x = bits_[w]; x; x &= x - 1) {
       const uint32_t key = owner_[w * 64 + __builtin_ctzll(x)];
-      owner[k] = key;
+      owner_[k] = key;
       if (key & kHashedBit)
         hashed_last_[key & ~kHashedBit] = k;
       else
         dense_last_[key] = k;
       ++k;
     }
-  owner_.swap(owner);
+  owner_.Resize(want);
   capacity_ = static_cast<uint32_t>(want);
   bits_.assign(capacity_ / 64, 0);
   for (uint32_t i = 0; i < k; ++i) bits_[i >> 6] |= uint64_t{1} << (i & 63);

@@ -21,10 +21,44 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <cstdlib>
 #include <limits>
+#include <new>
+#include <utility>
 #include <vector>
 
 namespace meshreuse {
+
+// A uint32_t array that grows and shrinks with realloc: glibc maps large blocks on their own and
+// realloc moves their pages (mremap) instead of copying them, so resizing the analyzer's window
+// never holds an old and a new copy at once (std::vector would: a third more memory at the peak).
+// New elements are left unwritten. Move-only.
+class U32Array {
+ public:
+  U32Array() = default;
+  ~U32Array() { std::free(p_); }
+  U32Array(U32Array&& o) noexcept : p_(std::exchange(o.p_, nullptr)), n_(std::exchange(o.n_, 0)) {}
+  U32Array& operator=(U32Array&& o) noexcept {
+    std::swap(p_, o.p_);
+    std::swap(n_, o.n_);
+    return *this;
+  }
+  U32Array(const U32Array&) = delete;
+  U32Array& operator=(const U32Array&) = delete;
+  void Resize(size_t n) {
+    void* p = std::realloc(p_, n ? n * sizeof(uint32_t) : 1);
+    if (!p) throw std::bad_alloc();
+    p_ = static_cast<uint32_t*>(p);
+    n_ = n;
+  }
+  uint32_t& operator[](size_t i) { return p_[i]; }
+  uint32_t operator[](size_t i) const { return p_[i]; }
+  size_t size() const { return n_; }
+
+ private:
+  uint32_t* p_ = nullptr;
+  size_t n_ = 0;
+};
 
 class StackDistance {
  public:
@@ -99,7 +133,7 @@ class StackDistance {
   uint64_t hash_used_ = 0;
 
   std::vector<uint64_t> bits_;   // live markers
-  std::vector<uint32_t> owner_;  // key (id or kHashedBit | slot) of the marker at each position
+  U32Array owner_;               // key (id or kHashedBit | slot) of the marker at each position
   std::vector<int32_t> tree_;    // Fenwick tree over closed groups' live counts, 1-based
   uint32_t capacity_ = 0;        // positions in the window (a multiple of 512)
   uint32_t t_ = 0;               // next position
