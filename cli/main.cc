@@ -1,6 +1,8 @@
 // meshreuse: the command-line front end. One table maps subcommand names to functions; errors are
 // reported here and only here: bad input (InputError, a bad option) exits 2, a failed external
 // tool or any other failure exits 1.
+#include <malloc.h>
+
 #include <boost/program_options/errors.hpp>
 #include <cstdio>
 #include <cstring>
@@ -110,4 +112,11 @@ int Main(int argc, char** argv) {
 
 }  // namespace meshreuse::cli
 
-int main(int argc, char** argv) { return meshreuse::cli::Main(argc, argv); }
+int main(int argc, char** argv) {
+  // Arrays of a megabyte or more are mapped on their own and given back when freed. glibc would
+  // otherwise raise this threshold after the first large free (up to 32 MiB), and the arrays a
+  // command frees on its way (reading, reordering) would stay resident in its heap: the memory
+  // budget (README) is of what a command holds, not of what the allocator keeps.
+  mallopt(M_MMAP_THRESHOLD, 1 << 20);
+  return meshreuse::cli::Main(argc, argv);
+}

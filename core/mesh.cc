@@ -86,27 +86,40 @@ Mesh BuildMesh(RawMesh raw, BuildReport* report) {
       }
     }
 
-  // Per-triangle checks, and which vertices are used.
-  std::vector<uint8_t> used(nv_raw, 0);
-  for (int64_t t = 0; t < nt; ++t) {
+  // Per-triangle checks, in parallel; on a failure the first failing triangle is checked again,
+  // serially, for the message the serial order gives. Then which vertices are used.
+  auto check_triangle = [&](int64_t t, bool loud) {
     const int32_t* c = &raw.tri[3 * t];
     for (int k = 0; k < 3; ++k)
-      if (c[k] < 0 || c[k] >= nv_raw)
+      if (c[k] < 0 || c[k] >= nv_raw) {
+        if (!loud) return false;
         where.TriError(t, "triangle corner refers to vertex " + std::to_string(c[k]) +
                               " (0-based)" + " which does not exist (the mesh has " +
                               std::to_string(nv_raw) + " vertices)");
-    if (c[0] == c[1] || c[1] == c[2] || c[0] == c[2])
+      }
+    if (c[0] == c[1] || c[1] == c[2] || c[0] == c[2]) {
+      if (!loud) return false;
       where.TriError(t, "degenerate triangle: vertex " + where.Tag(c[c[0] == c[1] ? 0 : 2]) +
                             " is used twice");
+    }
     const double ax = raw.xy[2 * c[0]], ay = raw.xy[2 * c[0] + 1];
     const double cross = (raw.xy[2 * c[1]] - ax) * (raw.xy[2 * c[2] + 1] - ay) -
                          (raw.xy[2 * c[1] + 1] - ay) * (raw.xy[2 * c[2]] - ax);
-    if (cross == 0.0)
+    if (cross == 0.0) {
+      if (!loud) return false;
       where.TriError(t, "degenerate triangle: vertices " + where.Tag(c[0]) + ", " +
                             where.Tag(c[1]) + ", " + where.Tag(c[2]) +
                             " are collinear (zero area)");
-    for (int k = 0; k < 3; ++k) used[c[k]] = 1;
-  }
+    }
+    return true;
+  };
+  int64_t first_bad_tri = nt;
+#pragma omp parallel for schedule(static, 8192) reduction(min : first_bad_tri)
+  for (int64_t t = 0; t < nt; ++t)
+    if (!check_triangle(t, false)) first_bad_tri = std::min(first_bad_tri, t);
+  if (first_bad_tri < nt) check_triangle(first_bad_tri, true);  // throws
+  std::vector<uint8_t> used(nv_raw, 0);
+  for (int32_t c : raw.tri) used[c] = 1;
 
   // Drop unused vertices, keeping the order of the rest (the ORI ordering is the file's order).
   // Only then are the renumbering arrays built: a mesh that uses every vertex needs none.

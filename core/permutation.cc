@@ -360,15 +360,15 @@ Mesh ApplyPermutationByRebuild(const Mesh& m, const Permutation& p, TriangleOrde
 }
 
 EdgeSpan MeasureEdgeSpan(const Mesh& m, const Permutation& p) {
-  std::vector<int64_t> span;
+  std::vector<int32_t> span;  // < 2^31: both ends are 32-bit ids >= 0
   span.reserve(m.v2v.idx.size() / 2);
   for (int32_t v = 0; v < m.NumVertices(); ++v)
     for (const int32_t* q = m.v2v.RowBegin(v); q != m.v2v.RowEnd(v); ++q)
-      if (*q > v) span.push_back(std::abs(int64_t{p.NewOf(v)} - p.NewOf(*q)));
+      if (*q > v) span.push_back(std::abs(p.NewOf(v) - p.NewOf(*q)));
   EdgeSpan e;
   if (span.empty()) return e;
   double sum = 0;
-  for (int64_t s : span) sum += static_cast<double>(s);
+  for (int32_t s : span) sum += static_cast<double>(s);
   e.mean = sum / static_cast<double>(span.size());
   // Quantile X: the smallest span with at least a fraction X of the edges at or below it.
   auto quantile = [&](double x) {

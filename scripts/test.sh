@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The README's test command: installs what is missing (apt-get, as root), builds a Release and an
 # ASan+UBSan build with warnings as errors, and runs every test (GoogleTest suites and CLI checks)
-# in both, then fuzzes every reader for 60 s each (scripts/fuzz.sh; libFuzzer from clang). Exit 0
+# in both, runs the scale smoke test (scripts/scale_smoke.sh: 10^6 vertices, memory budget), then
+# fuzzes every reader for 60 s each (scripts/fuzz.sh; libFuzzer from clang). Exit 0
 # only when everything passed.
 # Usage: scripts/test.sh [--quick]   (--quick: Release build only, no sanitizers, no fuzzing)
 set -euo pipefail
@@ -28,6 +29,8 @@ run_tests() {
 mkdir -p build
 build build/release -DCMAKE_BUILD_TYPE=Release
 run_tests build/release
+echo "== scale smoke test: a 10^6-vertex mesh through every command, memory checked" >&2
+bash scripts/scale_smoke.sh build/release/cli/meshreuse
 if ((quick == 0)); then
   build build/asan -DCMAKE_BUILD_TYPE=Debug -DMESHREUSE_SANITIZE=ON
   ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \

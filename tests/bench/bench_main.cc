@@ -435,8 +435,12 @@ int main(int argc, char** argv) {
     benchmark::RegisterBenchmark(("LeanSweep/" + std::string(o)).c_str(), LeanSweep, std::string(o))
         ->Iterations(50)
         ->Unit(benchmark::kMillisecond);
-  benchmark::RegisterBenchmark("Read/raw", ReadSpeed, false)->Unit(benchmark::kMillisecond);
-  benchmark::RegisterBenchmark("Read/mesh", ReadSpeed, true)->Unit(benchmark::kMillisecond);
+  benchmark::RegisterBenchmark("Read/raw", ReadSpeed, false)
+      ->Unit(benchmark::kMillisecond)
+      ->UseRealTime();
+  benchmark::RegisterBenchmark("Read/mesh", ReadSpeed, true)
+      ->Unit(benchmark::kMillisecond)
+      ->UseRealTime();
   benchmark::RegisterBenchmark("ApplyRatio", ApplyRatio)
       ->Iterations(9)
       ->Unit(benchmark::kMillisecond);
