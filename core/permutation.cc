@@ -64,25 +64,40 @@ const char* TriangleOrderName(TriangleOrder t) {
 
 namespace {
 
-// a[i] += a[0] + ... + a[i - 1] for i < n, in parallel: each thread sums its block, the block
-// totals are added up serially (one per thread), then each block runs its own prefix.
-template <class T>
-void InclusiveScan(T* a, int64_t n) {
+// A parallel two-pass scan over [0, n) cut into one block per thread: count(b, e) says how much
+// block [b, e) holds, the totals are added up serially (one per thread), then fill(b, e, start)
+// runs with the block's start. Returns the total (after every fill).
+template <class Count, class Fill>
+int64_t BlockScan(int64_t n, Count count, Fill fill) {
   const int threads = omp_get_max_threads();
-  std::vector<T> block(static_cast<size_t>(threads) + 1, 0);
+  std::vector<int64_t> block(static_cast<size_t>(threads) + 1, 0);
 #pragma omp parallel num_threads(threads)
   {
     const int t = omp_get_thread_num(), nt = omp_get_num_threads();
     const int64_t b = n * t / nt, e = n * (t + 1) / nt;
-    T s = 0;
-    for (int64_t i = b; i < e; ++i) s += a[i];
-    block[t + 1] = s;
+    block[t + 1] = count(b, e);
 #pragma omp barrier
 #pragma omp single
     for (int k = 0; k < nt; ++k) block[k + 1] += block[k];
-    s = block[t];
-    for (int64_t i = b; i < e; ++i) a[i] = s += a[i];
+    fill(b, e, block[t]);
   }
+  return block.back();
+}
+
+// a[i] += a[0] + ... + a[i - 1] for i < n, in parallel.
+template <class T>
+void InclusiveScan(T* a, int64_t n) {
+  BlockScan(
+      n,
+      [&](int64_t b, int64_t e) {
+        int64_t s = 0;
+        for (int64_t i = b; i < e; ++i) s += a[i];
+        return s;
+      },
+      [&](int64_t b, int64_t e, int64_t start) {
+        T s = static_cast<T>(start);
+        for (int64_t i = b; i < e; ++i) a[i] = s += a[i];
+      });
 }
 
 constexpr int64_t kRankSortMax = 32;
@@ -218,26 +233,21 @@ void PermuteOffsets(const Csr& in, const Permutation& p, AlignedVector<int64_t>*
 
 // Non-boundary vertices in increasing id: count per block, scan, fill.
 void InteriorOf(const std::vector<uint8_t>& boundary, AlignedVector<int32_t>* interior) {
-  const int64_t nv = static_cast<int64_t>(boundary.size());
-  const int threads = omp_get_max_threads();
-  std::vector<int64_t> block(static_cast<size_t>(threads) + 1, 0);
-#pragma omp parallel num_threads(threads)
-  {
-    const int t = omp_get_thread_num(), n = omp_get_num_threads();
-    const int64_t b = nv * t / n, e = nv * (t + 1) / n;
-    int64_t s = 0;
-    for (int64_t i = b; i < e; ++i) s += !boundary[i];
-    block[t + 1] = s;
-#pragma omp barrier
-#pragma omp single
-    {
-      for (int k = 0; k < n; ++k) block[k + 1] += block[k];
-      interior->resize(static_cast<size_t>(block[n]));
-    }
-    int32_t* out = interior->data() + block[t];
-    for (int64_t i = b; i < e; ++i)
-      if (!boundary[i]) *out++ = static_cast<int32_t>(i);
-  }
+  int64_t n_interior = 0;
+  for (uint8_t f : boundary) n_interior += !f;
+  interior->resize(static_cast<size_t>(n_interior));
+  BlockScan(
+      static_cast<int64_t>(boundary.size()),
+      [&](int64_t b, int64_t e) {
+        int64_t s = 0;
+        for (int64_t i = b; i < e; ++i) s += !boundary[i];
+        return s;
+      },
+      [&](int64_t b, int64_t e, int64_t start) {
+        int32_t* out = interior->data() + start;
+        for (int64_t i = b; i < e; ++i)
+          if (!boundary[i]) *out++ = static_cast<int32_t>(i);
+      });
 }
 
 void CheckSizes(const Mesh& m, const Permutation& p) {
