@@ -70,10 +70,6 @@ void ExpectEnd(TextFile& f, int64_t count, const char* items) {
            std::to_string(count));
 }
 
-}  // namespace
-
-namespace {
-
 // The .ele, on its own thread: it needs from the .node only the vertex count and numbering base,
 // known once the .node's header and first vertex are read. `stop` is set when the .node failed.
 void ReadEle(const std::string& node_path, const std::string& ele_path, int64_t nv, int64_t base,
