@@ -1,5 +1,6 @@
-// BuildMesh: validation and O(V + T) adjacency construction (counting sort for v2t, a stamp array
-// to collect distinct neighbours and count each edge's triangles for v2v and the boundary).
+// BuildMesh: validation and O(V + T) adjacency construction (counting sort for v2t, each
+// incidence's opposite corners laid out per vertex for the neighbour rows, the boundary and the
+// topology checks; the per-vertex work runs in parallel).
 #include "core/mesh.h"
 
 #include <algorithm>
@@ -38,23 +39,6 @@ struct Where {
     throw InputError(raw.triangle_file, TriLine(t), what);
   }
 };
-
-// CSR of vertex -> incident triangles by counting sort; rows come out in increasing triangle id.
-// The offsets serve as the fill cursors (each ends at the next row's start) and are shifted back
-// afterwards: no second array of V cursors.
-Csr BuildV2T(int32_t nv, const AlignedVector<int32_t>& tri) {
-  Csr c;
-  c.off.assign(static_cast<size_t>(nv) + 1, 0);
-  for (int32_t v : tri) ++c.off[v + 1];
-  for (int32_t v = 0; v < nv; ++v) c.off[v + 1] += c.off[v];
-  c.idx.resize(tri.size());
-  const int64_t nt = static_cast<int64_t>(tri.size() / 3);
-  for (int64_t t = 0; t < nt; ++t)
-    for (int k = 0; k < 3; ++k) c.idx[c.off[tri[3 * t + k]]++] = static_cast<int32_t>(t);
-  for (int32_t v = nv; v > 0; --v) c.off[v] = c.off[v - 1];
-  c.off[0] = 0;
-  return c;
-}
 
 }  // namespace
 
@@ -160,15 +144,39 @@ Mesh BuildMesh(RawMesh raw, BuildReport* report) {
   used = std::vector<uint8_t>();
   m.xy = std::move(raw.xy);
   m.tri = std::move(raw.tri);
-  m.v2t = BuildV2T(nv, m.tri);
+  // The neighbour pass below reads, for each vertex, the two other corners of each of its
+  // triangles. Read through v2t they lie anywhere in the triangle array (about six scattered
+  // lines a vertex: most of the build at 10^7 vertices); so they are first written out per vertex,
+  // in v2t's order, by the counting sort v2t uses (`opp`: 8 bytes per incidence, freed before v2t's
+  // own entries are written, so the peak stays below the finished mesh plus v2v).
+  m.v2t.off.assign(static_cast<size_t>(nv) + 1, 0);
+  for (int32_t c : m.tri) ++m.v2t.off[c + 1];
+  for (int32_t v = 0; v < nv; ++v) m.v2t.off[v + 1] += m.v2t.off[v];
+  AlignedVector<int32_t> opp(2 * m.tri.size());
+  {
+    AlignedVector<int64_t>& cur = m.v2t.off;  // cursors, shifted back below
+    const int64_t nt_ = static_cast<int64_t>(m.tri.size() / 3);
+    for (int64_t t = 0; t < nt_; ++t) {
+      const int32_t* c = &m.tri[3 * t];
+      for (int k = 0; k < 3; ++k) {
+        int32_t a = c[(k + 1) % 3], b = c[(k + 2) % 3];
+        if (a > b) std::swap(a, b);
+        const int64_t pos = cur[c[k]]++;
+        opp[2 * pos] = a;
+        opp[2 * pos + 1] = b;
+      }
+    }
+    for (int32_t v = nv; v > 0; --v) cur[v] = cur[v - 1];
+    cur[0] = 0;
+  }
   // Tags of mesh vertices, for messages: the raw vertex's.
   auto raw_of = [&](int32_t v) { return kept.empty() ? v : kept[v]; };
 
   // Per vertex: its distinct neighbours with each edge's triangle count (boundary and non-manifold
   // edges) and duplicate triangles (checked at the triangle's smallest corner). Vertices are
-  // independent, so this runs in parallel, twice: row sizes, then (after a scan) the rows. A row's
-  // neighbours are a handful, kept in a small local list. On an error the first offending vertex
-  // is visited again, serially, to throw the message the serial order would give.
+  // independent, so this runs in parallel. A row's neighbours are a handful, kept in a small local
+  // list. On an error the first offending vertex is visited again, serially, through v2t, to throw
+  // the message the serial order would give.
   auto raw_tag = [&](int32_t v) { return where.Tag(raw_of(v)); };
   // The first triangle at v that has the edge v-u, for the non-manifold message.
   auto first_with = [&](int32_t v, int32_t u) {
@@ -181,6 +189,65 @@ Mesh BuildMesh(RawMesh raw, BuildReport* report) {
   struct Nbr {
     int32_t u;
     int32_t count;  // triangles on the edge v-u
+  };
+  // The same from `opp`, quietly: false on a topology error (found at the same vertex as `visit`
+  // would, which then gives the message).
+  auto visit_opp = [&](int32_t v, std::vector<Nbr>& row) {
+    row.clear();
+    const int64_t b0 = m.v2t.off[v], e0 = m.v2t.off[v + 1];
+    for (int64_t j = b0; j < e0; ++j) {
+      const int32_t a = opp[2 * j], b = opp[2 * j + 1];
+      if (v < a)  // v is the smallest corner: compare with earlier triangles at v of that kind
+        for (int64_t q = b0; q < j; ++q)
+          if (opp[2 * q] == a && opp[2 * q + 1] == b) return false;
+      for (int32_t u : {a, b}) {
+        size_t k = 0;
+        while (k < row.size() && row[k].u != u) ++k;
+        if (k == row.size())
+          row.push_back({u, 1});
+        else if (++row[k].count > 2)
+          return false;
+      }
+    }
+    for (size_t i = 1; i < row.size(); ++i) {
+      const Nbr x = row[i];
+      size_t j = i;
+      for (; j > 0 && row[j - 1].u > x.u; --j) row[j] = row[j - 1];
+      row[j] = x;
+    }
+    return true;
+  };
+  // visit_opp without branches on the data, for vertices of up to 16 triangles (all but fans): an
+  // unpredictable branch per neighbour lookup and per sort step made the pass cost ~250 ns a
+  // vertex, mostly mispredictions. The 2 x deg neighbour ids are ranked (stable) into order, runs
+  // of equal ids become (id, count), and duplicate triangles are a mask over the pairs.
+  constexpr int kFastDeg = 16;
+  auto visit_fast = [&](int32_t v, std::vector<Nbr>& row) {
+    const int64_t b0 = m.v2t.off[v];
+    const int n = static_cast<int>(2 * (m.v2t.off[v + 1] - b0));
+    const int32_t* w = &opp[2 * b0];
+    int32_t sorted[2 * kFastDeg];
+    for (int i = 0; i < n; ++i) {
+      int rank = 0;
+      for (int l = 0; l < n; ++l) rank += (w[l] < w[i]) | ((w[l] == w[i]) & (l < i));
+      sorted[rank] = w[i];
+    }
+    bool bad = false;
+    for (int j = 0; j < n; j += 2)  // a duplicate triangle at its smallest corner v
+      for (int q = 0; q < j; q += 2) bad |= (v < w[j]) & (w[q] == w[j]) & (w[q + 1] == w[j + 1]);
+    row.resize(static_cast<size_t>(n));
+    int k = 0;
+    row[0] = {sorted[0], 1};
+    for (int i = 1; i < n; ++i) {
+      const bool same = sorted[i] == sorted[i - 1];
+      const int32_t c = row[k].count;
+      k += !same;
+      row[k].u = sorted[i];
+      row[k].count = same ? c + 1 : 1;
+    }
+    row.resize(static_cast<size_t>(n ? k + 1 : 0));
+    for (const Nbr& x : row) bad |= x.count > 2;
+    return !bad;
   };
   // Fills `row` with v's neighbours, sorted; false on a topology error (thrown when `loud`).
   // Without `check` (the second pass, on a mesh already checked) duplicates are not looked for.
@@ -255,8 +322,8 @@ Mesh BuildMesh(RawMesh raw, BuildReport* report) {
     std::vector<Nbr> row;
 #pragma omp for schedule(static, 4096)
     for (int32_t v = 0; v < nv; ++v) {
-      prefetch_triangles(v + kAhead);
-      if (!visit(v, row, false)) {
+      const bool fast = m.v2t.RowSize(v) <= kFastDeg && m.v2t.RowSize(v) > 0;
+      if (!(fast ? visit_fast(v, row) : visit_opp(v, row))) {
         first_bad = std::min(first_bad, v);
         row.clear();
       }
@@ -271,6 +338,17 @@ Mesh BuildMesh(RawMesh raw, BuildReport* report) {
       int32_t* out = m.v2v.idx.data() + m.v2t.off[v] + v;
       for (const Nbr& n : row) *out++ = n.u;
     }
+  }
+  opp = AlignedVector<int32_t>();
+  // v2t's entries: the same counting sort, now that `opp` is gone.
+  m.v2t.idx.resize(m.tri.size());
+  {
+    AlignedVector<int64_t>& cur = m.v2t.off;
+    const int64_t nt_ = static_cast<int64_t>(m.tri.size() / 3);
+    for (int64_t t = 0; t < nt_; ++t)
+      for (int k = 0; k < 3; ++k) m.v2t.idx[cur[m.tri[3 * t + k]]++] = static_cast<int32_t>(t);
+    for (int32_t v = nv; v > 0; --v) cur[v] = cur[v - 1];
+    cur[0] = 0;
   }
   if (first_bad < nv) {
     std::vector<Nbr> row;
