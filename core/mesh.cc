@@ -1,12 +1,13 @@
-// BuildMesh: validation and O(V + T) adjacency construction (counting sort for v2t, each
-// incidence's opposite corners laid out per vertex for the neighbour rows, the boundary and the
-// topology checks; the per-vertex work runs in parallel).
+// BuildMesh: validation and O(V + T) adjacency construction (counting sort for v2t; per vertex,
+// in parallel and without data-dependent branches, its neighbour row, boundary flag and topology
+// checks).
 #include "core/mesh.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <stdexcept>
 #include <string>
 
 #include "core/error.h"
@@ -25,6 +26,8 @@ Mesh Mesh::Clone() const {
 }
 
 namespace {
+
+bool HasCorner(const int32_t* c, int32_t u) { return c[0] == u || c[1] == u || c[2] == u; }
 
 struct Where {
   const RawMesh& raw;
@@ -144,203 +147,11 @@ Mesh BuildMesh(RawMesh raw, BuildReport* report) {
   used = std::vector<uint8_t>();
   m.xy = std::move(raw.xy);
   m.tri = std::move(raw.tri);
-  // The neighbour pass below reads, for each vertex, the two other corners of each of its
-  // triangles. Read through v2t they lie anywhere in the triangle array (about six scattered
-  // lines a vertex: most of the build at 10^7 vertices); so they are first written out per vertex,
-  // in v2t's order, by the counting sort v2t uses (`opp`: 8 bytes per incidence, freed before v2t's
-  // own entries are written, so the peak stays below the finished mesh plus v2v).
+  // v2t by a counting sort: rows in increasing triangle id. The offsets serve as the fill cursors
+  // (each ends at the next row's start) and are shifted back afterwards.
   m.v2t.off.assign(static_cast<size_t>(nv) + 1, 0);
   for (int32_t c : m.tri) ++m.v2t.off[c + 1];
   for (int32_t v = 0; v < nv; ++v) m.v2t.off[v + 1] += m.v2t.off[v];
-  AlignedVector<int32_t> opp(2 * m.tri.size());
-  {
-    AlignedVector<int64_t>& cur = m.v2t.off;  // cursors, shifted back below
-    const int64_t nt_ = static_cast<int64_t>(m.tri.size() / 3);
-    for (int64_t t = 0; t < nt_; ++t) {
-      const int32_t* c = &m.tri[3 * t];
-      for (int k = 0; k < 3; ++k) {
-        int32_t a = c[(k + 1) % 3], b = c[(k + 2) % 3];
-        if (a > b) std::swap(a, b);
-        const int64_t pos = cur[c[k]]++;
-        opp[2 * pos] = a;
-        opp[2 * pos + 1] = b;
-      }
-    }
-    for (int32_t v = nv; v > 0; --v) cur[v] = cur[v - 1];
-    cur[0] = 0;
-  }
-  // Tags of mesh vertices, for messages: the raw vertex's.
-  auto raw_of = [&](int32_t v) { return kept.empty() ? v : kept[v]; };
-
-  // Per vertex: its distinct neighbours with each edge's triangle count (boundary and non-manifold
-  // edges) and duplicate triangles (checked at the triangle's smallest corner). Vertices are
-  // independent, so this runs in parallel. A row's neighbours are a handful, kept in a small local
-  // list. On an error the first offending vertex is visited again, serially, through v2t, to throw
-  // the message the serial order would give.
-  auto raw_tag = [&](int32_t v) { return where.Tag(raw_of(v)); };
-  // The first triangle at v that has the edge v-u, for the non-manifold message.
-  auto first_with = [&](int32_t v, int32_t u) {
-    for (const int32_t* q = m.v2t.RowBegin(v); q != m.v2t.RowEnd(v); ++q) {
-      const int32_t* d = &m.tri[3 * static_cast<int64_t>(*q)];
-      if (d[0] == u || d[1] == u || d[2] == u) return *q;
-    }
-    return -1;
-  };
-  struct Nbr {
-    int32_t u;
-    int32_t count;  // triangles on the edge v-u
-  };
-  // The same from `opp`, quietly: false on a topology error (found at the same vertex as `visit`
-  // would, which then gives the message).
-  auto visit_opp = [&](int32_t v, std::vector<Nbr>& row) {
-    row.clear();
-    const int64_t b0 = m.v2t.off[v], e0 = m.v2t.off[v + 1];
-    for (int64_t j = b0; j < e0; ++j) {
-      const int32_t a = opp[2 * j], b = opp[2 * j + 1];
-      if (v < a)  // v is the smallest corner: compare with earlier triangles at v of that kind
-        for (int64_t q = b0; q < j; ++q)
-          if (opp[2 * q] == a && opp[2 * q + 1] == b) return false;
-      for (int32_t u : {a, b}) {
-        size_t k = 0;
-        while (k < row.size() && row[k].u != u) ++k;
-        if (k == row.size())
-          row.push_back({u, 1});
-        else if (++row[k].count > 2)
-          return false;
-      }
-    }
-    for (size_t i = 1; i < row.size(); ++i) {
-      const Nbr x = row[i];
-      size_t j = i;
-      for (; j > 0 && row[j - 1].u > x.u; --j) row[j] = row[j - 1];
-      row[j] = x;
-    }
-    return true;
-  };
-  // visit_opp without branches on the data, for vertices of up to 16 triangles (all but fans): an
-  // unpredictable branch per neighbour lookup and per sort step made the pass cost ~250 ns a
-  // vertex, mostly mispredictions. The 2 x deg neighbour ids are ranked (stable) into order, runs
-  // of equal ids become (id, count), and duplicate triangles are a mask over the pairs.
-  constexpr int kFastDeg = 16;
-  auto visit_fast = [&](int32_t v, std::vector<Nbr>& row) {
-    const int64_t b0 = m.v2t.off[v];
-    const int n = static_cast<int>(2 * (m.v2t.off[v + 1] - b0));
-    const int32_t* w = &opp[2 * b0];
-    int32_t sorted[2 * kFastDeg];
-    for (int i = 0; i < n; ++i) {
-      int rank = 0;
-      for (int l = 0; l < n; ++l) rank += (w[l] < w[i]) | ((w[l] == w[i]) & (l < i));
-      sorted[rank] = w[i];
-    }
-    bool bad = false;
-    for (int j = 0; j < n; j += 2)  // a duplicate triangle at its smallest corner v
-      for (int q = 0; q < j; q += 2) bad |= (v < w[j]) & (w[q] == w[j]) & (w[q + 1] == w[j + 1]);
-    row.resize(static_cast<size_t>(n));
-    int k = 0;
-    row[0] = {sorted[0], 1};
-    for (int i = 1; i < n; ++i) {
-      const bool same = sorted[i] == sorted[i - 1];
-      const int32_t c = row[k].count;
-      k += !same;
-      row[k].u = sorted[i];
-      row[k].count = same ? c + 1 : 1;
-    }
-    row.resize(static_cast<size_t>(n ? k + 1 : 0));
-    for (const Nbr& x : row) bad |= x.count > 2;
-    return !bad;
-  };
-  // Fills `row` with v's neighbours, sorted; false on a topology error (thrown when `loud`).
-  // Without `check` (the second pass, on a mesh already checked) duplicates are not looked for.
-  auto visit = [&](int32_t v, std::vector<Nbr>& row, bool loud, bool check = true) {
-    row.clear();
-    const int32_t* tb = m.v2t.RowBegin(v);
-    const int32_t* te = m.v2t.RowEnd(v);
-    for (const int32_t* p = tb; p != te; ++p) {
-      const int32_t* c = &m.tri[3 * static_cast<int64_t>(*p)];
-      int32_t a = -1, b = -1;  // the other two corners
-      for (int k = 0; k < 3; ++k)
-        if (c[k] != v) (a < 0 ? a : b) = c[k];
-      if (a > b) std::swap(a, b);
-      if (check &&
-          v < a) {  // v is the smallest corner: compare with earlier triangles at v of that kind
-        for (const int32_t* q = tb; q != p; ++q) {
-          const int32_t* d = &m.tri[3 * static_cast<int64_t>(*q)];
-          const int32_t lo = std::min({d[0], d[1], d[2]});
-          if (lo != v) continue;
-          const int32_t hi = std::max({d[0], d[1], d[2]});
-          const int32_t mid = d[0] + d[1] + d[2] - lo - hi;
-          if (mid != a || hi != b) continue;
-          if (!loud) return false;
-          where.TriError(*p, "duplicate triangle: vertices " + raw_tag(v) + ", " + raw_tag(a) +
-                                 ", " + raw_tag(b) + " already form a triangle at " +
-                                 where.TriName(*q));
-        }
-      }
-      for (int32_t u : {a, b}) {
-        size_t k = 0;
-        while (k < row.size() && row[k].u != u) ++k;
-        if (k == row.size()) {
-          row.push_back({u, 1});
-        } else if (++row[k].count > 2) {
-          if (!loud) return false;
-          where.TriError(*p, "non-manifold edge: the edge " + raw_tag(v) + "-" + raw_tag(u) +
-                                 " already has two triangles (first at " +
-                                 where.TriName(first_with(v, u)) + ")");
-        }
-      }
-    }
-    for (size_t i = 1; i < row.size(); ++i) {  // insertion: a handful of neighbours
-      const Nbr x = row[i];
-      size_t j = i;
-      for (; j > 0 && row[j - 1].u > x.u; --j) row[j] = row[j - 1];
-      row[j] = x;
-    }
-    return true;
-  };
-  // A vertex's triangles lie anywhere in the triangle array: fetched ahead, their misses overlap
-  // (a third of the time of each pass).
-  constexpr int32_t kAhead = 16;
-  auto prefetch_triangles = [&](int32_t v) {
-    if (v >= nv) return;
-    for (const int32_t* q = m.v2t.RowBegin(v); q != m.v2t.RowEnd(v); ++q)
-      __builtin_prefetch(&m.tri[3 * static_cast<int64_t>(*q)]);
-  };
-  m.boundary.resize(nv);
-  m.v2v.off.resize(static_cast<size_t>(nv) + 1);
-  m.v2v.off[0] = 0;
-  // One pass writes each row at a slot bounded by its triangle count: a vertex whose triangles
-  // form one fan has at most one neighbour more than triangles, so row v starts at
-  // v2t.off[v] + v. The rows are then moved down in order (each only ever moves left), which
-  // costs a sequential pass where a second visit would repeat every scattered triangle read.
-  // A vertex with several fans (a bowtie) may not fit: then rows are sized first, and filled.
-  const int64_t bound = m.v2t.off[nv] + nv;
-  m.v2v.idx.resize(static_cast<size_t>(bound));
-  int32_t first_bad = nv;
-  bool spill = false;
-#pragma omp parallel reduction(min : first_bad) reduction(|| : spill)
-  {
-    std::vector<Nbr> row;
-#pragma omp for schedule(static, 4096)
-    for (int32_t v = 0; v < nv; ++v) {
-      const bool fast = m.v2t.RowSize(v) <= kFastDeg && m.v2t.RowSize(v) > 0;
-      if (!(fast ? visit_fast(v, row) : visit_opp(v, row))) {
-        first_bad = std::min(first_bad, v);
-        row.clear();
-      }
-      bool on_boundary = false;
-      for (const Nbr& n : row) on_boundary |= n.count == 1;
-      m.boundary[v] = on_boundary;
-      m.v2v.off[v + 1] = static_cast<int64_t>(row.size());
-      if (static_cast<int64_t>(row.size()) > m.v2t.RowSize(v) + 1) {
-        spill = true;
-        continue;
-      }
-      int32_t* out = m.v2v.idx.data() + m.v2t.off[v] + v;
-      for (const Nbr& n : row) *out++ = n.u;
-    }
-  }
-  opp = AlignedVector<int32_t>();
-  // v2t's entries: the same counting sort, now that `opp` is gone.
   m.v2t.idx.resize(m.tri.size());
   {
     AlignedVector<int64_t>& cur = m.v2t.off;
@@ -350,10 +161,124 @@ Mesh BuildMesh(RawMesh raw, BuildReport* report) {
     for (int32_t v = nv; v > 0; --v) cur[v] = cur[v - 1];
     cur[0] = 0;
   }
-  if (first_bad < nv) {
+  // Tags of mesh vertices, for messages: the raw vertex's.
+  auto raw_of = [&](int32_t v) { return kept.empty() ? v : kept[v]; };
+
+  // Per vertex: its distinct neighbours with each edge's triangle count (boundary and non-manifold
+  // edges) and duplicate triangles (checked at the triangle's smallest corner). Vertices are
+  // independent, so this runs in parallel. On an error the first offending vertex is visited
+  // again, serially, to throw the message the serial order would give.
+  struct Nbr {
+    int32_t u;
+    int32_t count;  // triangles on the edge v-u
+  };
+  // Fills `row` with v's neighbours, sorted, and says whether v's triangles are sound. Without
+  // branches on the data: the 2 x deg other corners (a < b per triangle) are ranked, stably, into
+  // order, runs of equal ids become (id, count), and duplicate triangles are a mask over the
+  // pairs. With branches (a lookup per corner, an insertion sort) the pass was bound by
+  // mispredictions: 0.96 s against 0.51 s at 10^7 vertices on two threads. O(deg^2) per vertex,
+  // as the duplicate check is anyway.
+  struct Scratch {
+    std::vector<int32_t> w, sorted;
     std::vector<Nbr> row;
-    visit(first_bad, row, true);  // throws
+  };
+  auto neighbours = [&](int32_t v, Scratch& s) {
+    const int32_t* tb = m.v2t.RowBegin(v);
+    const int n = static_cast<int>(2 * m.v2t.RowSize(v));
+    s.w.resize(n);
+    s.sorted.resize(n);
+    int32_t* w = s.w.data();
+    for (int j = 0; j < n; j += 2) {
+      const int32_t* c = &m.tri[3 * static_cast<int64_t>(tb[j / 2])];
+      const int32_t a = c[0] == v ? c[1] : c[0], b = c[2] == v ? c[1] : c[2];
+      w[j] = std::min(a, b), w[j + 1] = std::max(a, b);
+    }
+    for (int i = 0; i < n; ++i) {
+      int rank = 0;
+      for (int l = 0; l < n; ++l) rank += (w[l] < w[i]) | ((w[l] == w[i]) & (l < i));
+      s.sorted[rank] = w[i];
+    }
+    bool bad = false;
+    for (int j = 0; j < n; j += 2)
+      for (int q = 0; q < j; q += 2) bad |= (v < w[j]) & (w[q] == w[j]) & (w[q + 1] == w[j + 1]);
+    std::vector<Nbr>& row = s.row;
+    row.resize(static_cast<size_t>(n));
+    int k = 0;
+    if (n) row[0] = {s.sorted[0], 1};
+    for (int i = 1; i < n; ++i) {
+      const bool same = s.sorted[i] == s.sorted[i - 1];
+      const int32_t c = row[k].count;
+      k += !same;
+      row[k].u = s.sorted[i];
+      row[k].count = same ? c + 1 : 1;
+    }
+    row.resize(static_cast<size_t>(n ? k + 1 : 0));
+    for (const Nbr& x : row) bad |= x.count > 2;
+    return !bad;
+  };
+  // The first topology error at v, in the order of v's triangles, as a message (thrown).
+  auto throw_error_at = [&](int32_t v) {
+    auto raw_tag = [&](int32_t x) { return where.Tag(raw_of(x)); };
+    std::vector<Nbr> seen;
+    const int32_t* tb = m.v2t.RowBegin(v);
+    for (const int32_t* p = tb; p != m.v2t.RowEnd(v); ++p) {
+      const int32_t* c = &m.tri[3 * static_cast<int64_t>(*p)];
+      const int32_t a0 = c[0] == v ? c[1] : c[0], b0 = c[2] == v ? c[1] : c[2];
+      const int32_t a = std::min(a0, b0), b = std::max(a0, b0);
+      if (v < a)  // v is the smallest corner: compare with earlier triangles at v of that kind
+        for (const int32_t* q = tb; q != p; ++q) {
+          const int32_t* d = &m.tri[3 * static_cast<int64_t>(*q)];
+          if (std::min({d[0], d[1], d[2]}) == v && HasCorner(d, a) && HasCorner(d, b))
+            where.TriError(*p, "duplicate triangle: vertices " + raw_tag(v) + ", " + raw_tag(a) +
+                                   ", " + raw_tag(b) + " already form a triangle at " +
+                                   where.TriName(*q));
+        }
+      for (int32_t u : {a, b}) {
+        size_t k = 0;
+        while (k < seen.size() && seen[k].u != u) ++k;
+        if (k == seen.size()) {
+          seen.push_back({u, 1});
+        } else if (++seen[k].count > 2) {
+          const int32_t* first = tb;  // the first triangle at v with the edge v-u
+          while (!HasCorner(&m.tri[3 * static_cast<int64_t>(*first)], u)) ++first;
+          where.TriError(*p, "non-manifold edge: the edge " + raw_tag(v) + "-" + raw_tag(u) +
+                                 " already has two triangles (first at " + where.TriName(*first) +
+                                 ")");
+        }
+      }
+    }
+    throw InputError(raw.triangle_file, 0,
+                     "internal: no topology error at vertex " + std::to_string(v));
+  };
+  // One pass writes each row at a slot bounded by its triangle count: a vertex whose triangles
+  // form one fan has at most one neighbour more than triangles, so row v starts at
+  // v2t.off[v] + v. The rows are then moved down in order (each only ever moves left). A vertex
+  // with several fans (a bowtie) may not fit: then a second pass fills the sized rows.
+  m.boundary.resize(nv);
+  m.v2v.off.resize(static_cast<size_t>(nv) + 1);
+  m.v2v.off[0] = 0;
+  m.v2v.idx.resize(static_cast<size_t>(m.v2t.off[nv] + nv));
+  int32_t first_bad = nv;
+  bool spill = false;
+#pragma omp parallel reduction(min : first_bad) reduction(|| : spill)
+  {
+    Scratch s;
+#pragma omp for schedule(static, 4096)
+    for (int32_t v = 0; v < nv; ++v) {
+      if (!neighbours(v, s)) first_bad = std::min(first_bad, v);
+      bool on_boundary = false;
+      for (const Nbr& n : s.row) on_boundary |= n.count == 1;
+      m.boundary[v] = on_boundary;
+      m.v2v.off[v + 1] = static_cast<int64_t>(s.row.size());
+      if (static_cast<int64_t>(s.row.size()) > m.v2t.RowSize(v) + 1) {
+        spill = true;
+        continue;
+      }
+      int32_t* out = m.v2v.idx.data() + m.v2t.off[v] + v;
+      for (const Nbr& n : s.row) *out++ = n.u;
+    }
   }
+  if (first_bad < nv) throw_error_at(first_bad);
   for (int32_t v = 0; v < nv; ++v) m.v2v.off[v + 1] += m.v2v.off[v];
   if (!spill) {
     for (int32_t v = 0; v < nv; ++v)  // off[v] <= v2t.off[v] + v: a forward move never overlaps
@@ -364,13 +289,12 @@ Mesh BuildMesh(RawMesh raw, BuildReport* report) {
     m.v2v.idx.resize(static_cast<size_t>(m.v2v.off[nv]));
 #pragma omp parallel
     {
-      std::vector<Nbr> row;
+      Scratch s;
 #pragma omp for schedule(static, 4096)
       for (int32_t v = 0; v < nv; ++v) {
-        prefetch_triangles(v + kAhead);
-        visit(v, row, false, false);
+        neighbours(v, s);
         int32_t* out = m.v2v.idx.data() + m.v2v.off[v];
-        for (const Nbr& n : row) *out++ = n.u;
+        for (const Nbr& n : s.row) *out++ = n.u;
       }
     }
   }

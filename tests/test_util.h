@@ -59,6 +59,15 @@ inline std::vector<Mesh> MeshCorpus() {
   return meshes;
 }
 
+// The unit square as two triangles, vertices (0,0), (1,0), (0,1), (1,1): the curve orderings'
+// hand-checked case.
+inline Mesh UnitSquare() {
+  RawMesh raw;
+  raw.xy = {0, 0, 1, 0, 0, 1, 1, 1};
+  raw.tri = {0, 1, 3, 0, 3, 2};
+  return BuildMesh(std::move(raw));
+}
+
 // The hand-computed sweep's mesh: boundary vertices 0..5 on a 4 x 2 rectangle, interior 6 and 7.
 inline Mesh TwoInterior() { return ReadMesh(DataPath("two_interior.node")); }
 

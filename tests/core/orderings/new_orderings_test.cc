@@ -139,11 +139,8 @@ TEST(RdrVariants, HandWorked) {
 }
 
 TEST(Morton, UnitSquareFollowsTheZ) {
-  RawMesh raw;
-  raw.xy = {0, 0, 1, 0, 0, 1, 1, 1};
-  raw.tri = {0, 1, 3, 0, 3, 2};
   // Z order: (0,0), (1,0), (0,1), (1,1) -- x is the low bit.
-  EXPECT_EQ(ComputeOrdering("morton", BuildMesh(std::move(raw))).new_to_old(),
+  EXPECT_EQ(ComputeOrdering("morton", testing::UnitSquare()).new_to_old(),
             (std::vector<int32_t>{0, 1, 2, 3}));
 }
 

@@ -165,11 +165,8 @@ TEST(Bfs, HandWorked) {
 }
 
 TEST(Hilbert, UnitSquareFollowsTheCurve) {
-  RawMesh raw;
-  raw.xy = {0, 0, 1, 0, 0, 1, 1, 1};
-  raw.tri = {0, 1, 3, 0, 3, 2};
   // The order-16 curve visits the quadrants (0,0), (0,1), (1,1), (1,0).
-  EXPECT_EQ(ComputeOrdering("hilbert", BuildMesh(std::move(raw))).new_to_old(),
+  EXPECT_EQ(ComputeOrdering("hilbert", testing::UnitSquare()).new_to_old(),
             (std::vector<int32_t>{0, 2, 3, 1}));
 }
 
