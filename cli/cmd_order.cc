@@ -23,18 +23,34 @@ namespace meshreuse::cli {
 
 int OrderingsCommand(const Args& args) {
   po::options_description desc("options");
+  std::string check;
+  desc.add_options()("check", po::value(&check),
+                     "check a comma-separated list of ordering specs (exit 2 naming a bad one)")(
+      "json", "the list as JSON");
   po::positional_options_description pos;
   po::variables_map vm;
-  if (!ParseOptions(args, "orderings", "Lists the vertex orderings, what they do and their source.",
+  if (!ParseOptions(args, "orderings [--check LIST] [--json]",
+                    "Lists the vertex orderings, what they do and their source; file:PATH (a "
+                    "user's permutation file) last.",
                     desc, pos, vm))
     return 0;
+  if (vm.count("check")) {
+    CheckOrderings(SplitList(check));
+    return 0;
+  }
   Table t({"name", "description", "reference"});
-  for (const OrderingInfo& o : Orderings())
+  auto add = [&](const OrderingInfo& o) {
     t.AddRow({std::string(o.name) + (o.argument == kArgument           ? ":PATH"
                                      : o.argument == kOptionalArgument ? "[:ARG]"
                                                                        : ""),
               o.description, o.reference});
-  std::printf("%s", t.Aligned().c_str());
+  };
+  // Registered orderings in the registry's order (users' own included), then file:PATH.
+  for (const OrderingInfo& o : Orderings())
+    if (o.argument != kArgument) add(o);
+  for (const OrderingInfo& o : Orderings())
+    if (o.argument == kArgument) add(o);
+  std::printf("%s", vm.count("json") ? t.Json().c_str() : t.Aligned().c_str());
   return 0;
 }
 

@@ -21,6 +21,7 @@ int TraceCommand(const Args& args);
 int AnalyzeCommand(const Args& args);
 int SimulateCommand(const Args& args);
 int ValidateCommand(const Args& args);
+int ReportCommand(const Args& args);
 
 // The full command line, for run.json.
 const std::vector<std::string>& FullCommandLine();

@@ -1,6 +1,8 @@
 // Shared CLI helpers; see common.h.
 #include "cli/common.h"
 
+#include <unistd.h>
+
 #include <boost/program_options/errors.hpp>
 #include <cstdio>
 #include <filesystem>
@@ -48,7 +50,7 @@ void CheckOrderings(const std::vector<std::string>& specs) {
 std::string RunJsonHeader(const std::string& tool) {
   return "  \"tool\": " + JsonString(tool) +
          ",\n  \"command\": " + CommandLineJson(FullCommandLine()) +
-         ",\n  \"git_revision\": " + JsonString(GitRevision()) +
+         ",\n  \"git_revision\": " + JsonString(GitRevision()) + ",\n  \"build\": " + BuildJson() +
          ",\n  \"time_utc\": " + JsonString(UtcTimestamp()) + ",\n  \"machine\": " + MachineJson() +
          ",\n";
 }
@@ -96,6 +98,45 @@ void CheckWritable(const std::string& path) {
     throw po::error("cannot write '" + path + "': '" + dir.string() + "' is not a folder");
   if (std::filesystem::is_directory(p, ec))
     throw po::error("cannot write '" + path + "': it is a folder");
+}
+
+void PrepareOutDir(const std::string& dir, bool must_be_empty) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  for (fs::path p = fs::path(dir); !p.empty(); p = p.parent_path()) {
+    if (fs::exists(p, ec)) {
+      if (!fs::is_directory(p, ec))
+        throw po::error("cannot write to '" + dir + "': '" + p.string() + "' is not a folder");
+      break;
+    }
+    if (p == p.parent_path()) break;
+  }
+  fs::create_directories(dir, ec);
+  if (ec) throw po::error("cannot make the folder '" + dir + "': " + ec.message());
+  if (::access(dir.c_str(), W_OK) != 0)
+    throw po::error("cannot write to the folder '" + dir + "': permission denied");
+  if (must_be_empty && !fs::is_empty(dir, ec))
+    throw po::error("the folder '" + dir +
+                    "' is not empty (a previous run's files would mix "
+                    "with this one's): give a new folder");
+}
+
+std::vector<int> ParseThreadList(const std::string& s) {
+  std::vector<int> out;
+  for (const std::string& t : SplitList(s)) {
+    size_t used = 0;
+    int v = 0;
+    try {
+      v = std::stoi(t, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (used != t.size()) throw po::error("--threads takes numbers, found '" + t + "'");
+    if (v < 1 || v > 1024) throw po::error("--threads must be between 1 and 1024");
+    out.push_back(v);
+  }
+  if (out.empty()) throw po::error("--threads is empty");
+  return out;
 }
 
 }  // namespace meshreuse::cli

@@ -17,7 +17,12 @@ void WriteText(const std::string& path, const std::string& text);
 // Before any work: an output file's folder must exist and be a folder (po::error otherwise), so a
 // long run does not fail at its last step.
 void CheckWritable(const std::string& path);
-std::vector<std::string> SplitList(const std::string& s);  // "a,b,,c" -> {a, b, c}
+// An output folder, before any work: made if missing (with its parents); po::error if it or an
+// ancestor is a file, it cannot be written, or (must_be_empty) it already holds files.
+void PrepareOutDir(const std::string& dir, bool must_be_empty = false);
+std::vector<std::string> SplitList(const std::string& s);
+// "1,2,4" -> {1, 2, 4}: po::error for a non-number, a count outside 1..1024 or an empty list.
+std::vector<int> ParseThreadList(const std::string& s);  // "a,b,,c" -> {a, b, c}
 // Throws a usage error (exit 2) for an empty list or a name the ordering registry does not know,
 // before any work is done.
 void CheckOrderings(const std::vector<std::string>& specs);

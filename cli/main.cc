@@ -38,6 +38,8 @@ const Command kCommands[] = {
     {"simulate", "set-associative cache simulation of every load and store", SimulateCommand},
     {"validate", "the miss model against the simulator and hardware counters; Table 3",
      ValidateCommand},
+    {"report", "the paper's experiment: every table and figure's data, with the paper's values",
+     ReportCommand},
 };
 
 std::vector<std::string> g_argv;

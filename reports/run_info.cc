@@ -10,6 +10,8 @@
 #include <fstream>
 #include <thread>
 
+#include "build_info.h"  // generated at build time: MESHREUSE_GIT_REV, MESHREUSE_GIT_DIRTY
+
 namespace meshreuse {
 
 std::string JsonString(const std::string& s) {
@@ -57,6 +59,23 @@ std::string JsonNumber(double v) {
   return buf;
 }
 
+namespace {
+std::string CacheSizesJson() {
+  // Linux's description of cpu0's caches: {"L1d": "48K", "L2": "1280K", ...}.
+  std::string s;
+  for (int i = 0; i < 16; ++i) {
+    const std::string dir = "/sys/devices/system/cpu/cpu0/cache/index" + std::to_string(i) + "/";
+    std::ifstream level(dir + "level"), type(dir + "type"), size(dir + "size");
+    std::string l, t, z;
+    if (!(level >> l) || !(type >> t) || !(size >> z)) break;
+    if (t == "Instruction") continue;
+    const std::string name = "L" + l + (t == "Data" ? "d" : "");
+    s += (s.empty() ? "" : ", ") + JsonString(name) + ": " + JsonString(z);
+  }
+  return "{" + s + "}";
+}
+}  // namespace
+
 std::string MachineJson() {
   char host[256] = "unknown";
   ::gethostname(host, sizeof host - 1);
@@ -73,10 +92,22 @@ std::string MachineJson() {
   if (::uname(&u) == 0) os = std::string(u.sysname) + " " + u.release + " " + u.machine;
   return "{\"hostname\": " + JsonString(host) + ", \"cpu\": " + JsonString(cpu) +
          ", \"cores\": " + std::to_string(std::thread::hardware_concurrency()) +
-         ", \"os\": " + JsonString(os) + ", \"compiler\": " + JsonString(__VERSION__) + "}";
+         ", \"os\": " + JsonString(os) + ", \"caches\": " + CacheSizesJson() +
+         ", \"compiler\": " + JsonString(__VERSION__) + "}";
 }
 
-std::string GitRevision() { return MESHREUSE_GIT_REV; }
+std::string GitRevision() {
+  return std::string(MESHREUSE_GIT_REV) + (MESHREUSE_GIT_DIRTY ? "-dirty" : "");
+}
+
+std::string BuildJson() {
+  return "{\"git_revision\": " + JsonString(MESHREUSE_GIT_REV) +
+         ", \"git_dirty\": " + (MESHREUSE_GIT_DIRTY ? "true" : "false") +
+         ", \"compiler\": " + JsonString(MESHREUSE_COMPILER) +
+         ", \"compiler_version\": " + JsonString(__VERSION__) +
+         ", \"build_type\": " + JsonString(MESHREUSE_BUILD_TYPE) +
+         ", \"flags\": " + JsonString(MESHREUSE_CXX_FLAGS) + "}";
+}
 
 std::string UtcTimestamp() {
   std::time_t t = std::time(nullptr);

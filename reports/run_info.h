@@ -11,9 +11,13 @@ namespace meshreuse {
 std::string JsonString(const std::string& s);  // quoted and escaped
 std::string JsonNumber(double v);              // shortest round-trip form; null for NaN/inf
 
-// {"hostname":..., "cpu":..., "cores":..., "os":..., "compiler":...}
+// {"hostname":..., "cpu":..., "cores":..., "os":..., "caches": {"L1d": "48K", ...}, "compiler":...}
 std::string MachineJson();
-std::string GitRevision();   // as configured by CMake ("unknown" outside a git checkout)
+// The git revision of the sources this binary was built from, taken at build time, with
+// "-dirty" when they differed from it ("unknown" outside a git checkout).
+std::string GitRevision();
+// {"git_revision", "git_dirty", "compiler", "compiler_version", "build_type", "flags"}
+std::string BuildJson();
 std::string UtcTimestamp();  // 2026-11-22T10:00:00Z
 std::string CommandLineJson(const std::vector<std::string>& argv);
 

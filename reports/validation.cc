@@ -12,6 +12,7 @@
 #include "analysis/papi_counters.h"
 #include "analysis/trace_analysis.h"
 #include "core/orderings/registry.h"
+#include "reports/paper.h"
 
 namespace meshreuse {
 
@@ -31,55 +32,6 @@ std::string Cap(uint64_t c, double scale = 1.0) {
   return scale == 1.0 ? std::to_string(c) : Fixed(static_cast<double>(c) * scale, 2);
 }
 std::string Ratio(double a, double b) { return b > 0 ? Fixed(a / b, 3) : "-"; }
-
-// The paper's Table 3 (x10^3): misses L1, L2, L3, then the estimated elements L1, L2, L3.
-const std::map<std::pair<std::string, std::string>, std::array<double, 6>>& PaperTable3() {
-  static const std::map<std::pair<std::string, std::string>, std::array<double, 6>> t = {
-      {{"carabiner", "ori"}, {106, 50.6, 19.9, 13.2, 21.3, 330}},
-      {{"carabiner", "bfs"}, {84, 30.2, 7.94, 10.2, 21.2, 1060}},
-      {{"carabiner", "rdr"}, {73.9, 4.82, 0, 1.6, 1.88, 1.94}},
-      {{"crake", "ori"}, {95.3, 43.4, 17.4, 24.6, 40.9, 198}},
-      {{"crake", "bfs"}, {72.6, 26.7, 7.07, 18.3, 39.2, 986}},
-      {{"crake", "rdr"}, {68.3, 9.3, 0, 3.4, 3.77, 3.9}},
-      {{"dialog", "ori"}, {91.7, 31.9, 16.3, 59, 87.7, 108}},
-      {{"dialog", "bfs"}, {74.1, 16.2, 4.55, 53.2, 89.3, 157}},
-      {{"dialog", "rdr"}, {74, 14.3, 0, 5.84, 6.05, 6.2}},
-      {{"lake", "ori"}, {111, 44.7, 20.7, 62.2, 95.9, 143}},
-      {{"lake", "bfs"}, {89.8, 22.7, 6.72, 56.1, 96.1, 219}},
-      {{"lake", "rdr"}, {94.7, 10.9, 0, 8.42, 8.65, 8.77}},
-      {{"riverflow", "ori"}, {99.8, 51.4, 19.8, 30.4, 66.8, 863}},
-      {{"riverflow", "bfs"}, {81.6, 31.8, 8.08, 20.3, 67.6, 1290}},
-      {{"riverflow", "rdr"}, {75.4, 11.5, 0, 4.73, 5.27, 5.43}},
-      {{"ocean", "ori"}, {131, 41.3, 21.9, 63.3, 300, 1050}},
-      {{"ocean", "bfs"}, {102, 21, 6.57, 41.6, 770, 1830}},
-      {{"ocean", "rdr"}, {89.8, 10.6, 0, 5.83, 5.99, 6.12}},
-      {{"stress", "ori"}, {96.6, 54.6, 19.4, 71.5, 91.7, 130}},
-      {{"stress", "bfs"}, {76.7, 35.3, 8.42, 59.1, 87.6, 137}},
-      {{"stress", "rdr"}, {72.2, 12.3, 0, 4.36, 4.66, 4.81}},
-      {{"valve", "ori"}, {92.6, 31.9, 16.9, 37.3, 77.6, 186}},
-      {{"valve", "bfs"}, {76.3, 15.4, 5.17, 28.6, 110, 1040}},
-      {{"valve", "rdr"}, {67, 10.1, 0, 6.68, 7.17, 7.26}},
-      {{"wrench", "ori"}, {117, 57.1, 21.8, 75.3, 105, 148}},
-      {{"wrench", "bfs"}, {93.8, 35.1, 8.38, 62.9, 103, 170}},
-      {{"wrench", "rdr"}, {86, 12.7, 0, 5.69, 6.31, 6.49}},
-  };
-  return t;
-}
-
-// The paper's vertex counts (its Table 1): its values are shown beside ours only for a mesh of that
-// name within 5% of its size (a 20,000-vertex carabiner is not the paper's).
-bool PaperSized(const std::string& name, int32_t vertices) {
-  static const std::map<std::string, double> kVertices = {
-      {"carabiner", 328082}, {"crake", 298898},     {"dialog", 306824},
-      {"lake", 375288},      {"riverflow", 332699}, {"ocean", 392674},
-      {"stress", 312763},    {"valve", 300985},     {"wrench", 386757}};
-  const auto it = kVertices.find(name);
-  return it != kVertices.end() && std::fabs(vertices - it->second) <= 0.05 * it->second;
-}
-
-std::string ShortName(const std::string& path) {
-  return std::filesystem::path(path).stem().string();
-}
 
 }  // namespace
 
@@ -232,9 +184,9 @@ Table Table3(const std::vector<OrderingValidation>& r) {
   names("", "_capacity_lines");
   Table t(head);
   for (const OrderingValidation& v : r) {
-    const auto paper = PaperTable3().find({ShortName(v.mesh), v.ordering});
-    const bool has_paper =
-        n == 3 && paper != PaperTable3().end() && PaperSized(ShortName(v.mesh), v.vertices);
+    const std::string name = paper::ShortName(v.mesh);
+    const auto pt = paper::Table3(name, v.ordering);
+    const bool has_paper = n == 3 && pt && paper::Sized(name, v.vertices);
     std::vector<std::string> row = {v.mesh, v.ordering,
                                     v.levels.empty() || !v.levels[0].measured
                                         ? std::string("simulated")
@@ -242,10 +194,10 @@ Table Table3(const std::vector<OrderingValidation>& r) {
     for (const LevelValidation& l : v.levels)
       row.push_back(Fixed(static_cast<double>(l.table3_misses) / 1e3 / v.iterations, 2));
     if (n == 3)
-      for (int i = 0; i < 3; ++i) row.push_back(has_paper ? Fixed(paper->second[i], 2) : "-");
+      for (int i = 0; i < 3; ++i) row.push_back(has_paper ? Fixed((*pt)[i], 2) : "-");
     for (const LevelValidation& l : v.levels) row.push_back(Cap(l.capacity_elements, 1e-3));
     if (n == 3)
-      for (int i = 3; i < 6; ++i) row.push_back(has_paper ? Fixed(paper->second[i], 2) : "-");
+      for (int i = 3; i < 6; ++i) row.push_back(has_paper ? Fixed((*pt)[i], 2) : "-");
     for (const LevelValidation& l : v.levels) row.push_back(Cap(l.capacity_lines));
     t.AddRow(row);
   }

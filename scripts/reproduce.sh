@@ -1,104 +1,111 @@
 #!/usr/bin/env bash
-# The README's main job: installs what is missing, builds Release, meshes the nine shipped shapes
-# with Triangle to the paper's vertex counts (Table 4; cached under out/meshes/), then
-#   1. times the smoother under the paper's orderings (`meshreuse compare`): per-mesh table and
-#      the paper's averaged Speedup and Gain;
-#   2. the paper's Table 2: reuse-distance quantiles and accesses of the first sweep
-#      (`meshreuse analyze`), with modelled misses;
-#   3. the paper's Table 3 (`meshreuse validate`, 2 sweeps per mesh and ordering): misses per
-#      level -- hardware counters where the machine has them, else the set-associative simulator,
-#      labelled so -- and the inverse model's capacities, beside the paper's values;
-#   4. the paper's reuse-distance profile figure (carabiner, 8 sweeps) and histograms, as PNG+PDF.
-# Results: results/reproduce-<UTC time>/ (compare/, table2/, table3/, profile/, each with run.json).
-# Usage: scripts/reproduce.sh [--orderings ori,bfs,rdr] [--threads 1,2] [--repeat 3]
-#                             [--vertices N] [--shapes a,b,...] [--quiet]
+# The README's main job: every table and figure of the paper, ours beside the paper's, from one
+# command. Installs what is missing, builds Release, meshes the nine shipped shapes with Triangle
+# to the paper's vertex counts (cached under out/meshes/), runs `meshreuse report` (Table 1, 2, 3,
+# misses and their reductions, execution times, speedups, Speedup(p)/Gain(p), reordering cost; on
+# 1..nproc threads) and scripts/plot_report.py (every figure, PNG and PDF), then prints the
+# results README's path: results/<date>/README.md (ours | paper | difference, every figure).
+#
+# Usage: scripts/reproduce.sh [--quick | --scale] [--orderings ori,bfs,rdr,file:my.perm,...]
+#          [--threads 1,2] [--repeat 3] [--vertices N] [--shapes a,b,...] [--out DIR] [--quiet]
+#   --quick   the same pipeline on 20,000-vertex meshes, one round (under two minutes; CI runs it)
+#   --scale   one shape (ocean) at 10^4, 10^5, 10^6 and 10^7 vertices, one thread: time per vertex
+#             per sweep and simulated misses per access against size (figure "scale")
+#   --orderings  registered names (meshreuse orderings) or file:PATH (a permutation file, one
+#             old vertex id per line in new order); ori is always run (the speedups need it)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-vertices="" quiet="" orderings="ori,bfs,rdr" threads="1,2" repeat=3
+mode=full vertices="" quiet="" orderings="ori,bfs,rdr" threads="" repeat=3 out=""
 shapes="carabiner,crake,dialog,lake,riverflow,ocean,stress,valve,wrench"
+usage() { sed -n '2,17p' "$0" | sed 's/^# \{0,1\}//'; }
+die() { echo "reproduce.sh: $*" >&2; exit 2; }
+need() { [[ $# -ge 2 && -n $2 && $2 != --* ]] || die "$1 needs a value (see --help)"; }
 while (($#)); do
   case $1 in
-    --vertices) vertices=$2; shift 2 ;;
-    --orderings) orderings=$2; shift 2 ;;
-    --threads) threads=$2; shift 2 ;;
-    --repeat) repeat=$2; shift 2 ;;
-    --shapes) shapes=$2; shift 2 ;;
+    --quick) mode=quick; shift ;;
+    --scale) mode=scale; shift ;;
+    --vertices) need "$@"; vertices=$2; shift 2 ;;
+    --orderings) need "$@"; orderings=$2; shift 2 ;;
+    --threads) need "$@"; threads=$2; shift 2 ;;
+    --repeat) need "$@"; repeat=$2; shift 2 ;;
+    --shapes) need "$@"; shapes=$2; shift 2 ;;
+    --out) need "$@"; out=$2; shift 2 ;;
     --quiet) quiet=--quiet; shift ;;
-    -h|--help) sed -n '2,12p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
-    *) echo "reproduce.sh: unknown argument '$1' (see --help)" >&2; exit 2 ;;
+    -h|--help) usage; exit 0 ;;
+    *) die "unknown argument '$1' (see --help)" ;;
   esac
 done
-say() { [[ -n $quiet ]] || echo "reproduce: $*" >&2; }
+[[ -z $vertices || $vertices =~ ^[0-9]+$ ]] || die "--vertices takes a number, found '$vertices'"
+[[ $repeat =~ ^[0-9]+$ && $repeat -ge 1 ]] || die "--repeat takes a number >= 1, found '$repeat'"
+[[ -z $threads || $threads =~ ^[0-9]+(,[0-9]+)*$ ]] || die "--threads takes numbers like 1,2, found '$threads'"
+[[ ,$orderings, == *,ori,* ]] || orderings="ori,$orderings"
+for o in ${orderings//,/ }; do
+  if [[ $o == file:* ]]; then
+    [[ -f ${o#file:} ]] || die "--orderings: ${o#file:}: no such file"
+  fi
+done
+say() { [[ -n $quiet ]] || echo "reproduce [$(date -u +%H:%M:%S)]: $*" >&2; }
+start=$(date +%s)
+
+# The output folder, checked before any work.
+stamp=$(date -u +%Y-%m-%d)
+if [[ -z $out ]]; then
+  out=results/$stamp
+  [[ $mode != full ]] && out=$out-$mode
+  base=$out n=2
+  while [[ -e $out ]]; do out=$base-$n; n=$((n + 1)); done
+fi
+probe=$out
+while [[ ! -e $probe && $probe == */* ]]; do probe=${probe%/*}; done
+[[ ! -e $probe || -d $probe ]] || die "cannot write to '$out': '$probe' is not a folder"
+[[ ! -e $out ]] || [[ -d $out && -z $(ls -A "$out") ]] || die "'$out' exists and is not empty: give a new --out"
 
 bash scripts/setup.sh --with-plots
 say "building Release in build/release"
-mkdir -p build results
+mkdir -p build
 cmake -S . -B build/release -DCMAKE_BUILD_TYPE=Release >build/release.configure.log 2>&1 ||
   { cat build/release.configure.log; exit 1; }
-cmake --build build/release -j"$(nproc 2>/dev/null || echo 2)" >/dev/null
+cmake --build build/release -j"$(nproc 2>/dev/null || echo 2)" >build/release.build.log 2>&1 ||
+  { tail -n 40 build/release.build.log; exit 1; }
 bin=build/release/cli/meshreuse
+"$bin" orderings --check "$orderings"  # exit 2 with the reason for an unknown one
 
-meshdir=out/meshes/${vertices:-paper}
-mkdir -p "$meshdir"
-IFS=, read -r -a names <<<"$shapes"
-files=()
-i=0
-for s in "${names[@]}"; do
-  i=$((i + 1))
-  if [[ -s $meshdir/$s.node && -s $meshdir/$s.ele ]]; then
-    say "[$i/${#names[@]}] $s: using $meshdir/$s.node"
-  else
-    say "[$i/${#names[@]}] $s: meshing with Triangle"
-    "$bin" mesh generate --shape "$s" ${vertices:+--vertices "$vertices"} -o "$meshdir/$s" $quiet >&2
+mesh() {  # mesh SHAPE VERTICES DIR -> prints the .node path (meshed once, cached)
+  local s=$1 v=$2 dir=$3 name=${4:-$1}
+  mkdir -p "$dir"
+  if [[ ! -s $dir/$name.node || ! -s $dir/$name.ele ]]; then
+    say "meshing $s${v:+ at $v vertices} with Triangle -> $dir/$name"
+    "$bin" mesh generate --shape "$s" ${v:+--vertices "$v"} -o "$dir/$name" --quiet >&2
   fi
-  files+=("$meshdir/$s.node")
-done
+  echo "$dir/$name.node"
+}
 
-out=results/reproduce-$(date -u +%Y%m%dT%H%M%SZ)
-mkdir -p "$out"
-say "1/4 timing the smoother on ${#files[@]} meshes: orderings $orderings, threads $threads, $repeat rounds"
-"$bin" compare "${files[@]}" --orderings "$orderings" --threads "$threads" --repeat "$repeat" \
-  --out "$out/compare" $quiet >"$out/compare.txt"
-say "2/4 Table 2: reuse distances of the first sweep, ${#files[@]} meshes x $orderings"
-"$bin" analyze "${files[@]}" --orderings "$orderings" --iterations 1 --granularity element \
-  --out "$out/table2" $quiet >"$out/table2.txt"
-say "3/4 Table 3: misses per level and the inverse model, ${#files[@]} meshes x $orderings, 2 sweeps"
-mkdir -p "$out/table3"
-i=0
-for f in "${files[@]}"; do
-  i=$((i + 1))
-  name=$(basename "$f" .node)
-  say "  [$i/${#files[@]}] $name"
-  "$bin" validate "$f" --orderings "$orderings" --iterations 2 --out "$out/table3/$name" $quiet \
-    >"$out/table3/$name.txt"
-done
-{ head -n 1 "$out/table3/${names[0]}/table3.csv"; for n in "${names[@]}"; do tail -n +2 "$out/table3/$n/table3.csv"; done; } \
-  >"$out/table3/table3.csv"
-{ head -n 1 "$out/table3/${names[0]}/validate.csv"; for n in "${names[@]}"; do tail -n +2 "$out/table3/$n/validate.csv"; done; } \
-  >"$out/table3/validate.csv"
-carabiner=""
-for f in "${files[@]}"; do [[ $f == */carabiner.node ]] && carabiner=$f; done
-if [[ -n $carabiner ]]; then
-  say "4/4 reuse-distance profile of carabiner, 8 sweeps x $orderings"
-  "$bin" analyze "$carabiner" --orderings "$orderings" --iterations 8 --granularity both \
-    --out "$out/profile" $quiet >"$out/profile.txt"
-  /usr/bin/python3 scripts/plot_reuse.py profile "$out/profile/profile.csv" "$out/profile/carabiner-profile" >&2
-  /usr/bin/python3 scripts/plot_reuse.py histogram "$out/profile/histogram.csv" "$out/profile/carabiner-histogram" >&2
-  "$bin" analyze "$carabiner" --orderings "$orderings" --iterations 1 --granularity element \
-    --mrc-csv "$out/profile/mrc.csv" $quiet >/dev/null
-  # Capacities in elements of 66 B: Westmere-EX's 32 KiB, 256 KiB, 24 MiB.
-  /usr/bin/python3 scripts/plot_reuse.py mrc "$out/profile/mrc.csv" "$out/profile/carabiner-mrc" \
-    L1=496,L2=3971,L3=381300 >&2
-fi
+files=()
+[[ $mode == quick && $repeat == 3 ]] && repeat=1
+args=(--orderings "$orderings" --repeat "$repeat" --label "$mode")
+[[ -n $threads ]] && args+=(--threads "$threads")
+case $mode in
+  full)
+    IFS=, read -r -a names <<<"$shapes"
+    for s in "${names[@]}"; do files+=("$(mesh "$s" "$vertices" "out/meshes/${vertices:-paper}")"); done ;;
+  quick)
+    IFS=, read -r -a names <<<"$shapes"
+    for s in "${names[@]}"; do files+=("$(mesh "$s" "${vertices:-20000}" "out/meshes/${vertices:-20000}")"); done ;;
+  scale)
+    for v in 10000 100000 1000000 10000000; do files+=("$(mesh ocean "$v" out/meshes/scale "ocean-$v")"); done
+    [[ -n $threads ]] || args+=(--threads 1)
+    args+=(--validate-sweeps 1 --figure1-mesh none --profile-mesh none) ;;
+esac
+
+say "running meshreuse report on ${#files[@]} meshes ($mode): orderings $orderings -> $out"
+"$bin" report "${files[@]}" "${args[@]}" --out "$out" $quiet >/dev/null
+say "drawing the figures"
+/usr/bin/python3 scripts/plot_report.py "$out" >&2
+elapsed=$(($(date +%s) - start))
+say "done in $((elapsed / 60)) min $((elapsed % 60)) s"
 
 echo
-echo "== Laplacian smoothing to convergence (tol 5e-6) under each ordering ($out/compare)"
-cat "$out/compare.txt"
+sed -n '/^## Table 2/,/^Files/p' "$out/README.md" | head -n 20
 echo
-echo "== Table 2: reuse distances (distinct vertices) of the first sweep ($out/table2)"
-cut -d, -f1,2,5,11-14 "$out/table2/analyze.csv" | sed 's|^[^,]*/||; s|\.node,|,|' | column -s, -t
-echo
-echo "== Table 3: misses per sweep (x10^3) and inverse-model capacities (x10^3 elements), ours | paper ($out/table3)"
-cut -d, -f1-15 "$out/table3/table3.csv" | sed 's|\.node,|,|' | column -s, -t
-[[ -n $carabiner ]] && echo && echo "== Profile, histogram and miss-ratio figures: $out/profile/carabiner-{profile,histogram,mrc}.{png,pdf}"
+echo "Every table and figure: $out/README.md"

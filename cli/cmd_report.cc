@@ -1,0 +1,95 @@
+// meshreuse report: the paper's experiment as one run (reports/report.h), behind
+// scripts/reproduce.sh. Options are checked and the output folder made before any work.
+#include <cmath>
+#include <thread>
+
+#include "cli/common.h"
+#include "cli/progress.h"
+#include "reports/report.h"
+
+namespace meshreuse::cli {
+
+int ReportCommand(const Args& args) {
+  po::options_description desc("options");
+  std::string orderings = "ori,bfs,rdr", threads, out_dir, triangle_order, cache = "westmere-ex",
+              counters = "PAPI_L1_DCM,PAPI_L2_DCM,PAPI_L3_TCM", fig1_orderings = "random,ori,bfs";
+  ReportConfig cfg;
+  desc.add_options()("mesh", po::value(&cfg.meshes)->required()->multitoken(), "mesh file(s)")(
+      "orderings", po::value(&orderings)->default_value(orderings),
+      "comma-separated orderings (registered names or file:PATH)")(
+      "threads,t", po::value(&threads), "comma-separated thread counts (default: 1..cores)")(
+      "repeat", po::value(&cfg.repeat)->default_value(3), "timed rounds per (ordering, threads)")(
+      "seed", po::value(&cfg.seed)->default_value(1), "seed of randomised orderings")(
+      "tol", po::value(&cfg.smooth.tol)->default_value(5e-6, "5e-6"), "stop rule, as for smooth")(
+      "max-iters", po::value(&cfg.smooth.max_iters)->default_value(100),
+      "at most this many sweeps")("cache", po::value(&cache)->default_value(cache),
+                                  "cache levels, as for validate")(
+      "counters", po::value(&counters)->default_value(counters),
+      "PAPI events for the levels (none: simulate only)")(
+      "validate-sweeps", po::value(&cfg.validate_sweeps)->default_value(2),
+      "traced sweeps for Table 3 and the miss rates")(
+      "profile-sweeps", po::value(&cfg.profile_sweeps)->default_value(8),
+      "sweeps of the profile figure")("figure1-mesh",
+                                      po::value(&cfg.figure1_mesh)->default_value(cfg.figure1_mesh),
+                                      "mesh (short name) of the first figure; none: no figure")(
+      "figure1-orderings", po::value(&fig1_orderings)->default_value(fig1_orderings),
+      "its orderings")("figure1-bins", po::value(&cfg.figure1_time_bins)->default_value(400),
+                       "its time bins (columns)")(
+      "profile-mesh", po::value(&cfg.profile_mesh)->default_value(cfg.profile_mesh),
+      "mesh (short name) of the profile figure; none: no figure")(
+      "no-timing", "skip the timed runs (tables 1-3, misses and figure data only)")(
+      "label", po::value(&cfg.label), "a name for the run (README title, run.json)")(
+      "out", po::value(&out_dir)->required(), "the result folder (created; must be empty)")(
+      "quiet,q", "no progress on stderr");
+  AddTriangleOrderOption(desc, &triangle_order);
+  po::positional_options_description pos;
+  pos.add("mesh", -1);
+  po::variables_map vm;
+  if (!ParseOptions(args, "report MESH... --out DIR [--orderings ori,bfs,rdr] [--threads 1,2]",
+                    "Runs the paper's experiment on the meshes and writes every table (CSV, "
+                    "Markdown, LaTeX; the paper's values beside ours), the data of every figure "
+                    "(plotted by scripts/plot_report.py), run.json and a README.md to DIR. "
+                    "scripts/reproduce.sh runs it on the nine meshes.",
+                    desc, pos, vm))
+    return 0;
+  cfg.orderings = SplitList(orderings);
+  CheckOrderings(cfg.orderings);
+  cfg.figure1_orderings = SplitList(fig1_orderings);
+  CheckOrderings(cfg.figure1_orderings);
+  if (cfg.figure1_mesh == "none") cfg.figure1_mesh.clear();
+  if (cfg.profile_mesh == "none") cfg.profile_mesh.clear();
+  cfg.threads = threads.empty() ? std::vector<int>{} : ParseThreadList(threads);
+  if (cfg.threads.empty()) {
+    const int n = std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+    for (int p = 1; p <= n; ++p) cfg.threads.push_back(p);
+  }
+  if (std::isnan(cfg.smooth.tol)) throw po::error("--tol must be a number");
+  try {
+    cfg.levels = ParseCacheSpec(cache);
+  } catch (const std::invalid_argument& e) {
+    throw po::error(std::string("--cache: ") + e.what());
+  }
+  for (const CacheLevel& l : cfg.levels)
+    if (l.ways == 0)
+      throw po::error("--cache: level " + l.name + " needs its ways (e.g. L1=32K/8)");
+  cfg.counter_events = counters == "none" ? std::vector<std::string>{} : SplitList(counters);
+  cfg.timing = vm.count("no-timing") == 0;
+  cfg.triangle_order = TriangleOrderOption(triangle_order);
+  cfg.command_line = FullCommandLine();
+  for (const std::string& m : cfg.meshes)
+    if (!IsMesh(m)) throw po::error("'" + m + "' is not a mesh (.node, .ele or .msh)");
+  try {
+    CheckReportConfig(cfg);
+  } catch (const std::invalid_argument& e) {
+    throw po::error(e.what());
+  }
+  PrepareOutDir(out_dir, /*must_be_empty=*/true);
+  const Progress progress(vm.count("quiet") > 0);
+  const std::string readme = RunReport(
+      cfg, out_dir, [&](const std::string& s) { progress.Say(s); },
+      [](const std::string& w) { std::fprintf(stderr, "meshreuse: warning: %s\n", w.c_str()); });
+  std::printf("%s\n", readme.c_str());
+  return 0;
+}
+
+}  // namespace meshreuse::cli

@@ -1,0 +1,41 @@
+#!/usr/bin/env python3
+"""The paper's execution-time figure: time to convergence per mesh and ordering on one thread
+(median over the rounds), with the mean speedup against ORI in the legend.
+
+  scripts/plot_time.py TIME.csv OUT   (writes OUT.png, OUT.pdf)
+"""
+import sys
+
+from plot_common import colour, legend_below, num, plt, read_csv, save, unique
+
+
+def main(data, out):
+    rows = read_csv(data)
+    if not rows:
+        raise SystemExit(f"plot_time: {data}: no rows")
+    meshes = unique(rows, "mesh")
+    ords = unique(rows, "ordering")
+    fig, ax = plt.subplots(figsize=(max(6, 0.9 * len(meshes) * max(1, len(ords) / 2)), 3.6))
+    width = 0.8 / len(ords)
+    for k, o in enumerate(ords):
+        ys, sp = [], []
+        for m in meshes:
+            r = next((r for r in rows if r["mesh"] == m and r["ordering"] == o), None)
+            ys.append(num(r["total_s"]) if r else 0)
+            if r and num(r["speedup_vs_ori"]) is not None:
+                sp.append(num(r["speedup_vs_ori"]))
+        lab = o + (f" (mean {sum(sp) / len(sp):.2f}x vs ori)" if sp else "")
+        ax.bar([i + (k - (len(ords) - 1) / 2) * width for i in range(len(meshes))], ys,
+               width=width, color=colour(o), label=lab)
+    ax.set_xticks(range(len(meshes)))
+    ax.set_xticklabels(meshes, fontsize=8)
+    ax.set_ylabel("time to convergence (s)")
+    ax.set_title("Laplacian smoothing, one thread (median over the rounds)", fontsize=11)
+    legend_below(fig, [ax])
+    save(fig, out)
+
+
+if __name__ == "__main__":
+    if len(sys.argv) != 3:
+        raise SystemExit(__doc__)
+    main(*sys.argv[1:])

@@ -1,0 +1,196 @@
+// The report runner on small synthetic meshes: Table 2 against the textbook stack distance of the
+// same element stream, Figure 1's bins adding up to the stream, the paper's values only beside a
+// mesh of the paper's size, and the same configuration giving the same non-timing files byte for
+// byte.
+#include "reports/report.h"
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <limits>
+#include <map>
+#include <sstream>
+
+#include "analysis/reference.h"
+#include "core/orderings/registry.h"
+#include "tests/test_util.h"
+
+namespace meshreuse {
+namespace {
+
+std::string Slurp(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+std::vector<std::map<std::string, std::string>> Csv(const std::string& path) {
+  std::ifstream in(path);
+  std::string line;
+  std::vector<std::string> head;
+  std::vector<std::map<std::string, std::string>> rows;
+  auto split = [](const std::string& l) {
+    std::vector<std::string> c;
+    std::stringstream ss(l);
+    for (std::string x; std::getline(ss, x, ',');) c.push_back(x);
+    if (!l.empty() && l.back() == ',') c.push_back("");
+    return c;
+  };
+  if (std::getline(in, line)) head = split(line);
+  while (std::getline(in, line)) {
+    const auto c = split(line);
+    EXPECT_EQ(c.size(), head.size()) << path << ": " << line;
+    std::map<std::string, std::string> r;
+    for (size_t i = 0; i < head.size() && i < c.size(); ++i) r[head[i]] = c[i];
+    rows.push_back(r);
+  }
+  return rows;
+}
+
+// Two meshes written as Triangle files named like the paper's (ocean for Figure 1, carabiner
+// for the profile).
+struct Fixture {
+  testing::TempDir dir;
+  std::vector<std::string> meshes;
+  Fixture() {
+    int k = 0;
+    for (const char* name : {"ocean", "carabiner"}) {
+      SyntheticOptions o;
+      o.nx = 14 + 5 * k, o.ny = 11, o.holes = k, o.graded = true, o.seed = 3 + k++;
+      WriteTriangleFiles(BuildMesh(MakeSyntheticMesh(o)), dir / name);
+      meshes.push_back(dir / (std::string(name) + ".node"));
+    }
+  }
+  ReportConfig Config() const {
+    ReportConfig c;
+    c.meshes = meshes;
+    c.orderings = {"ori", "bfs", "rdr"};
+    c.timing = false;
+    c.profile_sweeps = 3;
+    c.figure1_time_bins = 16;
+    c.counter_events = {};
+    return c;
+  }
+};
+
+struct ElementSink {
+  static constexpr bool kEnabled = true;
+  std::vector<int32_t>* ids;
+  void Bind(const ArrayLayout&) {}
+  void BeginSweep(int) {}
+  void Access(int, const MemRef& r) {
+    if (r.element != AccessKind::kNone) ids->push_back(r.vertex);
+  }
+};
+
+// The element stream of the first sweep of `mesh` laid out in `ord`, as vertex ids.
+std::vector<int32_t> FirstSweepElements(const std::string& path, const std::string& ord) {
+  const Mesh base = ReadMesh(path);
+  Mesh m = ApplyPermutation(base, ComputeOrdering(ord, base, 1), TriangleOrder::kSorted);
+  std::vector<int32_t> ids;
+  ElementSink s{&ids};
+  SmoothOptions o;
+  o.max_iters = 1;
+  o.tol = -std::numeric_limits<double>::infinity();
+  Smooth(m, o, s);
+  return ids;
+}
+
+TEST(Report, Table2MatchesTheTextbookStackDistance) {
+  Fixture f;
+  testing::TempDir out;
+  RunReport(f.Config(), out / "r");
+  const auto t2 = Csv(out / "r/tables/table2.csv");
+  ASSERT_EQ(t2.size(), 6u);
+  for (const auto& row : t2) {
+    const std::string path = f.dir / (row.at("mesh") + ".node");
+    const std::vector<int32_t> ids = FirstSweepElements(path, row.at("ordering"));
+    std::vector<uint64_t> finite;
+    uint64_t cold = 0;
+    for (uint64_t d : TextbookStackDistances(ids))
+      d == StackDistance::kCold ? ++cold : (finite.push_back(d), 0);
+    std::sort(finite.begin(), finite.end());
+    auto q = [&](double x) {  // the smallest d with at least x of the finite distances <= d
+      const size_t k = static_cast<size_t>(std::ceil(x * finite.size()));
+      return finite[k == 0 ? 0 : k - 1];
+    };
+    EXPECT_EQ(row.at("accesses"), std::to_string(ids.size()));
+    EXPECT_EQ(row.at("cold"), std::to_string(cold));
+    EXPECT_EQ(row.at("q50"), std::to_string(q(0.5))) << row.at("mesh") << row.at("ordering");
+    EXPECT_EQ(row.at("q75"), std::to_string(q(0.75)));
+    EXPECT_EQ(row.at("q90"), std::to_string(q(0.9)));
+    EXPECT_EQ(row.at("q100"), std::to_string(finite.back()));
+    // Not the paper's size: no paper value beside ours (missing = empty in CSV).
+    EXPECT_EQ(row.at("paper_q50"), "");
+  }
+  // Figure 1: one panel per configured ordering, in its order, bins adding up to the accesses.
+  const auto f1 = Csv(out / "r/data/figure1.csv");
+  std::map<std::string, uint64_t> sums;
+  std::vector<std::string> order;
+  for (const auto& r : f1) {
+    if (order.empty() || order.back() != r.at("ordering")) order.push_back(r.at("ordering"));
+    sums[r.at("ordering")] += std::stoull(r.at("count"));
+  }
+  EXPECT_EQ(order, (std::vector<std::string>{"random", "ori", "bfs"}));
+  for (const auto& [ord, n] : sums)
+    EXPECT_EQ(n, FirstSweepElements(f.meshes[0], ord).size()) << ord;
+  // The profile: 3 sweeps of carabiner per ordering, the accesses of each sweep complete.
+  const auto prof = Csv(out / "r/data/profile.csv");
+  uint64_t n = 0;
+  for (const auto& r : prof)
+    if (r.at("ordering") == "rdr" && r.at("iteration") == "2") n += std::stoull(r.at("accesses"));
+  EXPECT_EQ(n, FirstSweepElements(f.meshes[1], "rdr").size());
+  // Every table in three formats; the README links them.
+  const std::string readme = Slurp(out / "r/README.md");
+  for (const char* t : {"table1", "table2", "table3", "miss_reduction"})
+    for (const char* ext : {".csv", ".md", ".tex"}) {
+      EXPECT_TRUE(std::filesystem::exists(out / ("r/tables/" + std::string(t) + ext))) << t << ext;
+      EXPECT_NE(readme.find("tables/" + std::string(t) + ext), std::string::npos) << t << ext;
+    }
+  EXPECT_NE(Slurp(out / "r/tables/table2.tex").find("\\toprule"), std::string::npos);
+}
+
+TEST(Report, SameConfigurationSameNonTimingFilesByteForByte) {
+  Fixture f;
+  testing::TempDir out;
+  RunReport(f.Config(), out / "a");
+  RunReport(f.Config(), out / "b");
+  for (const char* file :
+       {"tables/table1.csv", "tables/table2.csv", "tables/table2.tex", "tables/table3.csv",
+        "tables/misses.csv", "tables/miss_reduction.md", "data/histogram.csv", "data/figure1.csv",
+        "data/profile.csv", "data/misses.csv", "data/capacities.csv"})
+    EXPECT_EQ(Slurp(out / ("a/" + std::string(file))), Slurp(out / ("b/" + std::string(file))))
+        << file;
+}
+
+TEST(Report, PapersValuesOnlyBesideAMeshOfThePapersSize) {
+  // Table 1 always shows the paper's sizes for its names; Table 2 and 3 only within 5%.
+  Fixture f;
+  testing::TempDir out;
+  RunReport(f.Config(), out / "r");
+  const auto t1 = Csv(out / "r/tables/table1.csv");
+  ASSERT_EQ(t1.size(), 2u);
+  EXPECT_EQ(t1[0].at("mesh"), "ocean");
+  EXPECT_EQ(t1[0].at("paper_vertices"), "392674");
+  EXPECT_EQ(t1[0].at("label"), "M6");
+  const Mesh m = ReadMesh(f.meshes[0]);
+  EXPECT_EQ(t1[0].at("vertices"), std::to_string(m.NumVertices()));
+  EXPECT_EQ(t1[0].at("interior"), std::to_string(m.interior.size()));
+}
+
+TEST(Report, RejectsABadConfigurationBeforeAnyWork) {
+  Fixture f;
+  ReportConfig c = f.Config();
+  c.orderings = {"no-such-ordering"};
+  EXPECT_THROW(CheckReportConfig(c), std::invalid_argument);
+  c = f.Config();
+  c.meshes.push_back(f.meshes[0]);  // two meshes named ocean
+  EXPECT_THROW(CheckReportConfig(c), std::invalid_argument);
+  c = f.Config();
+  c.threads = {0};
+  EXPECT_THROW(CheckReportConfig(c), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace meshreuse

@@ -1,0 +1,32 @@
+#!/usr/bin/env bash
+# The plotting scripts on the fixture CSVs of tests/data/report (a report of two 1,500-vertex
+# meshes): every figure as a valid PNG and PDF, the scale figure when the label says so, and a
+# clear error (not a traceback, not an empty plot) for a missing file or a profile with no rows.
+# Exit 77 (skipped) when Debian's matplotlib is not installed.
+# Usage: plot_test.sh FIXTURE_DIR
+set -euo pipefail
+fixture=$1
+root=$(cd "$(dirname "$0")/../.." && pwd)
+py=/usr/bin/python3
+$py -c 'import matplotlib' 2>/dev/null || { echo "python3-matplotlib not installed: skipped"; exit 77; }
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+cp -r "$fixture" "$tmp/r"
+$py "$root/scripts/plot_report.py" "$tmp/r"
+for f in figure1 profile histograms miss-rates time speedup speedup-mean gain; do
+  head -c 8 "$tmp/r/figures/$f.png" | od -An -c | grep -q 'P   N   G' || { echo "$f.png: not a PNG"; exit 1; }
+  head -c 5 "$tmp/r/figures/$f.pdf" | grep -q '%PDF-' || { echo "$f.pdf: not a PDF"; exit 1; }
+done
+[[ ! -e $tmp/r/figures/scale.png ]] || { echo "scale figure drawn without --scale"; exit 1; }
+# The scale figure: the same data labelled as a scale run.
+sed -i 's/"label": "[^"]*"/"label": "scale"/' "$tmp/r/run.json"
+$py "$root/scripts/plot_report.py" "$tmp/r" | grep -q scale
+head -c 5 "$tmp/r/figures/scale.pdf" | grep -q '%PDF-'
+# Bad input: one line naming the file, exit non-zero.
+if $py "$root/scripts/plot_profile.py" "$tmp/none.csv" "$tmp/x" 2>"$tmp/err"; then exit 1; fi
+grep -q "none.csv: no such file" "$tmp/err"
+head -n 1 "$fixture/data/profile.csv" >"$tmp/empty.csv"
+if $py "$root/scripts/plot_profile.py" "$tmp/empty.csv" "$tmp/x" 2>"$tmp/err"; then exit 1; fi
+grep -q "no rows" "$tmp/err"
+[[ ! -e $tmp/x.png ]]
+echo "plot_test: every figure drawn from the fixture CSVs"
