@@ -51,9 +51,12 @@ SmoothOptions TraceSweeps(int iterations, int threads, const std::string& mode) 
 
 struct Job {
   std::string input, ordering;
-  int64_t vertices = 0;  // for accesses per vertex per sweep (0: unknown)
+  int64_t vertices = 0;  // 0: unknown
   int iterations = 0;
   std::unique_ptr<TraceAnalysis> analysis;
+  // Per thread stream: the vertices it moves, summed over its sweeps (its coordinate writes), so
+  // per_vertex_sweep is per the thread's own vertices. Empty: unknown (foreign traces).
+  std::vector<uint64_t> moves;
 };
 
 std::string Cap(uint64_t c) { return c == kInfiniteCapacity ? "inf" : std::to_string(c); }
@@ -164,14 +167,15 @@ std::vector<std::string> StreamRow(const Job& j, int th, const char* gname, cons
       std::to_string(th),
       gname,
       std::to_string(h.accesses()),
-      j.vertices && j.iterations
-          ? Fixed(static_cast<double>(h.accesses()) / j.vertices / j.iterations, 2)
-          : "-",
+      th < static_cast<int>(j.moves.size()) && j.moves[th]
+          ? (human ? Fixed(static_cast<double>(h.accesses()) / j.moves[th], 2)
+                   : JsonNumber(static_cast<double>(h.accesses()) / j.moves[th]))
+          : "",
       std::to_string(h.cold()),
       std::to_string(s.sd.distinct()),
-      h.finite() ? ToDecimal(h.sum()) : "-",
-      h.finite() ? (human ? Fixed(h.mean(), 1) : Full(h.mean())) : "-"};
-  for (double q : qs) row.push_back(h.finite() ? std::to_string(h.Quantile(q)) : "-");
+      h.finite() ? ToDecimal(h.sum()) : "",
+      h.finite() ? (human ? Fixed(h.mean(), 1) : Full(h.mean())) : ""};
+  for (double q : qs) row.push_back(h.finite() ? std::to_string(h.Quantile(q)) : "");
   const std::vector<LevelMisses> miss = ModelMisses(h, levels, bytes);
   for (const LevelMisses& m : miss) row.push_back(std::to_string(m.misses));
   if (levels.size() == 3) {
@@ -203,13 +207,13 @@ std::vector<std::string> SampledRow(const Job& j, int th, const char* gname,
                                   std::to_string(e.samples()),
                                   num(e.cold_weight(), 0),
                                   num(e.distinct_estimate(), 0),
-                                  finite ? num(e.Mean(), 1) : "-"};
-  for (double q : qs) row.push_back(finite ? std::to_string(e.Quantile(q)) : "-");
+                                  finite ? num(e.Mean(), 1) : ""};
+  for (double q : qs) row.push_back(finite ? std::to_string(e.Quantile(q)) : "");
   for (const CacheLevel& l : levels) {
     const uint64_t cap = bytes ? l.bytes / bytes : 0;
     row.push_back(num(e.MissRatio(cap) * static_cast<double>(e.accesses()), 0));
   }
-  row.push_back(s.exact ? num(MrcMeanAbsoluteError(s.hist, e), 6) : "-");
+  row.push_back(s.exact ? num(MrcMeanAbsoluteError(s.hist, e), 6) : "");
   return row;
 }
 
@@ -218,7 +222,7 @@ std::vector<std::string> SampledRow(const Job& j, int th, const char* gname,
 int AnalyzeCommand(const Args& args) {
   po::options_description desc("options");
   std::vector<std::string> inputs;
-  std::string orderings = "ori", format, granularity = "both", quantiles = "50,75,90,100",
+  std::string orderings = "ori", format, granularity, quantiles = "50,75,90,100",
               cache = "westmere-ex", mode = "gauss-seidel", hist_csv, prof_csv, mrc_csv, out_dir,
               measured, triangle_order;
   int iterations = 1, threads = 1;
@@ -244,7 +248,9 @@ int AnalyzeCommand(const Args& args) {
       "(PARDA's binary = u64), oracle (libCacheSim oracleGeneral), lackey (valgrind "
       "--trace-mem=yes); any of them may be zstd-compressed")(
       "instructions", "lackey: count instruction fetches (I lines) too, not only data")(
-      "granularity", po::value(&granularity)->default_value("both"), "element, line or both")(
+      "granularity", po::value(&granularity),
+      "element, line or both (default: both for meshes and meshreuse traces; line for address "
+      "traces: lackey, parda, u32, u64; element for id traces: text, oracle)")(
       "quantiles", po::value(&quantiles)->default_value("50,75,90,100"), "percentages to report")(
       "cache", po::value(&cache)->default_value("westmere-ex"),
       "westmere-ex or L1=32K,L2=256K,L3=24M")("element-bytes",
@@ -281,13 +287,28 @@ int AnalyzeCommand(const Args& args) {
                     desc, pos, vm))
     return 0;
   Granularity gran;
+  std::string gran_note;  // the default chosen for a foreign trace, said under the table
   ExternalFormat fmt = ExternalFormat::kText;
   std::vector<CacheLevel> levels, inverse;
   std::vector<double> qs;
   try {
     if (!measured.empty()) inverse = ParseCacheSpec(measured);
-    gran = ParseGranularity(granularity);
     if (!format.empty()) fmt = ParseExternalFormat(format);
+    if (!granularity.empty()) {
+      gran = ParseGranularity(granularity);
+    } else if (format.empty()) {
+      gran = Granularity::kBoth;
+    } else {
+      // An element model of 66-byte nodes over raw addresses means nothing: lines by default.
+      const bool addresses = fmt == ExternalFormat::kLackey || fmt == ExternalFormat::kParda ||
+                             fmt == ExternalFormat::kU32 || fmt == ExternalFormat::kU64;
+      gran = addresses ? Granularity::kLine : Granularity::kElement;
+      gran_note = std::string("granularity ") + GranularityName(gran) + " for --format " + format +
+                  " (" +
+                  (addresses ? "values are addresses; --granularity element treats them as ids"
+                             : "values are ids; --granularity line treats them as addresses") +
+                  ")";
+    }
     levels = ParseCacheSpec(cache);
     for (const std::string& q : SplitList(quantiles)) {
       size_t used = 0;
@@ -314,8 +335,10 @@ int AnalyzeCommand(const Args& args) {
     throw po::error("--sample-error needs --sample-rate or --sample-size");
   if (vm.count("instructions") && fmt != ExternalFormat::kLackey)
     throw po::error("--instructions applies to --format lackey");
+  CheckOneFormat(vm);
   for (const std::string* f : {&hist_csv, &prof_csv, &mrc_csv})
     if (!f->empty()) CheckWritable(*f);
+  if (!out_dir.empty()) PrepareOutDir(out_dir);
   const std::vector<std::string> ords = SplitList(orderings);
   CheckOrderings(ords);
   const TriangleOrder tri_order = TriangleOrderOption(triangle_order);
@@ -346,7 +369,13 @@ int AnalyzeCommand(const Args& args) {
             o.iteration_lengths.push_back(std::vector<uint64_t>(iterations, n));
         for (uint64_t n : RefsPerSweep(m, threads, so.mode))
           o.line_iteration_lengths.push_back(std::vector<uint64_t>(iterations, n));
-        Job j{in, ord, m.NumVertices(), iterations, std::make_unique<TraceAnalysis>(o)};
+        Job j{in, ord, m.NumVertices(), iterations, std::make_unique<TraceAnalysis>(o), {}};
+        // Each thread moves its static share of the interior list once a sweep.
+        for (int t = 0; t < threads; ++t) {
+          int64_t b = 0, e = 0;
+          smoother_detail::StaticRange(static_cast<int64_t>(m.interior.size()), threads, t, &b, &e);
+          j.moves.push_back(static_cast<uint64_t>(e - b) * static_cast<uint64_t>(iterations));
+        }
         progress.Say("analysing " + std::to_string(iterations) + " sweep(s) of " + in + " in " +
                      ord + " order");
         const auto t0 = Clock::now();
@@ -374,8 +403,12 @@ int AnalyzeCommand(const Args& args) {
       // than the records, so a header's count cannot make memory exceed what the file holds.
       o.dense_elements = std::min<uint64_t>(h.vertices, h.records);
       o.line_base = AddressCanonicalizer::kCanonicalBase / line_bytes;  // traces are canonical
-      Job j{in, h.ordering.empty() ? "?" : h.ordering, static_cast<int64_t>(h.vertices),
-            static_cast<int>(h.iteration_starts.size()), std::make_unique<TraceAnalysis>(o)};
+      Job j{in,
+            h.ordering,
+            static_cast<int64_t>(h.vertices),
+            static_cast<int>(h.iteration_starts.size()),
+            std::make_unique<TraceAnalysis>(o),
+            std::vector<uint64_t>(h.threads, 0)};
       progress.Say("analysing trace " + in + " (" + Grouped(static_cast<long long>(h.records)) +
                    " accesses" + (threads > 1 ? ", " + std::to_string(threads) + " threads" : "") +
                    ")");
@@ -390,6 +423,7 @@ int AnalyzeCommand(const Args& args) {
                                  std::to_string(rec.thread) + " beyond the header's " +
                                  std::to_string(h.threads));
           if (rec.kind < kElementKinds) j.analysis->AddElement(rec.thread, rec.vertex);
+          if (rec.kind == static_cast<uint8_t>(AccessKind::kCoordWrite)) ++j.moves[rec.thread];
           j.analysis->AddAccess(rec.thread, rec.address, rec.size);
           ++done;
         }
@@ -403,7 +437,7 @@ int AnalyzeCommand(const Args& args) {
       o.workers = threads;
       const uint64_t len = ExternalTraceLength(in, fmt);
       if (len) o.iteration_lengths = o.line_iteration_lengths = {{len}};
-      Job j{in, "-", 0, len ? 1 : 0, std::make_unique<TraceAnalysis>(o)};
+      Job j{in, "", 0, len ? 1 : 0, std::make_unique<TraceAnalysis>(o), {}};
       progress.Say("analysing " + in + " as " + (format.empty() ? "text" : format) +
                    (len ? " (" + Grouped(static_cast<long long>(len)) + " accesses)" : ""));
       TraceAnalysis* a = j.analysis.get();
@@ -522,29 +556,37 @@ int AnalyzeCommand(const Args& args) {
           "(distances in %s; sum exact; misses: fully associative LRU, %s, elements of %u B, "
           "lines of %u B)\n",
           "distinct elements or lines", cache.c_str(), element_bytes, line_bytes);
+    if (!gran_note.empty()) std::printf("(%s)\n", gran_note.c_str());
   }
+  // A trace without sweeps (a foreign one of unknown length) has no profile: say so rather than
+  // write an empty file.
+  const bool no_profile = want_prof && prof.Rows() == 0;
+  if (no_profile)
+    std::fprintf(stderr,
+                 "meshreuse: note: no profile written: the input has no sweeps (a foreign trace "
+                 "read from a stream has no known length to cut into time steps)\n");
   if (!hist_csv.empty()) WriteText(hist_csv, hist.Csv());
-  if (!prof_csv.empty()) WriteText(prof_csv, prof.Csv());
+  if (!prof_csv.empty() && !no_profile) WriteText(prof_csv, prof.Csv());
   if (!mrc_csv.empty()) WriteText(mrc_csv, mrc.Csv());
   if (!out_dir.empty()) {
-    std::filesystem::create_directories(out_dir);
     WriteText(out_dir + "/analyze.csv", t.Csv());
     WriteText(out_dir + "/analyze.json", t.Json());
     WriteText(out_dir + "/histogram.csv", hist.Csv());
-    WriteText(out_dir + "/profile.csv", prof.Csv());
+    if (!no_profile) WriteText(out_dir + "/profile.csv", prof.Csv());
     WriteText(out_dir + "/run.json",
               "{\n" + RunJsonHeader("meshreuse analyze") + "  \"config\": {\"orderings\": " +
                   JsonString(orderings) + ", \"seed\": " + std::to_string(seed) +
                   ", \"iterations\": " + std::to_string(iterations) + ", \"threads\": " +
                   std::to_string(threads) + ", \"granularity\": " + JsonString(granularity) +
-                  ", \"cache\": " + JsonString(cache) +
-                  ", \"element_bytes\": " + std::to_string(element_bytes) + ", \"line_bytes\": " +
-                  std::to_string(line_bytes) + ", \"format\": " + JsonString(format) +
+                  ", \"granularity_used\": " + JsonString(GranularityName(gran)) + ", \"cache\": " +
+                  JsonString(cache) + ", \"element_bytes\": " + std::to_string(element_bytes) +
+                  ", \"line_bytes\": " + std::to_string(line_bytes) +
+                  ", \"format\": " + JsonString(format) +
                   ", \"sample_rate\": " + (vm.count("sample-rate") ? Full(sample_rate) : "null") +
                   ", \"sample_size\": " + std::to_string(sample_size) +
                   ", \"triangle_order\": " + JsonString(triangle_order) + "}\n}\n");
-    progress.Say("wrote " + out_dir +
-                 "/{analyze.csv,analyze.json,histogram.csv,profile.csv,run.json}");
+    progress.Say("wrote " + out_dir + "/{analyze.csv,analyze.json,histogram.csv," +
+                 (no_profile ? "" : "profile.csv,") + "run.json}");
   }
   return 0;
 }

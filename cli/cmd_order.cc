@@ -125,6 +125,8 @@ int CompareCommand(const Args& args) {
       "mode", po::value(&mode_name)->default_value("gauss-seidel"), "gauss-seidel or jacobi")(
       "out", po::value(&out_dir),
       "write compare.{csv,md,json}, summary.{csv,md} and run.json here")(
+      "json", "print the rows and the summary as JSON instead of text")(
+      "csv", "print the rows as CSV instead of text")(
       "counters", po::value(&counters)->implicit_value("default"),
       "hardware counters (PAPI) around every run's sweeps, as for smooth; median over rounds")(
       "quiet,q", "no progress on stderr");
@@ -143,17 +145,9 @@ int CompareCommand(const Args& args) {
     return 0;
   cfg.orderings = SplitList(orderings);
   CheckOrderings(cfg.orderings);
-  cfg.threads.clear();
-  for (const std::string& t : SplitList(threads)) {
-    try {
-      cfg.threads.push_back(std::stoi(t));
-    } catch (const std::exception&) {
-      throw po::error("--threads takes numbers, found '" + t + "'");
-    }
-    if (cfg.threads.back() < 1 || cfg.threads.back() > 1024)
-      throw po::error("--threads must be between 1 and 1024");
-  }
-  if (cfg.threads.empty()) throw po::error("--threads is empty");
+  cfg.threads = ParseThreadList(threads);
+  CheckOneFormat(vm);
+  if (!out_dir.empty()) PrepareOutDir(out_dir);
   if (cfg.repeat < 1) throw po::error("--repeat must be at least 1");
   if (std::isnan(cfg.smooth.tol)) throw po::error("--tol must be a number");
   try {
@@ -176,14 +170,21 @@ int CompareCommand(const Args& args) {
       [](const std::string& w) { std::fprintf(stderr, "meshreuse: warning: %s\n", w.c_str()); });
   const Table t = CompareTable(rows);
   const Table summary = CompareSummaryTable(rows);
-  std::printf("%s", t.Aligned().c_str());
-  std::printf(
-      "(seed %llu; times are medians of %d runs; speedup = T_ori(1)/T; gain = (T_bfs-T)/T_bfs;\n"
-      " span = |new(u) - new(v)| over the mesh edges)\n\n",
-      static_cast<unsigned long long>(cfg.seed), cfg.repeat);
-  std::printf("mean over %zu mesh(es):\n%s", cfg.meshes.size(), summary.Aligned().c_str());
+  if (vm.count("json")) {
+    std::printf("{\"seed\": %llu, \"rows\": %s, \"summary\": %s}\n",
+                static_cast<unsigned long long>(cfg.seed), CompareJson(rows).c_str(),
+                summary.Json().c_str());
+  } else if (vm.count("csv")) {
+    std::printf("%s", t.Csv().c_str());
+  } else {
+    std::printf("%s", t.Aligned().c_str());
+    std::printf(
+        "(seed %llu; times are medians of %d runs; speedup = T_ori(1)/T; gain = "
+        "(T_bfs-T)/T_bfs;\n span = |new(u) - new(v)| over the mesh edges)\n\n",
+        static_cast<unsigned long long>(cfg.seed), cfg.repeat);
+    std::printf("mean over %zu mesh(es):\n%s", cfg.meshes.size(), summary.Aligned().c_str());
+  }
   if (!out_dir.empty()) {
-    std::filesystem::create_directories(out_dir);
     WriteText(out_dir + "/compare.csv", t.Csv());
     WriteText(out_dir + "/compare.md", t.Markdown());
     WriteText(out_dir + "/summary.csv", summary.Csv());

@@ -51,6 +51,8 @@ int SmoothCommand(const Args& args) {
       "hardware counters (PAPI) around the sweeps, per thread and summed: a comma list of PAPI "
       "events, or none for PAPI_L1_DCM,PAPI_L2_DCM,PAPI_L3_TCM,PAPI_TOT_CYC,PAPI_TOT_INS; events "
       "this machine cannot count are dropped with PAPI's reason")(
+      "json", "print the results and every sweep as JSON instead of text")(
+      "csv", "print every sweep as CSV instead of text")(
       "flush-caches",
       "before the first sweep, stream 64 MiB through the caches (cold start, as "
       "the simulator's empty caches; scripts/validate_callgrind.sh)")("quiet,q",
@@ -78,6 +80,10 @@ int SmoothCommand(const Args& args) {
   if (std::isnan(opt.tol)) throw po::error("--tol must be a number (negative: never stop early)");
   if (!out_mesh.empty() && meshes.size() != 1) throw po::error("-o takes a single input mesh");
   CheckOrderings({ordering});
+  CheckOneFormat(vm);
+  const bool json = vm.count("json") > 0, csv = vm.count("csv") > 0, text = !json && !csv;
+  if (!out_dir.empty()) PrepareOutDir(out_dir);
+  if (!out_mesh.empty()) CheckWritable(out_mesh);
   const TriangleOrder tri_order = TriangleOrderOption(triangle_order);
   if (vm.count("flush-caches")) opt.flush_bytes = uint64_t{64} << 20;
   const Progress progress(vm.count("quiet") > 0);
@@ -109,17 +115,20 @@ int SmoothCommand(const Args& args) {
       ApplyPermutationInPlace(&m, ComputeOrdering(ordering, m, seed), tri_order);
       reorder_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     }
-    std::printf("== %s: %s vertices, %s triangles, ordering %s%s, %d thread%s, %s\n", path.c_str(),
-                Grouped(m.NumVertices()).c_str(), Grouped(m.NumTriangles()).c_str(),
-                ordering.c_str(),
-                ordering == "random" ? (" (seed " + std::to_string(seed) + ")").c_str() : "",
-                opt.threads, opt.threads == 1 ? "" : "s", UpdateModeName(opt.mode));
-    if (ordering != "ori") std::printf("reordering (ordering + apply): %.3f ms\n", 1e3 * reorder_s);
-    std::printf("%6s  %10s  %12s  %10s\n", "sweep", "quality", "improvement", "time_ms");
+    if (text)
+      std::printf("== %s: %s vertices, %s triangles, ordering %s%s, %d thread%s, %s\n",
+                  path.c_str(), Grouped(m.NumVertices()).c_str(), Grouped(m.NumTriangles()).c_str(),
+                  ordering.c_str(),
+                  ordering == "random" ? (" (seed " + std::to_string(seed) + ")").c_str() : "",
+                  opt.threads, opt.threads == 1 ? "" : "s", UpdateModeName(opt.mode));
+    if (text && ordering != "ori")
+      std::printf("reordering (ordering + apply): %.3f ms\n", 1e3 * reorder_s);
+    if (text) std::printf("%6s  %10s  %12s  %10s\n", "sweep", "quality", "improvement", "time_ms");
     std::fflush(stdout);
     progress.Say("smoothing " + path);
     NullSink untraced;
     const SmoothResult r = Smooth(m, opt, untraced, [&](const SweepRecord& s) {
+      if (!text) return;
       std::printf("%6d  %10.6f  %+12.3e  %10.3f\n", s.sweep, s.quality, s.improvement,
                   1e3 * s.seconds);
       std::fflush(stdout);
@@ -127,34 +136,36 @@ int SmoothCommand(const Args& args) {
     std::vector<double> times;
     for (const SweepRecord& s : r.sweeps) {
       times.push_back(s.seconds);
-      sweeps.AddRow({path, std::to_string(s.sweep), Fixed(s.quality, 9), JsonNumber(s.improvement),
-                     Fixed(1e3 * s.seconds, 3)});
+      sweeps.AddRow({path, std::to_string(s.sweep), JsonNumber(s.quality),
+                     JsonNumber(s.improvement), JsonNumber(1e3 * s.seconds)});
     }
     const double med = Median(times);
-    std::printf("sweeps %zu (%s), quality %.6f -> %.6f, median %.3f ms/sweep, total %.3f s\n",
-                r.sweeps.size(), r.converged ? "converged" : "max-iters reached", r.quality_before,
-                r.quality_after, 1e3 * med, r.seconds);
+    if (text)
+      std::printf("sweeps %zu (%s), quality %.6f -> %.6f, median %.3f ms/sweep, total %.3f s\n",
+                  r.sweeps.size(), r.converged ? "converged" : "max-iters reached",
+                  r.quality_before, r.quality_after, 1e3 * med, r.seconds);
     if (papi && papi->available()) {
       if (!papi->error().empty()) throw std::runtime_error("counters failed: " + papi->error());
       const std::vector<long long> sum = papi->Sum();
       std::string per_thread;
       counters_json = "{";
       for (size_t e = 0; e < papi->events().size(); ++e) {
-        std::printf("counter %-16s %16s (all sweeps, all threads", papi->events()[e].c_str(),
-                    Grouped(sum[e]).c_str());
+        if (text)
+          std::printf("counter %-16s %16s (all sweeps, all threads", papi->events()[e].c_str(),
+                      Grouped(sum[e]).c_str());
         std::string th = "[";
         for (size_t t = 0; t < papi->per_thread().size(); ++t) {
-          if (opt.threads > 1)
+          if (text && opt.threads > 1)
             std::printf("; thread %zu %s", t, Grouped(papi->per_thread()[t][e]).c_str());
           th += (t ? ", " : "") + std::to_string(papi->per_thread()[t][e]);
         }
-        std::printf(")\n");
+        if (text) std::printf(")\n");
         counters_json += std::string(e ? ", " : "") + JsonString(papi->events()[e]) +
                          ": {\"sum\": " + std::to_string(sum[e]) + ", \"per_thread\": " + th + "]}";
       }
       counters_json += "}";
     }
-    std::printf("\n");
+    if (text) std::printf("\n");
     summary.AddRow(
         {path, ordering, std::to_string(m.NumVertices()), std::to_string(m.NumTriangles()),
          std::to_string(opt.threads), UpdateModeName(opt.mode), std::to_string(r.sweeps.size()),
@@ -175,9 +186,12 @@ int SmoothCommand(const Args& args) {
     if (!out_mesh.empty())
       for (const std::string& f : WriteMesh(m, out_mesh)) progress.Say("wrote " + f);
   }
-  if (meshes.size() > 1) std::printf("%s", summary.Aligned().c_str());
+  if (text && meshes.size() > 1) std::printf("%s", summary.Aligned().c_str());
+  if (json)
+    std::printf("{\"results\": [\n%s\n], \"sweeps\": %s}\n", results_json.c_str(),
+                sweeps.Json().c_str());
+  if (csv) std::printf("%s", sweeps.Csv().c_str());
   if (!out_dir.empty()) {
-    std::filesystem::create_directories(out_dir);
     WriteText(out_dir + "/summary.csv", summary.Csv());
     WriteText(out_dir + "/summary.md", summary.Markdown());
     WriteText(out_dir + "/sweeps.csv", sweeps.Csv());

@@ -87,7 +87,7 @@ int SimulateCommand(const Args& args) {
                     "misses and the excess over them, per level and thread stream.",
                     desc, pos, vm))
     return 0;
-  if (vm.count("json") && vm.count("csv")) throw po::error("--json and --csv exclude each other");
+  CheckOneFormat(vm);
   if (iterations < 1 || iterations > 100000) throw po::error("--iterations must be 1..100000");
   if (threads < 1 || threads > 255) throw po::error("--threads must be 1..255");
   if (line_bytes == 0 || (line_bytes & (line_bytes - 1)))
@@ -176,7 +176,7 @@ int SimulateCommand(const Args& args) {
       progress.Say("simulating " + in + " as " + (format.empty() ? "text" : format));
       ReadExternalTrace(in, fmt,
                         [&sim](uint64_t v, uint32_t size) { sim.Access(0, v, size, false); });
-      rows(in, "-", sim);
+      rows(in, "", sim);
     }
   }
   Print(t, vm.count("json") > 0, vm.count("csv") > 0);
@@ -224,8 +224,8 @@ int ValidateCommand(const Args& args) {
           "inverse model's capacities) beside the paper's values.",
           desc, pos, vm))
     return 0;
-  if (vm.count("json") + vm.count("csv") + vm.count("markdown") > 1)
-    throw po::error("--json, --csv and --markdown exclude each other");
+  CheckOneFormat(vm);
+  if (!out_dir.empty()) PrepareOutDir(out_dir);
   if (cfg.iterations < 1 || cfg.iterations > 100000)
     throw po::error("--iterations must be 1..100000");
   if (cfg.threads < 1 || cfg.threads > 255) throw po::error("--threads must be 1..255");
@@ -281,7 +281,6 @@ int ValidateCommand(const Args& args) {
     for (const std::string& n : notes) std::printf("%s\n", n.c_str());
   }
   if (!out_dir.empty()) {
-    std::filesystem::create_directories(out_dir);
     WriteText(out_dir + "/validate.csv", v.Csv());
     WriteText(out_dir + "/validate.md", v.Markdown());
     WriteText(out_dir + "/validate.json", v.Json());

@@ -100,6 +100,14 @@ void CheckWritable(const std::string& path) {
     throw po::error("cannot write '" + path + "': it is a folder");
 }
 
+void CheckOneFormat(const po::variables_map& vm) {
+  std::string given;
+  int n = 0;
+  for (const char* f : {"json", "csv", "markdown"})
+    if (vm.count(f)) given += std::string(n++ ? " and --" : "--") + f;
+  if (n > 1) throw po::error(given + " exclude each other: give one");
+}
+
 void PrepareOutDir(const std::string& dir, bool must_be_empty) {
   namespace fs = std::filesystem;
   std::error_code ec;

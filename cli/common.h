@@ -17,6 +17,8 @@ void WriteText(const std::string& path, const std::string& text);
 // Before any work: an output file's folder must exist and be a folder (po::error otherwise), so a
 // long run does not fail at its last step.
 void CheckWritable(const std::string& path);
+// --json, --csv and --markdown exclude each other: po::error when more than one is given.
+void CheckOneFormat(const po::variables_map& vm);
 // An output folder, before any work: made if missing (with its parents); po::error if it or an
 // ancestor is a file, it cannot be written, or (must_be_empty) it already holds files.
 void PrepareOutDir(const std::string& dir, bool must_be_empty = false);

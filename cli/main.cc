@@ -13,6 +13,7 @@
 #include "cli/commands.h"
 #include "core/error.h"
 #include "core/triangle_runner.h"
+#include "reports/run_info.h"
 
 namespace meshreuse::cli {
 
@@ -45,10 +46,10 @@ const Command kCommands[] = {
 std::vector<std::string> g_argv;
 
 void Usage(std::FILE* out) {
-  std::fprintf(
-      out,
-      "meshreuse: locality research on unstructured meshes\n\n"
-      "usage: meshreuse <command> [options]   (meshreuse <command> --help)\n\ncommands:\n");
+  std::fprintf(out,
+               "meshreuse: locality research on unstructured meshes\n\n"
+               "usage: meshreuse <command> [options]   (meshreuse <command> --help; meshreuse "
+               "--version)\n\ncommands:\n");
   for (const Command& c : kCommands) std::fprintf(out, "  %-16s %s\n", c.name, c.summary);
 }
 
@@ -76,6 +77,10 @@ int Main(int argc, char** argv) {
   if (args.empty() || args[0] == "--help" || args[0] == "-h" || args[0] == "help") {
     Usage(args.empty() ? stderr : stdout);
     return args.empty() ? 2 : 0;
+  }
+  if (args[0] == "--version" || args[0] == "version") {
+    std::printf("%s\n", VersionString().c_str());
+    return 0;
   }
   const Command* cmd = nullptr;
   size_t used = 0;

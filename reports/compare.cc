@@ -161,7 +161,7 @@ std::string SweepRange(const std::vector<int>& s) {
   const auto [lo, hi] = std::minmax_element(s.begin(), s.end());
   return *lo == *hi ? std::to_string(*lo) : std::to_string(*lo) + "-" + std::to_string(*hi);
 }
-std::string OrDash(double v, int decimals) { return std::isfinite(v) ? Fixed(v, decimals) : "-"; }
+std::string OrDash(double v, int decimals) { return std::isfinite(v) ? Fixed(v, decimals) : ""; }
 }  // namespace
 
 Table CompareTable(const std::vector<CompareRow>& rows) {
@@ -203,7 +203,7 @@ Table CompareTable(const std::vector<CompareRow>& rows) {
     for (const std::string& e : events) {
       const auto it = std::find(r.counter_events.begin(), r.counter_events.end(), e);
       row.push_back(it == r.counter_events.end()
-                        ? "-"
+                        ? ""
                         : Fixed(r.counter_medians[it - r.counter_events.begin()], 0));
     }
     t.AddRow(row);
@@ -245,7 +245,7 @@ Table CompareSummaryTable(const std::vector<CompareRow>& rows) {
         vs_bfs += bp->second / T, g_bfs += (bp->second - T) / bp->second, ++n_bfs;
     }
     auto mean = [](double s, int n, double scale) {
-      return n ? OrDash(scale * s / n, 3) : std::string("-");
+      return n ? OrDash(scale * s / n, 3) : std::string();
     };
     out.AddRow({ord, std::to_string(p), std::to_string(meshes.size()), mean(speed, n_speed, 1),
                 mean(vs_ori, n_ori, 1), mean(vs_bfs, n_bfs, 1), mean(g_ori, n_ori, 100),

@@ -100,8 +100,14 @@ std::string GitRevision() {
   return std::string(MESHREUSE_GIT_REV) + (MESHREUSE_GIT_DIRTY ? "-dirty" : "");
 }
 
+std::string VersionString() {
+  return std::string("meshreuse ") + MESHREUSE_VERSION + " (git " + GitRevision() + ", " +
+         MESHREUSE_BUILD_TYPE + ", " + MESHREUSE_COMPILER + ")";
+}
+
 std::string BuildJson() {
-  return "{\"git_revision\": " + JsonString(MESHREUSE_GIT_REV) +
+  return "{\"version\": " + JsonString(MESHREUSE_VERSION) +
+         ", \"git_revision\": " + JsonString(MESHREUSE_GIT_REV) +
          ", \"git_dirty\": " + (MESHREUSE_GIT_DIRTY ? "true" : "false") +
          ", \"compiler\": " + JsonString(MESHREUSE_COMPILER) +
          ", \"compiler_version\": " + JsonString(__VERSION__) +

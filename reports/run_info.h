@@ -16,7 +16,9 @@ std::string MachineJson();
 // The git revision of the sources this binary was built from, taken at build time, with
 // "-dirty" when they differed from it ("unknown" outside a git checkout).
 std::string GitRevision();
-// {"git_revision", "git_dirty", "compiler", "compiler_version", "build_type", "flags"}
+// "meshreuse 0.1.0 (git 4b00722c1d2e, Release, GNU 12.2.0)"
+std::string VersionString();
+// {"version", "git_revision", "git_dirty", "compiler", "compiler_version", "build_type", "flags"}
 std::string BuildJson();
 std::string UtcTimestamp();  // 2026-11-22T10:00:00Z
 std::string CommandLineJson(const std::vector<std::string>& argv);

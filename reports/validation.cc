@@ -31,7 +31,7 @@ std::string Cap(uint64_t c, double scale = 1.0) {
   if (c == kInfiniteCapacity) return "inf";
   return scale == 1.0 ? std::to_string(c) : Fixed(static_cast<double>(c) * scale, 2);
 }
-std::string Ratio(double a, double b) { return b > 0 ? Fixed(a / b, 3) : "-"; }
+std::string Ratio(double a, double b) { return b > 0 ? Fixed(a / b, 3) : ""; }
 
 }  // namespace
 
@@ -147,11 +147,11 @@ Table ValidationTable(const std::vector<OrderingValidation>& r) {
                 std::to_string(l.level.ways), std::to_string(s.accesses),
                 std::to_string(l.model_element), std::to_string(l.model_line),
                 std::to_string(s.misses), std::to_string(s.cold), std::to_string(s.misses - s.cold),
-                l.measured ? Fixed(l.counter, 0) : "-",
+                l.measured ? Fixed(l.counter, 0) : "",
                 Ratio(static_cast<double>(l.model_line), static_cast<double>(s.misses)),
-                l.measured ? Ratio(static_cast<double>(s.misses), l.counter) : "-",
+                l.measured ? Ratio(static_cast<double>(s.misses), l.counter) : "",
                 Fixed(s.MissRate(), 6),
-                v.line_accesses ? Fixed(static_cast<double>(s.misses) / v.line_accesses, 6) : "-",
+                v.line_accesses ? Fixed(static_cast<double>(s.misses) / v.line_accesses, 6) : "",
                 l.measured ? "measured" : "simulated"});
     }
   return t;
@@ -194,10 +194,10 @@ Table Table3(const std::vector<OrderingValidation>& r) {
     for (const LevelValidation& l : v.levels)
       row.push_back(Fixed(static_cast<double>(l.table3_misses) / 1e3 / v.iterations, 2));
     if (n == 3)
-      for (int i = 0; i < 3; ++i) row.push_back(has_paper ? Fixed((*pt)[i], 2) : "-");
+      for (int i = 0; i < 3; ++i) row.push_back(has_paper ? Fixed((*pt)[i], 2) : "");
     for (const LevelValidation& l : v.levels) row.push_back(Cap(l.capacity_elements, 1e-3));
     if (n == 3)
-      for (int i = 3; i < 6; ++i) row.push_back(has_paper ? Fixed((*pt)[i], 2) : "-");
+      for (int i = 3; i < 6; ++i) row.push_back(has_paper ? Fixed((*pt)[i], 2) : "");
     for (const LevelValidation& l : v.levels) row.push_back(Cap(l.capacity_lines));
     t.AddRow(row);
   }

@@ -28,6 +28,8 @@ def series(path, key_fields):
         for row in csv.DictReader(f):
             key = tuple(row[k] for k in key_fields)
             groups.setdefault(key, []).append(row)
+    if not groups:  # e.g. the profile of a trace without sweeps: say so, draw nothing
+        raise ValueError("no rows to plot")
     return groups
 
 

@@ -58,7 +58,7 @@ check "smooth two meshes" 0 "$bin" smooth "$data/two_interior.node" "$data/two_i
 contains "smooth two meshes" "median_ms_per_sweep"
 check "smooth -o two meshes" 2 "$bin" smooth "$data/two_interior.node" "$data/two_interior41.msh" -o "$tmp/x"
 check "unwritable output" 2 "$bin" smooth "$data/two_interior.node" -o /nonexistent-dir/x.vtk --quiet
-contains "unwritable output" "/nonexistent-dir/x.vtk: cannot write"
+contains "unwritable output" "cannot write '/nonexistent-dir/x.vtk'"
 
 check "generate unknown shape" 2 "$bin" mesh generate --shape nope -o "$tmp/g"
 contains "generate unknown shape" "unknown shape 'nope'"
@@ -148,12 +148,12 @@ PY
 grep -q '^input,ordering,thread,granularity,lo,hi,count' "$tmp/h.csv" && pass=$((pass + 1)) || { fail=$((fail + 1)); echo "FAIL histogram csv"; }
 printf '1\n2\n0x1\n# c\n3\n2\n' >"$tmp/ext.txt"
 check "analyze text" 0 "$bin" analyze "$tmp/ext.txt" --format text --granularity element --csv --quiet
-contains "analyze text" "$tmp/ext.txt,-,0,element,5,-,3,3,3,1.5,1,2,2,2"  # ids 1 2 1 3 2: distances 1, 2
+contains "analyze text" "$tmp/ext.txt,,0,element,5,,3,3,3,1.5,1,2,2,2"  # ids 1 2 1 3 2: distances 1, 2
 check "analyze stdin" 0 bash -c "printf '5\n5\n' | '$bin' analyze - --format text --granularity element --csv --quiet"
-contains "analyze stdin" "-,-,0,element,2,-,1,1,0,0,0,0,0,0"
+contains "analyze stdin" "-,,0,element,2,,1,1,0,0,0,0,0,0"  # missing values: empty
 /usr/bin/python3 -c 'import struct,sys; open(sys.argv[1],"wb").write(struct.pack("<4Q",7,8,7,8))' "$tmp/ext.u64"
 check "analyze u64" 0 "$bin" analyze "$tmp/ext.u64" --format u64 --granularity element --csv --quiet
-contains "analyze u64" ",element,4,-,2,2,2,1,1,1,1,1"
+contains "analyze u64" ",element,4,,2,2,2,1,1,1,1,1"
 printf 'MRTRACEX' >"$tmp/bad.trace"
 check "analyze bad trace" 2 "$bin" analyze "$tmp/bad.trace" --quiet
 contains "analyze bad trace" "meshreuse: error: $tmp/bad.trace: not a meshreuse trace (wrong magic"
@@ -177,16 +177,20 @@ for args in "$tmp/t.trace.zst" "$tmp/t.trace --threads 2" "$tmp/t.trace.zst --th
     fail=$((fail + 1)); echo "FAIL analyze $args: differs from the plain serial analysis"; fi
 done
 /usr/bin/python3 -c 'import struct,sys; open(sys.argv[1],"wb").write(b"".join(struct.pack("<Q", i % 5000) for i in range(60000)))' "$tmp/scan.u64"
-"$bin" analyze "$tmp/scan.u64" --format u64 --csv --quiet >"$tmp/scan1.csv"
-check "analyze u64 threads" 0 "$bin" analyze "$tmp/scan.u64" --format u64 --csv --quiet --threads 2
+"$bin" analyze "$tmp/scan.u64" --format u64 --granularity element --csv --quiet >"$tmp/scan1.csv"
+check "analyze u64 threads" 0 "$bin" analyze "$tmp/scan.u64" --format u64 --granularity element --csv --quiet --threads 2
 if diff "$tmp/out" "$tmp/scan1.csv" >/dev/null; then pass=$((pass + 1)); else fail=$((fail + 1)); echo "FAIL analyze u64 --threads 2 differs"; fi
-contains "analyze u64 threads" ",element,60000,-,5000,5000,274945000,4999,4999,4999,4999,4999,"  # a scan: every warm distance 4999
+contains "analyze u64 threads" ",element,60000,,5000,5000,274945000,4999,4999,4999,4999,4999,"  # a scan: every warm distance 4999
 printf '==1== Lackey\nI  0040,2\n L 1000,8\n S 1000,8\n M 103e,4\n' >"$tmp/t.lackey"
-check "analyze lackey" 0 "$bin" analyze "$tmp/t.lackey" --format lackey --csv --quiet
-contains "analyze lackey" ",element,4,-,2,2,0,0,"  # addresses 1000 1000 103e 103e: distances 0, 0
-contains "analyze lackey" ",line,6,-,2,2,2,0.5,"  # lines 40 40 (40 41) (40 41): the modify straddles
+check "analyze lackey" 0 "$bin" analyze "$tmp/t.lackey" --format lackey --granularity both --csv --quiet
+contains "analyze lackey" ",element,4,,2,2,0,0,"  # addresses 1000 1000 103e 103e: distances 0, 0
+contains "analyze lackey" ",line,6,,2,2,2,0.5,"  # lines 40 40 (40 41) (40 41): the modify straddles
+# An address trace defaults to lines and says so under the table.
+check "analyze lackey default" 0 "$bin" analyze "$tmp/t.lackey" --format lackey --quiet
+contains "analyze lackey default" "granularity line for --format lackey (values are addresses"
+if grep -q "  element  " "$tmp/out"; then fail=$((fail + 1)); echo "FAIL analyze lackey default: element rows"; else pass=$((pass + 1)); fi
 check "analyze lackey instructions" 0 "$bin" analyze "$tmp/t.lackey" --format lackey --instructions --granularity element --csv --quiet
-contains "analyze lackey instructions" ",element,5,-,3,3,"
+contains "analyze lackey instructions" ",element,5,,3,3,"
 check "instructions without lackey" 2 "$bin" analyze "$tmp/scan.u64" --format u64 --instructions
 check "analyze oracle" 2 "$bin" analyze "$data/broken/oracle_reserved.oracle" --format oracle --quiet
 contains "analyze oracle" "record 1 (byte offset 24): the value 2^64-1 is reserved"
@@ -230,7 +234,7 @@ printf '0
 0
 ' >"$tmp/addr.txt"
 check "simulate text" 0 "$bin" simulate "$tmp/addr.txt" --format text --cache L1=128/1 --csv --quiet
-contains "simulate text" ",-,0,all,L1,128,1,2,4,0,4,3,1,"  # 0 and 128 share set 0 of a direct-mapped 2-set cache
+contains "simulate text" ",,0,all,L1,128,1,2,4,0,4,3,1,"  # 0 and 128 share set 0 of a direct-mapped 2-set cache
 
 # Validation: every number labelled simulated here (no hardware counters), the tables written.
 check "validate" 0 "$bin" validate "$data/two_interior.node" --orderings ori,bfs --iterations 2 --cache L1=256/2,L2=1K/4,L3=4K/8 --out "$tmp/val" --quiet
@@ -265,6 +269,53 @@ fi
 check "triangle order" 0 "$bin" smooth "$data/two_interior.node" --triangle-order file --max-iters 1 --quiet
 check "triangle order bad" 2 "$bin" smooth "$data/two_interior.node" --triangle-order shuffled
 contains "triangle order bad" "unknown triangle order 'shuffled' (sorted or file)"
+
+# Outputs a program can read: --version, --json on every table, --json with --csv refused, missing
+# values null/empty, output folders checked before any work.
+check "version" 0 "$bin" --version
+contains "version" "meshreuse 0.1.0 (git "
+json_ok() {  # json_ok NAME : the last output parses as JSON
+  if /usr/bin/python3 -c 'import json,sys; json.load(open(sys.argv[1]))' "$tmp/out" 2>/dev/null; then
+    pass=$((pass + 1)); else fail=$((fail + 1)); echo "FAIL $1: not JSON"; sed 's/^/    /' "$tmp/out" | head; fi
+}
+check "compare json" 0 "$bin" compare "$data/two_interior.node" --orderings ori,bfs --repeat 1 --json --quiet
+json_ok "compare json"
+check "compare json csv" 2 "$bin" compare "$data/two_interior.node" --json --csv
+contains "compare json csv" "--json and --csv exclude each other"
+check "smooth json" 0 "$bin" smooth "$data/two_interior.node" --json --quiet
+json_ok "smooth json"
+check "orderings json" 0 "$bin" orderings --json
+json_ok "orderings json"
+check "orderings file last" 0 "$bin" orderings
+if tail -n 1 "$tmp/out" | grep -q "^file:PATH"; then pass=$((pass + 1)); else fail=$((fail + 1)); echo "FAIL orderings: file:PATH is not last"; fi
+check "orderings check" 2 "$bin" orderings --check ori,frob
+contains "orderings check" "frob"
+check "analyze json null" 0 bash -c "printf '5\n5\n' | '$bin' analyze - --format text --json --quiet"
+json_ok "analyze json null"
+contains "analyze json null" '"per_vertex_sweep": null'
+touch "$tmp/afile"
+check "compare out under a file" 2 "$bin" compare "$data/two_interior.node" --out "$tmp/afile/sub" --repeat 1 --quiet
+contains "compare out under a file" "is not a folder"
+check "validate out under a file" 2 "$bin" validate "$data/two_interior.node" --out "$tmp/afile/sub" --quiet
+check "analyze out under a file" 2 "$bin" analyze "$data/two_interior.node" --out "$tmp/afile/sub" --quiet
+mkdir -p "$tmp/full" && touch "$tmp/full/x"
+check "report out not empty" 2 "$bin" report "$data/two_interior.node" --out "$tmp/full" --quiet
+contains "report out not empty" "is not empty"
+check "report bad ordering" 2 "$bin" report "$data/two_interior.node" --out "$tmp/rep" --orderings ori,frob --quiet
+[[ ! -e $tmp/rep/run.json ]] && pass=$((pass + 1)) || { fail=$((fail + 1)); echo "FAIL report bad ordering wrote files"; }
+# A trace without sweeps has no profile: said, no empty file.
+check "profile without sweeps" 0 bash -c "printf '1\n2\n1\n' | '$bin' analyze - --format text --out '$tmp/nosweep' --quiet"
+contains "profile without sweeps" "no profile written: the input has no sweeps"
+[[ ! -e $tmp/nosweep/profile.csv && -s $tmp/nosweep/analyze.csv ]] && pass=$((pass + 1)) || { fail=$((fail + 1)); echo "FAIL profile without sweeps: profile.csv written"; }
+# per_vertex_sweep of a thread is per the vertices it moves: two interior vertices, one per thread.
+check "per thread" 0 "$bin" analyze "$data/two_interior.node" --threads 2 --granularity element --csv --quiet
+/usr/bin/python3 - "$tmp/out" <<'PY' && pass=$((pass + 1)) || { fail=$((fail + 1)); echo "FAIL per_vertex_sweep per thread"; }
+import csv, sys
+rows = list(csv.DictReader(open(sys.argv[1])))
+assert len(rows) == 2, rows
+for r in rows:  # each thread moves one vertex in one sweep
+    assert float(r["per_vertex_sweep"]) == float(r["accesses"]), r
+PY
 
 echo "cli commands: $pass passed, $fail failed"
 [[ $fail -eq 0 ]]
