@@ -152,13 +152,35 @@ std::string Levels(const std::vector<CacheLevel>& levels) {
   return s;
 }
 
+// An ordering spec for one mesh: "{mesh}" in it (file:perms/{mesh}.perm) becomes the mesh's
+// name, so one spec names a permutation file per mesh.
+std::string ForMesh(const std::string& spec, const std::string& mesh) {
+  std::string s = spec;
+  for (size_t at; (at = s.find("{mesh}")) != std::string::npos;) s.replace(at, 6, mesh);
+  return s;
+}
+std::vector<std::string> ForMesh(const std::vector<std::string>& specs, const std::string& mesh) {
+  std::vector<std::string> out;
+  for (const std::string& s : specs) out.push_back(ForMesh(s, mesh));
+  return out;
+}
+
 }  // namespace
 
 void CheckReportConfig(const ReportConfig& cfg) {
   if (cfg.meshes.empty()) throw std::invalid_argument("no mesh given");
   if (cfg.orderings.empty()) throw std::invalid_argument("no ordering given");
-  for (const std::string& o : cfg.orderings) CheckOrderingSpec(o);
-  for (const std::string& o : cfg.figure1_orderings) CheckOrderingSpec(o);
+  for (const std::string& m : cfg.meshes) {
+    for (const std::string& o : cfg.orderings) {
+      const std::string spec = ForMesh(o, paper::ShortName(m));
+      CheckOrderingSpec(spec);
+      if (spec.rfind("file:", 0) == 0 && !std::filesystem::is_regular_file(spec.substr(5)))
+        throw std::invalid_argument("ordering " + o + ": no permutation file '" + spec.substr(5) +
+                                    "' for mesh " + paper::ShortName(m));
+    }
+    for (const std::string& o : cfg.figure1_orderings)
+      CheckOrderingSpec(ForMesh(o, paper::ShortName(m)));
+  }
   std::set<std::string> names;
   for (const std::string& m : cfg.meshes)
     if (!names.insert(paper::ShortName(m)).second)
@@ -220,21 +242,24 @@ std::string RunReport(const ReportConfig& in_cfg, const std::string& out_dir, co
     meshes.push_back({p, paper::ShortName(p), m.NumVertices(), m.NumTriangles(),
                       static_cast<int32_t>(m.interior.size())});
   }
-  // Work units: vertex-sweeps weighted by cost (measured here: a traced sweep into the analyzer
-  // costs about 4 timed sweeps, into the simulator about 12).
+  // Work units: vertex-sweeps weighted by their cost relative to a timed sweep, measured on the
+  // nine meshes and at 10^7 vertices: a traced sweep into the analyzer costs 12-20 timed sweeps,
+  // into the analyzer and the simulator 70-130; a run to convergence takes about 65 sweeps.
+  constexpr double kAnalysis = 15, kSimulation = 100, kSweepsToConverge = 65;
+  double p_sum = 0;
+  for (int p : cfg.threads) p_sum += 1.0 / p;
   double total = 0;
   const double no = static_cast<double>(cfg.orderings.size());
   for (const MeshRun& m : meshes) {
     const double v = m.vertices;
-    total += v * no * 4;                           // Table 2
-    total += v * no * 12.0 * cfg.validate_sweeps;  // Table 3
-    if (m.name == cfg.profile_mesh) total += v * no * 4.0 * cfg.profile_sweeps;
-    if (m.name == cfg.figure1_mesh) total += v * 4.0 * cfg.figure1_orderings.size();
-    if (cfg.timing) {
-      double p_sum = 0;
-      for (int p : cfg.threads) p_sum += 1.0 / p;
-      total += v * no * cfg.repeat * 30 * p_sum;  // ~30 sweeps to converge
-    }
+    total += v * no * kAnalysis;                          // Table 2
+    total += v * no * kSimulation * cfg.validate_sweeps;  // Table 3
+    if (m.name == cfg.profile_mesh) total += v * no * kAnalysis * cfg.profile_sweeps;
+    if (m.name == cfg.figure1_mesh)
+      for (const std::string& o : cfg.figure1_orderings)
+        if (std::find(cfg.orderings.begin(), cfg.orderings.end(), o) == cfg.orderings.end())
+          total += v * kAnalysis;
+    if (cfg.timing) total += v * no * cfg.repeat * kSweepsToConverge * p_sum;
   }
   Steps steps(progress, total);
 
@@ -267,7 +292,8 @@ std::string RunReport(const ReportConfig& in_cfg, const std::string& out_dir, co
                            std::find(cfg.figure1_orderings.begin(), cfg.figure1_orderings.end(),
                                      ord) != cfg.figure1_orderings.end();
       steps.Say("1/4 reuse distances: " + mr.name + " " + ord + ", first sweep");
-      Mesh m = ApplyPermutation(base, ComputeOrdering(ord, base, cfg.seed), cfg.triangle_order);
+      Mesh m = ApplyPermutation(base, ComputeOrdering(ForMesh(ord, mr.name), base, cfg.seed),
+                                cfg.triangle_order);
       const Mesh start = m.Clone();
       FirstSweep fs1{mr.name, ord, mr.vertices, {}};
       fs1.hist.Reserve(static_cast<uint64_t>(mr.vertices));
@@ -277,7 +303,7 @@ std::string RunReport(const ReportConfig& in_cfg, const std::string& out_dir, co
         DistanceSink sink{&sd, &fs1.hist, in_fig1 ? &series : nullptr, nullptr};
         Smooth(m, Sweeps(1), sink);
       }
-      steps.Done(mr.vertices * 4.0);
+      steps.Done(mr.vertices * kAnalysis);
       if (in_fig1) {
         Figure1Data f;
         f.ordering = ord;
@@ -309,7 +335,7 @@ std::string RunReport(const ReportConfig& in_cfg, const std::string& out_dir, co
         for (const ReuseProfile::Step& s : profile.steps())
           prof.AddRow({mr.name, ord, Int(s.iteration), Int(s.step), Int(s.accesses), Int(s.cold),
                        s.accesses > s.cold ? JsonNumber(s.mean()) : ""});
-        steps.Done(mr.vertices * 4.0 * cfg.profile_sweeps);
+        steps.Done(mr.vertices * kAnalysis * cfg.profile_sweeps);
       }
       if (in_tables) first.push_back(std::move(fs1));
     }
@@ -377,7 +403,7 @@ std::string RunReport(const ReportConfig& in_cfg, const std::string& out_dir, co
     const Mesh base = ReadMesh(mr.path);
     ValidationConfig vc;
     vc.mesh_name = mr.name;
-    vc.orderings = cfg.orderings;
+    vc.orderings = ForMesh(cfg.orderings, mr.name);
     vc.seed = cfg.seed;
     vc.iterations = cfg.validate_sweeps;
     vc.triangle_order = cfg.triangle_order;
@@ -386,10 +412,12 @@ std::string RunReport(const ReportConfig& in_cfg, const std::string& out_dir, co
     vc.counter_events = cfg.counter_events;
     steps.Say("2/4 misses (Table 3): " + mr.name + ", " + std::to_string(cfg.orderings.size()) +
               " orderings x " + std::to_string(cfg.validate_sweeps) + " traced sweeps");
-    for (OrderingValidation& v :
-         RunValidation(base, vc, [&](const std::string& s) { steps.Say("2/4 " + s); })) {
-      steps.Done(mr.vertices * 12.0 * cfg.validate_sweeps);
-      val.push_back(std::move(v));
+    std::vector<OrderingValidation> vs =
+        RunValidation(base, vc, [&](const std::string& s) { steps.Say("2/4 " + s); });
+    for (size_t k = 0; k < vs.size(); ++k) {
+      vs[k].ordering = cfg.orderings[k];  // the spec as given, {mesh} and all
+      steps.Done(mr.vertices * kSimulation * cfg.validate_sweeps);
+      val.push_back(std::move(vs[k]));
     }
   }
   const Table t3 = Table3(val);
@@ -454,24 +482,32 @@ std::string RunReport(const ReportConfig& in_cfg, const std::string& out_dir, co
   WriteTable(tables, "miss_reduction", red,
              "Fewer misses per level than ORI and BFS (mean over the meshes, \\%), one thread");
 
-  // Timing: RunCompare over meshes x orderings x threads.
+  // Timing: RunCompare over orderings x threads, a mesh at a time (each mesh's orderings may name
+  // its own permutation file).
   std::vector<CompareRow> rows;
   if (cfg.timing) {
     CompareConfig cc;
-    cc.meshes = cfg.meshes;
-    cc.orderings = cfg.orderings;
     cc.threads = cfg.threads;
     cc.repeat = cfg.repeat;
     cc.seed = cfg.seed;
     cc.smooth = cfg.smooth;
     cc.triangle_order = cfg.triangle_order;
-    double p_sum = 0;
-    for (int p : cfg.threads) p_sum += 1.0 / p;
-    double runs_units = 0;
-    for (const MeshRun& m : meshes) runs_units += m.vertices * no * cfg.repeat * 30 * p_sum;
-    rows = RunCompare(
-        cc, [&](const std::string& s) { steps.Say("3/4 timing: " + s); }, warn);
-    steps.Done(runs_units);
+    for (size_t mi = 0; mi < meshes.size(); ++mi) {
+      const MeshRun& m = meshes[mi];
+      cc.meshes = {m.path};
+      cc.orderings = ForMesh(cfg.orderings, m.name);
+      const std::string where = "3/4 timing [" + std::to_string(mi + 1) + "/" +
+                                std::to_string(meshes.size()) + "] " + m.name + ": ";
+      std::vector<CompareRow> mesh_rows =
+          RunCompare(cc, [&](const std::string& s) { steps.Say(where + s); }, {});
+      for (CompareRow& r : mesh_rows) {
+        const size_t k =
+            std::find(cc.orderings.begin(), cc.orderings.end(), r.ordering) - cc.orderings.begin();
+        if (k < cfg.orderings.size()) r.ordering = cfg.orderings[k];
+        rows.push_back(std::move(r));
+      }
+      steps.Done(m.vertices * no * cfg.repeat * kSweepsToConverge * p_sum);
+    }
     const auto fig1_mesh = std::find_if(
         meshes.begin(), meshes.end(), [&](const MeshRun& m) { return m.name == cfg.figure1_mesh; });
     std::vector<std::string> extra;
@@ -481,7 +517,7 @@ std::string RunReport(const ReportConfig& in_cfg, const std::string& out_dir, co
     if (fig1_mesh != meshes.end() && !extra.empty()) {
       CompareConfig fc = cc;
       fc.meshes = {fig1_mesh->path};
-      fc.orderings = extra;
+      fc.orderings = ForMesh(extra, fig1_mesh->name);
       fc.threads = {1};
       steps.Say("3/4 timing Figure 1's other orderings on " + fig1_mesh->name);
       for (CompareRow& r : RunCompare(fc, {}, {})) rows.push_back(std::move(r));

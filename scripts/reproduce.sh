@@ -9,10 +9,11 @@
 # Usage: scripts/reproduce.sh [--quick | --scale] [--orderings ori,bfs,rdr,file:my.perm,...]
 #          [--threads 1,2] [--repeat 3] [--vertices N] [--shapes a,b,...] [--out DIR] [--quiet]
 #   --quick   the same pipeline on 20,000-vertex meshes, one round (under two minutes; CI runs it)
-#   --scale   one shape (ocean) at 10^4, 10^5, 10^6 and 10^7 vertices, one thread: time per vertex
+#   --scale   one shape (ocean) at 10^4, 10^5, 10^6 and 10^7 vertices, one thread (~15 min): time per vertex
 #             per sweep and simulated misses per access against size (figure "scale")
 #   --orderings  registered names (meshreuse orderings) or file:PATH (a permutation file, one
-#             old vertex id per line in new order); ori is always run (the speedups need it)
+#             old vertex id per line in new order; {mesh} in PATH stands for each mesh's name,
+#             e.g. file:perms/{mesh}.perm); ori is always run (the speedups need it)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -40,8 +41,8 @@ done
 [[ $repeat =~ ^[0-9]+$ && $repeat -ge 1 ]] || die "--repeat takes a number >= 1, found '$repeat'"
 [[ -z $threads || $threads =~ ^[0-9]+(,[0-9]+)*$ ]] || die "--threads takes numbers like 1,2, found '$threads'"
 [[ ,$orderings, == *,ori,* ]] || orderings="ori,$orderings"
-for o in ${orderings//,/ }; do
-  if [[ $o == file:* ]]; then
+for o in ${orderings//,/ }; do  # file:PATH; {mesh} in PATH is each mesh's name (checked later)
+  if [[ $o == file:* && $o != *'{mesh}'* ]]; then
     [[ -f ${o#file:} ]] || die "--orderings: ${o#file:}: no such file"
   fi
 done
@@ -95,13 +96,13 @@ case $mode in
   scale)
     for v in 10000 100000 1000000 10000000; do files+=("$(mesh ocean "$v" out/meshes/scale "ocean-$v")"); done
     [[ -n $threads ]] || args+=(--threads 1)
-    args+=(--validate-sweeps 1 --figure1-mesh none --profile-mesh none) ;;
+    args+=(--figure1-mesh none --profile-mesh none) ;;
 esac
 
 say "running meshreuse report on ${#files[@]} meshes ($mode): orderings $orderings -> $out"
 "$bin" report "${files[@]}" "${args[@]}" --out "$out" $quiet >/dev/null
 say "drawing the figures"
-/usr/bin/python3 scripts/plot_report.py "$out" >&2
+if [[ -n $quiet ]]; then /usr/bin/python3 scripts/plot_report.py "$out" >/dev/null; else /usr/bin/python3 scripts/plot_report.py "$out" >&2; fi
 elapsed=$(($(date +%s) - start))
 say "done in $((elapsed / 60)) min $((elapsed % 60)) s"
 

@@ -1,16 +1,18 @@
 #!/usr/bin/env bash
 # The README's test command: installs what is missing (apt-get, as root), builds a Release and an
 # ASan+UBSan build with warnings as errors, and runs every test (GoogleTest suites and CLI checks)
-# in both, runs the scale smoke test (scripts/scale_smoke.sh: 10^6 vertices, memory budget), then
-# fuzzes every reader for 60 s each (scripts/fuzz.sh; libFuzzer from clang). Exit 0
-# only when everything passed.
+# in both, runs the scale smoke test (scripts/scale_smoke.sh: 10^6 vertices, memory budget) and the
+# report pipeline on small meshes (scripts/reproduce.sh --quick: every table in CSV, Markdown and
+# LaTeX, every figure in PNG and PDF, the results README, checked well-formed by
+# tests/scripts/check_report.py), then fuzzes every reader for 60 s each (scripts/fuzz.sh;
+# libFuzzer from clang). Exit 0 only when everything passed.
 # Usage: scripts/test.sh [--quick]   (--quick: Release build only, no sanitizers, no fuzzing)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
 quick=0
 [[ ${1:-} == --quick ]] && quick=1
-bash scripts/setup.sh
+bash scripts/setup.sh --with-plots
 
 jobs=$(nproc 2>/dev/null || echo 2)
 build() {  # build DIR [cmake args...]
@@ -31,6 +33,11 @@ build build/release -DCMAKE_BUILD_TYPE=Release
 run_tests build/release
 echo "== scale smoke test: a 10^6-vertex mesh through every command, memory checked" >&2
 bash scripts/scale_smoke.sh build/release/cli/meshreuse
+echo "== the report on small meshes: scripts/reproduce.sh --quick, every file checked" >&2
+rm -rf build/quick-report
+bash scripts/reproduce.sh --quick --quiet --out build/quick-report >/dev/null
+/usr/bin/python3 tests/scripts/check_report.py build/quick-report figure1 profile histograms \
+  miss-rates time speedup speedup-mean gain
 if ((quick == 0)); then
   build build/asan -DCMAKE_BUILD_TYPE=Debug -DMESHREUSE_SANITIZE=ON
   ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
