@@ -122,7 +122,7 @@ int SimulateCommand(const Args& args) {
                     std::to_string(levels[i].bytes / line_bytes / levels[i].ways),
                     std::to_string(s.accesses), std::to_string(s.accesses - s.misses),
                     std::to_string(s.misses), std::to_string(s.cold),
-                    std::to_string(s.misses - s.cold), Fixed(s.MissRate(), 6),
+                    std::to_string(s.misses - s.cold), JsonNumber(s.MissRate()),
                     std::to_string(s.read_misses), std::to_string(s.write_misses)});
         }
     }

@@ -129,15 +129,14 @@ uint64_t DistanceBinLo(int b) {
                 : static_cast<uint64_t>(std::ceil(std::exp2((b - 1.0) / kDistanceBinsPerOctave)));
 }
 
-// CSV keeps every digit; Markdown and LaTeX are for reading (Table::Readable).
+// CSV keeps every digit; Markdown and LaTeX round full-precision cells for reading (table.h).
 void WriteTable(const std::string& dir, const std::string& name, const Table& t,
                 const std::string& caption) {
-  const Table r = t.Readable();
   WriteAtomically(dir + "/" + name + ".csv", [&](std::FILE* f) { std::fputs(t.Csv().c_str(), f); });
   WriteAtomically(dir + "/" + name + ".md",
-                  [&](std::FILE* f) { std::fputs(r.Markdown().c_str(), f); });
+                  [&](std::FILE* f) { std::fputs(t.Markdown().c_str(), f); });
   WriteAtomically(dir + "/" + name + ".tex",
-                  [&](std::FILE* f) { std::fputs(r.Latex(caption, "tab:" + name).c_str(), f); });
+                  [&](std::FILE* f) { std::fputs(t.Latex(caption, "tab:" + name).c_str(), f); });
 }
 
 void WriteFile(const std::string& path, const std::string& text) {
@@ -682,7 +681,7 @@ std::string RunReport(const ReportConfig& in_cfg, const std::string& out_dir, co
        "cell is a value the paper does not give (or not for a mesh of its size).\n\n";
   auto section = [&](const std::string& title, const std::string& name, const Table& t,
                      const std::string& note) {
-    r += "## " + title + "\n\n" + note + (note.empty() ? "" : "\n\n") + t.Readable().Markdown() +
+    r += "## " + title + "\n\n" + note + (note.empty() ? "" : "\n\n") + t.Markdown() +
          "\nFiles: [csv](tables/" + name + ".csv), [md](tables/" + name + ".md), [tex](tables/" +
          name + ".tex)\n\n";
   };

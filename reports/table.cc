@@ -27,28 +27,31 @@ bool LooksNumeric(const std::string& s) {
 }
 }  // namespace
 
+namespace {
+// A cell written at full precision (more than six decimals) shown with four significant digits.
+std::string ReadableCell(const std::string& c) {
+  const size_t dot = c.find('.');
+  if (dot == std::string::npos || c.size() - dot - 1 <= 6 ||
+      c.find_first_of("eE,") != std::string::npos)
+    return c;
+  char* end = nullptr;
+  const double v = std::strtod(c.c_str(), &end);
+  if (!end || *end != '\0') return c;
+  char b[64];
+  std::snprintf(b, sizeof b, std::fabs(v) >= 1000 ? "%.0f" : "%.4g", v);
+  return b;
+}
+}  // namespace
+
 Table Table::Readable() const {
   Table t = *this;
   for (auto& row : t.rows_)
-    for (std::string& c : row) {
-      const size_t dot = c.find('.');
-      if (dot == std::string::npos || c.size() - dot - 1 <= 6 ||
-          c.find_first_of("eE,") != std::string::npos)
-        continue;
-      char* end = nullptr;
-      const double v = std::strtod(c.c_str(), &end);
-      if (!end || *end != '\0') continue;
-      char b[64];
-      if (std::fabs(v) >= 1000)
-        std::snprintf(b, sizeof b, "%.0f", v);
-      else
-        std::snprintf(b, sizeof b, "%.4g", v);
-      c = b;
-    }
+    for (std::string& c : row) c = ReadableCell(c);
   return t;
 }
 
 std::string Table::Aligned() const {
+  if (!readable_) return Readable().MarkReadable().Aligned();
   std::vector<size_t> w(header_.size());
   for (size_t c = 0; c < header_.size(); ++c) {
     w[c] = header_[c].size();
@@ -98,6 +101,7 @@ std::vector<bool> Table::RightAligned() const {
 }
 
 std::string Table::Markdown() const {
+  if (!readable_) return Readable().MarkReadable().Markdown();
   auto line = [](const std::vector<std::string>& cells) {
     std::string s = "|";
     for (const auto& c : cells) s += " " + (c.empty() ? std::string("-") : c) + " |";
@@ -112,6 +116,7 @@ std::string Table::Markdown() const {
 }
 
 std::string Table::Latex(const std::string& caption, const std::string& label) const {
+  if (!readable_) return Readable().MarkReadable().Latex(caption, label);
   auto esc = [](const std::string& t) {
     std::string o;
     for (char ch : t) switch (ch) {

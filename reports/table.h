@@ -16,7 +16,8 @@ class Table {
   size_t Rows() const { return rows_.size(); }
 
   // A copy for reading: cells written at full precision (more than six decimals, e.g.
-  // JsonNumber's) shown with four significant digits (no decimals from 1000 up).
+  // JsonNumber's) shown with four significant digits (no decimals from 1000 up). Aligned text,
+  // Markdown and LaTeX are always rendered from it; CSV and JSON keep every digit.
   Table Readable() const;
   std::string Aligned() const;  // numbers right-aligned, text left-aligned
   std::string Csv() const;      // RFC 4180 quoting
@@ -30,6 +31,11 @@ class Table {
 
  private:
   std::vector<bool> RightAligned() const;  // columns whose every present cell looks numeric
+  Table MarkReadable() && {
+    readable_ = true;
+    return std::move(*this);
+  }
+  bool readable_ = false;  // cells already rounded for reading
   std::vector<std::string> header_;
   std::vector<std::vector<std::string>> rows_;
 };

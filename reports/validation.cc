@@ -13,6 +13,7 @@
 #include "analysis/trace_analysis.h"
 #include "core/orderings/registry.h"
 #include "reports/paper.h"
+#include "reports/run_info.h"
 
 namespace meshreuse {
 
@@ -31,7 +32,7 @@ std::string Cap(uint64_t c, double scale = 1.0) {
   if (c == kInfiniteCapacity) return "inf";
   return scale == 1.0 ? std::to_string(c) : Fixed(static_cast<double>(c) * scale, 2);
 }
-std::string Ratio(double a, double b) { return b > 0 ? Fixed(a / b, 3) : ""; }
+std::string Ratio(double a, double b) { return b > 0 ? JsonNumber(a / b) : ""; }
 
 }  // namespace
 
@@ -150,8 +151,8 @@ Table ValidationTable(const std::vector<OrderingValidation>& r) {
                 l.measured ? Fixed(l.counter, 0) : "",
                 Ratio(static_cast<double>(l.model_line), static_cast<double>(s.misses)),
                 l.measured ? Ratio(static_cast<double>(s.misses), l.counter) : "",
-                Fixed(s.MissRate(), 6),
-                v.line_accesses ? Fixed(static_cast<double>(s.misses) / v.line_accesses, 6) : "",
+                JsonNumber(s.MissRate()),
+                v.line_accesses ? JsonNumber(static_cast<double>(s.misses) / v.line_accesses) : "",
                 l.measured ? "measured" : "simulated"});
     }
   return t;
