@@ -48,6 +48,11 @@ std::string JsonString(const std::string& s) {
 
 std::string JsonNumber(double v) {
   if (!std::isfinite(v)) return "null";
+  if (v == std::floor(v) && std::fabs(v) < 9007199254740992.0) {  // an integer: no exponent
+    char b[32];
+    std::snprintf(b, sizeof b, "%.0f", v);
+    return b;
+  }
   char buf[32];
   std::snprintf(buf, sizeof buf, "%.17g", v);
   double back = 0;

@@ -9,7 +9,7 @@
 namespace meshreuse {
 
 std::string JsonString(const std::string& s);  // quoted and escaped
-std::string JsonNumber(double v);              // shortest round-trip form; null for NaN/inf
+std::string JsonNumber(double v);  // shortest round-trip form (integers in full); null for NaN/inf
 
 // {"hostname":..., "cpu":..., "cores":..., "os":..., "caches": {"L1d": "48K", ...}, "compiler":...}
 std::string MachineJson();

@@ -67,6 +67,19 @@ def grid(n, width=4.2, height=3.0, max_cols=3):
     return fig, flat[:n]
 
 
+def grouped_bars(ax, groups, series, value, label=None):
+    """Side by side within each group, one bar per series of height value(group, series) (None:
+    no bar), coloured by series (an ordering)."""
+    width = 0.8 / len(series)
+    for k, s in enumerate(series):
+        ys = [value(g, s) for g in groups]
+        ax.bar([i + (k - (len(series) - 1) / 2) * width for i in range(len(groups))],
+               [y if y is not None else 0 for y in ys], width=width, color=colour(s),
+               label=label(s) if label else s)
+    ax.set_xticks(range(len(groups)))
+    ax.set_xticklabels(groups, fontsize=8)
+
+
 def legend_below(fig, axes):
     """One legend under the panels, so it hides no line."""
     handles, labels = [], []

@@ -47,7 +47,7 @@ def main(data, summary, out, mesh="ocean"):
         paper = ""
         if s.get("paper_mean_distance"):
             paper = (f"\npaper: {num(s['paper_mean_distance']):,.0f}, "
-                     f"{num(s['paper_l1_miss_percent'] if 'paper_l1_miss_percent' in s else s['paper_l1_miss_rate_pct']):.2f}% (measured), "
+                     f"{num(s['paper_l1_miss_rate_pct']):.2f}% (measured), "
                      f"{num(s['paper_seconds']):.3g} s")
         ax.set_title(f"{o.upper() if o in ('ori', 'bfs', 'rdr') else o}: {ours}{paper}",
                      fontsize=9)

@@ -6,7 +6,7 @@
 """
 import sys
 
-from plot_common import colour, legend_below, num, plt, read_csv, save, unique
+from plot_common import grouped_bars, legend_below, num, plt, read_csv, save, unique
 
 
 def main(data, out):
@@ -16,19 +16,17 @@ def main(data, out):
     meshes = unique(rows, "mesh")
     ords = unique(rows, "ordering")
     fig, ax = plt.subplots(figsize=(max(6, 0.9 * len(meshes) * max(1, len(ords) / 2)), 3.6))
-    width = 0.8 / len(ords)
-    for k, o in enumerate(ords):
-        ys, sp = [], []
-        for m in meshes:
-            r = next((r for r in rows if r["mesh"] == m and r["ordering"] == o), None)
-            ys.append(num(r["total_s"]) if r else 0)
-            if r and num(r["speedup_vs_ori"]) is not None:
-                sp.append(num(r["speedup_vs_ori"]))
-        lab = o + (f" (mean {sum(sp) / len(sp):.2f}x vs ori)" if sp else "")
-        ax.bar([i + (k - (len(ords) - 1) / 2) * width for i in range(len(meshes))], ys,
-               width=width, color=colour(o), label=lab)
-    ax.set_xticks(range(len(meshes)))
-    ax.set_xticklabels(meshes, fontsize=8)
+
+    def row(m, o):
+        return next((r for r in rows if r["mesh"] == m and r["ordering"] == o), None)
+
+    def label(o):
+        sp = [num(row(m, o)["speedup_vs_ori"]) for m in meshes
+              if row(m, o) and num(row(m, o)["speedup_vs_ori"]) is not None]
+        return o + (f" (mean {sum(sp) / len(sp):.2f}x vs ori)" if sp else "")
+
+    grouped_bars(ax, meshes, ords, lambda m, o: num(row(m, o)["total_s"]) if row(m, o) else None,
+                 label)
     ax.set_ylabel("time to convergence (s)")
     ax.set_title("Laplacian smoothing, one thread (median over the rounds)", fontsize=11)
     legend_below(fig, [ax])

@@ -67,6 +67,8 @@ TEST(Json, StringsAndNumbers) {
   EXPECT_EQ(JsonString("a\"b\\c\n\x01"), "\"a\\\"b\\\\c\\n\\u0001\"");
   EXPECT_EQ(JsonNumber(0.1), "0.1");
   EXPECT_EQ(JsonNumber(5e-6), "5e-06");
+  EXPECT_EQ(JsonNumber(3365240.0), "3365240");  // a count stays an integer
+  EXPECT_EQ(JsonNumber(-2.0), "-2");
   EXPECT_EQ(JsonNumber(1.0 / 3), "0.3333333333333333");  // shortest that reads back
   EXPECT_EQ(JsonNumber(std::numeric_limits<double>::quiet_NaN()), "null");
   EXPECT_EQ(MachineJson().front(), '{');
