@@ -32,6 +32,14 @@ def read_csv(path):
     return rows
 
 
+def read_rows(path, why=""):
+    """read_csv, refusing a file without rows (SystemExit naming it, and why that matters)."""
+    rows = read_csv(path)
+    if not rows:
+        raise SystemExit(f"plot: {path}: no rows{why}")
+    return rows
+
+
 def num(s):
     """A CSV cell as a float; None for an empty (missing) cell."""
     return None if s is None or s == "" else float(s)

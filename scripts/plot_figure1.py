@@ -10,15 +10,13 @@ import sys
 
 import matplotlib.colors as mcolors
 
-from plot_common import num, plt, read_csv, save, unique
+from plot_common import num, plt, read_csv, read_rows, save, unique
 
 
 def main(data, summary, out, mesh="ocean"):
-    rows = read_csv(data)
+    rows = read_rows(data)
     summ = {r["ordering"]: r for r in read_csv(summary)}
     ords = unique(rows, "ordering")
-    if not ords:
-        raise SystemExit(f"plot_figure1: {data}: no rows")
     fig, axes = plt.subplots(len(ords), 1, figsize=(9, 2.9 * len(ords)), squeeze=False)
     tmax = max(int(r["time_bin"]) for r in rows) + 1
     finite = [r for r in rows if r["distance_lo"] != "cold"]

@@ -7,15 +7,13 @@ in the fully associative model.
 """
 import sys
 
-from plot_common import colour, grid, legend_below, read_csv, save, unique
+from plot_common import colour, grid, legend_below, read_csv, read_rows, save, unique
 
 
 def main(data, caps, out):
-    rows = read_csv(data)
+    rows = read_rows(data)
     levels = read_csv(caps)
     meshes = unique(rows, "mesh")
-    if not meshes:
-        raise SystemExit(f"plot_histograms: {data}: no rows")
     fig, axes = grid(len(meshes), width=4.2, height=3.0)
     for ax, m in zip(axes, meshes):
         for o in unique([r for r in rows if r["mesh"] == m], "ordering"):

@@ -7,13 +7,11 @@ hardware counters or simulated.
 """
 import sys
 
-from plot_common import grouped_bars, legend_below, num, plt, read_csv, save, unique
+from plot_common import grouped_bars, legend_below, num, plt, read_rows, save, unique
 
 
 def main(data, out):
-    rows = read_csv(data)
-    if not rows:
-        raise SystemExit(f"plot_misses: {data}: no rows")
+    rows = read_rows(data)
     levels = unique(rows, "level")
     meshes = unique(rows, "mesh")
     ords = unique(rows, "ordering")

@@ -6,13 +6,11 @@ steps; one panel per ordering (the paper shows ORI alone), sweeps separated by d
 """
 import sys
 
-from plot_common import colour, grid, num, read_csv, save, unique
+from plot_common import colour, grid, num, read_rows, save, unique
 
 
 def main(data, out):
-    rows = read_csv(data)
-    if not rows:
-        raise SystemExit(f"plot_profile: {data}: no rows (a trace without sweeps has no profile)")
+    rows = read_rows(data, " (a trace without sweeps has no profile)")
     mesh = rows[0]["mesh"]
     ords = unique(rows, "ordering")
     fig, axes = grid(len(ords), width=5.0, height=3.2, max_cols=3)

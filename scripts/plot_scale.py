@@ -7,13 +7,13 @@ working set leaves a cache, the orderings part.
 """
 import sys
 
-from plot_common import colour, legend_below, num, plt, read_csv, save, unique
+from plot_common import colour, legend_below, num, plt, read_csv, read_rows, save, unique
 
 
 def main(table1, time, misses, out):
     sizes = {r["mesh"]: int(r["vertices"]) for r in read_csv(table1)}
     trows = read_csv(time)
-    mrows = read_csv(misses)
+    mrows = read_rows(misses)
     ords = unique(mrows, "ordering")
     levels = unique(mrows, "level")
     fig, axes = plt.subplots(1, 1 + len(levels), figsize=(4.2 * (1 + len(levels)), 3.6),

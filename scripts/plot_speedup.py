@@ -10,13 +10,11 @@
 import os
 import sys
 
-from plot_common import colour, grid, legend_below, num, plt, read_csv, save, unique
+from plot_common import colour, grid, legend_below, num, plt, read_rows, save, unique
 
 
 def main(data, outdir):
-    rows = read_csv(data)
-    if not rows:
-        raise SystemExit(f"plot_speedup: {data}: no rows")
+    rows = read_rows(data)
     meshes = unique(rows, "mesh")
     ords = unique(rows, "ordering")
     threads = sorted({int(r["threads"]) for r in rows})

@@ -6,13 +6,11 @@
 """
 import sys
 
-from plot_common import grouped_bars, legend_below, num, plt, read_csv, save, unique
+from plot_common import grouped_bars, legend_below, num, plt, read_rows, save, unique
 
 
 def main(data, out):
-    rows = read_csv(data)
-    if not rows:
-        raise SystemExit(f"plot_time: {data}: no rows")
+    rows = read_rows(data)
     meshes = unique(rows, "mesh")
     ords = unique(rows, "ordering")
     fig, ax = plt.subplots(figsize=(max(6, 0.9 * len(meshes) * max(1, len(ords) / 2)), 3.6))
