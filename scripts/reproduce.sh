@@ -77,7 +77,11 @@ mesh() {  # mesh SHAPE VERTICES DIR -> prints the .node path (meshed once, cache
   mkdir -p "$dir"
   if [[ ! -s $dir/$name.node || ! -s $dir/$name.ele ]]; then
     say "meshing $s${v:+ at $v vertices} with Triangle -> $dir/$name"
-    "$bin" mesh generate --shape "$s" ${v:+--vertices "$v"} -o "$dir/$name" --quiet >&2
+    if [[ -n $quiet ]]; then
+      "$bin" mesh generate --shape "$s" ${v:+--vertices "$v"} -o "$dir/$name" --quiet >/dev/null
+    else
+      "$bin" mesh generate --shape "$s" ${v:+--vertices "$v"} -o "$dir/$name" --quiet >&2
+    fi
   fi
   echo "$dir/$name.node"
 }
