@@ -40,10 +40,11 @@ struct StreamAnalysis {
     if (exact) AddExact(id);
     if (shards) shards->Access(id);
   }
-  void AddExact(uint64_t id) {
+  uint64_t AddExact(uint64_t id) {  // the access's distance (StackDistance::kCold if cold)
     const uint64_t d = sd.Access(id);
     hist.Add(d);
     if (profile.enabled()) profile.Add(d);
+    return d;
   }
   // The next n accesses at once, on `threads` OpenMP threads (parallel_stack_distance.h): the
   // same histogram and profile as n calls of Add.

@@ -30,15 +30,6 @@ double Since(Clock::time_point t0) {
   return std::chrono::duration<double>(Clock::now() - t0).count();
 }
 
-std::string Duration(double s) {
-  char b[32];
-  if (s < 90)
-    std::snprintf(b, sizeof b, "%.0fs", s);
-  else
-    std::snprintf(b, sizeof b, "%.0fm%02.0fs", std::floor(s / 60), std::fmod(s, 60));
-  return b;
-}
-
 }  // namespace
 
 std::vector<CompareRow> RunCompare(const CompareConfig& cfg,

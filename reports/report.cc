@@ -15,6 +15,7 @@
 #include "analysis/papi_counters.h"
 #include "analysis/reuse_histogram.h"
 #include "analysis/stack_distance.h"
+#include "analysis/trace_analysis.h"
 #include "core/mesh_io.h"
 #include "core/orderings/registry.h"
 #include "reports/compare.h"
@@ -30,23 +31,19 @@ namespace {
 using Clock = std::chrono::steady_clock;
 using SayFn = std::function<void(const std::string&)>;
 
-// The first sweep's element stream into one exact LRU stack: the histogram, and optionally every
-// distance in order (Figure 1) or the profile over several sweeps.
-struct DistanceSink {
+// The element stream into one exact stream analysis (its stack, histogram and, when enabled, its
+// profile), and for Figure 1 optionally every distance in order.
+struct ElementSink {
   static constexpr bool kEnabled = true;
-  StackDistance* sd;
-  ReuseHistogram* hist = nullptr;
+  StreamAnalysis* analysis;
   std::vector<uint32_t>* series = nullptr;  // kColdMark for a first touch
-  ReuseProfile* profile = nullptr;
   static constexpr uint32_t kColdMark = std::numeric_limits<uint32_t>::max();
   void Bind(const ArrayLayout&) {}
   void BeginSweep(int) {}
   void Access(int, const MemRef& r) {
     if (r.element == AccessKind::kNone) return;
-    const uint64_t d = sd->Access(static_cast<uint32_t>(r.vertex));
-    if (hist) hist->Add(d);
+    const uint64_t d = analysis->AddExact(static_cast<uint32_t>(r.vertex));
     if (series) series->push_back(d == StackDistance::kCold ? kColdMark : static_cast<uint32_t>(d));
-    if (profile) profile->Add(d);
   }
 };
 
@@ -74,15 +71,6 @@ double Mean(const std::vector<double>& v) {
   return n ? s / n : NAN;
 }
 
-std::string Duration(double s) {
-  char b[32];
-  if (s < 90)
-    std::snprintf(b, sizeof b, "%.0fs", s);
-  else
-    std::snprintf(b, sizeof b, "%dm%02ds", static_cast<int>(s / 60), static_cast<int>(s) % 60);
-  return b;
-}
-
 // Progress with the elapsed time and an estimate of what remains, from work units done so far
 // (units: vertices x sweeps of each step, weighted by its measured cost per access).
 class Steps {
@@ -106,7 +94,8 @@ class Steps {
 
 struct MeshRun {
   std::string path, name;
-  int32_t vertices = 0, triangles = 0, interior = 0;
+  double weight = 0;  // its file's bytes: the progress estimate's unit (work grows with vertices)
+  int32_t vertices = 0, triangles = 0, interior = 0;  // once read
 };
 
 struct FirstSweep {  // Table 2 and the histogram of one mesh x ordering
@@ -237,26 +226,24 @@ std::string RunReport(const ReportConfig& in_cfg, const std::string& out_dir, co
   fs::create_directories(data);
   fs::create_directories(out_dir + "/figures");
 
-  // Sizes first (cheap), to estimate the work.
+  // Each mesh is read once, when its turn comes; the work is estimated from the files' sizes.
   std::vector<MeshRun> meshes;
   for (const std::string& p : cfg.meshes) {
-    std::vector<std::string> warnings;
-    const Mesh m = ReadMesh(p, &warnings);
-    if (warn)
-      for (const std::string& w : warnings) warn(p + ": " + w);
-    meshes.push_back({p, paper::ShortName(p), m.NumVertices(), m.NumTriangles(),
-                      static_cast<int32_t>(m.interior.size())});
+    std::error_code ec;
+    const uintmax_t bytes = fs::file_size(p, ec);
+    meshes.push_back({p, paper::ShortName(p), ec ? 1.0 : static_cast<double>(bytes)});
   }
-  // Work units: vertex-sweeps weighted by their cost relative to a timed sweep, measured on the
-  // nine meshes and at 10^7 vertices: a traced sweep into the analyzer costs 12-20 timed sweeps,
-  // into the analyzer and the simulator 70-130; a run to convergence takes about 65 sweeps.
+  // Work units: file bytes x sweeps, each sweep weighted by its cost relative to a timed sweep,
+  // measured on the nine meshes and at 10^7 vertices: a traced sweep into the analyzer costs 12-20
+  // timed sweeps, into the analyzer and the simulator 70-130; a run to convergence takes about 65
+  // sweeps.
   constexpr double kAnalysis = 15, kSimulation = 100, kSweepsToConverge = 65;
   double p_sum = 0;
   for (int p : cfg.threads) p_sum += 1.0 / p;
   double total = 0;
   const double no = static_cast<double>(cfg.orderings.size());
   for (const MeshRun& m : meshes) {
-    const double v = m.vertices;
+    const double v = m.weight;
     total += v * no * kAnalysis;                          // Table 2
     total += v * no * kSimulation * cfg.validate_sweeps;  // Table 3
     if (m.name == cfg.profile_mesh) total += v * no * kAnalysis * cfg.profile_sweeps;
@@ -268,24 +255,26 @@ std::string RunReport(const ReportConfig& in_cfg, const std::string& out_dir, co
   }
   Steps steps(progress, total);
 
-  // Table 1.
+  // Per mesh: Table 1's row; Table 2, the histograms, Figure 1 and the profile (the exact analyzer
+  // on the element stream); Table 3 and the miss rates (the simulator, or counters).
   Table t1({"label", "mesh", "vertices", "triangles", "interior", "paper_vertices",
             "paper_triangles", "vertices_vs_paper_pct"});
-  for (const MeshRun& m : meshes) {
-    const auto p = paper::Table1(m.name);
-    t1.AddRow({p ? p->label : "", m.name, Int(m.vertices), Int(m.triangles), Int(m.interior),
-               p ? Int(p->vertices) : "", p ? Int(p->triangles) : "",
-               p ? Num(100.0 * (m.vertices - p->vertices) / p->vertices, 1) : ""});
-  }
-  WriteTable(tables, "table1", t1, "Input mesh configuration (the paper's Table 1)");
-
-  // Table 2, the histograms, Figure 1 and the profile: the exact analyzer on the element stream.
+  std::vector<OrderingValidation> val;
   std::vector<FirstSweep> first;
   std::vector<Figure1Data> fig1;
   Table prof({"mesh", "ordering", "iteration", "step", "accesses", "cold", "mean_distance"});
   const uint64_t c1 = cfg.levels[0].bytes / cfg.element_bytes;
-  for (const MeshRun& mr : meshes) {
-    const Mesh base = ReadMesh(mr.path);
+  for (MeshRun& mr : meshes) {
+    std::vector<std::string> warnings;
+    const Mesh base = ReadMesh(mr.path, &warnings);
+    if (warn)
+      for (const std::string& w : warnings) warn(mr.path + ": " + w);
+    mr.vertices = base.NumVertices(), mr.triangles = base.NumTriangles();
+    mr.interior = static_cast<int32_t>(base.interior.size());
+    const auto p1 = paper::Table1(mr.name);
+    t1.AddRow({p1 ? p1->label : "", mr.name, Int(mr.vertices), Int(mr.triangles), Int(mr.interior),
+               p1 ? Int(p1->vertices) : "", p1 ? Int(p1->triangles) : "",
+               p1 ? Num(100.0 * (mr.vertices - p1->vertices) / p1->vertices, 1) : ""});
     std::vector<std::string> ords = cfg.orderings;
     if (mr.name == cfg.figure1_mesh)
       for (const std::string& o : cfg.figure1_orderings)
@@ -296,21 +285,21 @@ std::string RunReport(const ReportConfig& in_cfg, const std::string& out_dir, co
       const bool in_fig1 = mr.name == cfg.figure1_mesh &&
                            std::find(cfg.figure1_orderings.begin(), cfg.figure1_orderings.end(),
                                      ord) != cfg.figure1_orderings.end();
-      steps.Say("1/4 reuse distances: " + mr.name + " " + ord + ", first sweep");
+      steps.Say("reuse distances: " + mr.name + " " + ord + ", first sweep");
       Mesh m = ApplyPermutation(base, ComputeOrdering(ForMesh(ord, mr.name), base, cfg.seed),
                                 cfg.triangle_order);
       const bool profile = in_tables && mr.name == cfg.profile_mesh;
       std::optional<Mesh> start;  // the laid-out mesh before the sweep, for the profile's run
       if (profile) start = m.Clone();
       FirstSweep fs1{mr.name, ord, mr.vertices, {}};
-      fs1.hist.Reserve(static_cast<uint64_t>(mr.vertices));
       std::vector<uint32_t> series;
       {
-        StackDistance sd(static_cast<uint64_t>(mr.vertices));
-        DistanceSink sink{&sd, &fs1.hist, in_fig1 ? &series : nullptr, nullptr};
+        StreamAnalysis a(static_cast<uint64_t>(mr.vertices));
+        ElementSink sink{&a, in_fig1 ? &series : nullptr};
         Smooth(m, Sweeps(1), sink);
+        fs1.hist = std::move(a.hist);
       }
-      steps.Done(mr.vertices * kAnalysis);
+      steps.Done(mr.weight * kAnalysis);
       if (in_fig1) {
         Figure1Data f;
         f.ordering = ord;
@@ -326,27 +315,49 @@ std::string RunReport(const ReportConfig& in_cfg, const std::string& out_dir, co
           const size_t t =
               static_cast<size_t>((static_cast<unsigned __int128>(i) * tb) / series.size());
           const uint32_t d = series[i];
-          ++f.bins[t][d == DistanceSink::kColdMark ? db - 1 : DistanceBin(d)];
+          ++f.bins[t][d == ElementSink::kColdMark ? db - 1 : DistanceBin(d)];
         }
         fig1.push_back(std::move(f));
       }
       if (profile) {
-        steps.Say("1/4 reuse-distance profile: " + mr.name + " " + ord + ", " +
+        steps.Say("reuse-distance profile: " + mr.name + " " + ord + ", " +
                   std::to_string(cfg.profile_sweeps) + " sweeps");
         Mesh pm = std::move(*start);
-        ReuseProfile profile(std::vector<uint64_t>(cfg.profile_sweeps, AccessesPerSweep(pm)[0]),
-                             100);
-        StackDistance sd(static_cast<uint64_t>(mr.vertices));
-        DistanceSink sink{&sd, nullptr, nullptr, &profile};
+        StreamAnalysis a(static_cast<uint64_t>(mr.vertices));
+        a.profile =
+            ReuseProfile(std::vector<uint64_t>(cfg.profile_sweeps, AccessesPerSweep(pm)[0]), 100);
+        ElementSink sink{&a};
         Smooth(pm, Sweeps(cfg.profile_sweeps), sink);
-        for (const ReuseProfile::Step& s : profile.steps())
+        for (const ReuseProfile::Step& s : a.profile.steps())
           prof.AddRow({mr.name, ord, Int(s.iteration), Int(s.step), Int(s.accesses), Int(s.cold),
                        s.accesses > s.cold ? JsonNumber(s.mean()) : ""});
-        steps.Done(mr.vertices * kAnalysis * cfg.profile_sweeps);
+        steps.Done(mr.weight * kAnalysis * cfg.profile_sweeps);
       }
       if (in_tables) first.push_back(std::move(fs1));
     }
+
+    ValidationConfig vc;
+    vc.mesh_name = mr.name;
+    vc.seed = cfg.seed;
+    vc.iterations = cfg.validate_sweeps;
+    vc.triangle_order = cfg.triangle_order;
+    vc.levels = cfg.levels;
+    vc.element_bytes = cfg.element_bytes, vc.line_bytes = cfg.line_bytes;
+    vc.counter_events = cfg.counter_events;
+    steps.Say("misses (Table 3): " + mr.name + ", " + std::to_string(cfg.orderings.size()) +
+              " orderings x " + std::to_string(cfg.validate_sweeps) + " traced sweeps");
+    // One ordering at a time, so progress moves with each.
+    const std::vector<std::string> specs = ForMesh(cfg.orderings, mr.name);
+    for (size_t k = 0; k < specs.size(); ++k) {
+      vc.orderings = {specs[k]};
+      std::vector<OrderingValidation> vs =
+          RunValidation(base, vc, [&](const std::string& s) { steps.Say(s); });
+      vs[0].ordering = cfg.orderings[k];  // the spec as given, {mesh} and all
+      val.push_back(std::move(vs[0]));
+      steps.Done(mr.weight * kSimulation * cfg.validate_sweeps);
+    }
   }
+  WriteTable(tables, "table1", t1, "Input mesh configuration (the paper's Table 1)");
 
   Table t2({"mesh", "ordering", "q50", "q75", "q90", "q100", "accesses", "mean", "cold",
             "paper_q50", "paper_q75", "paper_q90", "paper_q100", "paper_accesses",
@@ -404,31 +415,6 @@ std::string RunReport(const ReportConfig& in_cfg, const std::string& out_dir, co
     WriteFile(data + "/figure1.csv", f1.Csv());
   }
 
-  // Table 3 and the miss rates: the simulator (or counters) per mesh.
-  std::vector<OrderingValidation> val;
-  for (const MeshRun& mr : meshes) {
-    const Mesh base = ReadMesh(mr.path);
-    ValidationConfig vc;
-    vc.mesh_name = mr.name;
-    vc.seed = cfg.seed;
-    vc.iterations = cfg.validate_sweeps;
-    vc.triangle_order = cfg.triangle_order;
-    vc.levels = cfg.levels;
-    vc.element_bytes = cfg.element_bytes, vc.line_bytes = cfg.line_bytes;
-    vc.counter_events = cfg.counter_events;
-    steps.Say("2/4 misses (Table 3): " + mr.name + ", " + std::to_string(cfg.orderings.size()) +
-              " orderings x " + std::to_string(cfg.validate_sweeps) + " traced sweeps");
-    // One ordering at a time, so progress moves with each.
-    const std::vector<std::string> specs = ForMesh(cfg.orderings, mr.name);
-    for (size_t k = 0; k < specs.size(); ++k) {
-      vc.orderings = {specs[k]};
-      std::vector<OrderingValidation> vs =
-          RunValidation(base, vc, [&](const std::string& s) { steps.Say("2/4 " + s); });
-      vs[0].ordering = cfg.orderings[k];  // the spec as given, {mesh} and all
-      val.push_back(std::move(vs[0]));
-      steps.Done(mr.vertices * kSimulation * cfg.validate_sweeps);
-    }
-  }
   const Table t3 = Table3(val);
   WriteTable(tables, "table3", t3,
              "Estimated misses per sweep ($\\times 10^3$) and the inverse model's capacities "
@@ -505,7 +491,7 @@ std::string RunReport(const ReportConfig& in_cfg, const std::string& out_dir, co
       const MeshRun& m = meshes[mi];
       cc.meshes = {m.path};
       cc.orderings = ForMesh(cfg.orderings, m.name);
-      const std::string where = "3/4 timing [" + std::to_string(mi + 1) + "/" +
+      const std::string where = "timing [" + std::to_string(mi + 1) + "/" +
                                 std::to_string(meshes.size()) + "] " + m.name + ": ";
       std::vector<CompareRow> mesh_rows =
           RunCompare(cc, [&](const std::string& s) { steps.Say(where + s); }, {});
@@ -515,7 +501,7 @@ std::string RunReport(const ReportConfig& in_cfg, const std::string& out_dir, co
         if (k < cfg.orderings.size()) r.ordering = cfg.orderings[k];
         rows.push_back(std::move(r));
       }
-      steps.Done(m.vertices * no * cfg.repeat * kSweepsToConverge * p_sum);
+      steps.Done(m.weight * no * cfg.repeat * kSweepsToConverge * p_sum);
     }
     const auto fig1_mesh = std::find_if(
         meshes.begin(), meshes.end(), [&](const MeshRun& m) { return m.name == cfg.figure1_mesh; });
@@ -528,7 +514,7 @@ std::string RunReport(const ReportConfig& in_cfg, const std::string& out_dir, co
       fc.meshes = {fig1_mesh->path};
       fc.orderings = ForMesh(extra, fig1_mesh->name);
       fc.threads = {1};
-      steps.Say("3/4 timing Figure 1's other orderings on " + fig1_mesh->name);
+      steps.Say("timing Figure 1's other orderings on " + fig1_mesh->name);
       for (CompareRow& r : RunCompare(fc, {}, {})) rows.push_back(std::move(r));
     }
   }
@@ -737,7 +723,7 @@ std::string RunReport(const ReportConfig& in_cfg, const std::string& out_dir, co
     r += "- **" + f.name + "**: " + f.title + " ([pdf](figures/" + f.name + ".pdf))\n\n  ![" +
          f.name + "](figures/" + f.name + ".png)\n";
   WriteFile(out_dir + "/README.md", r);
-  steps.Say("4/4 tables written to " + out_dir);
+  steps.Say("tables written to " + out_dir);
   return out_dir + "/README.md";
 }
 

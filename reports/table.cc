@@ -43,19 +43,19 @@ std::string ReadableCell(const std::string& c) {
 }
 }  // namespace
 
-Table Table::Readable() const {
-  Table t = *this;
-  for (auto& row : t.rows_)
+std::vector<std::vector<std::string>> Table::ReadableRows() const {
+  std::vector<std::vector<std::string>> rows = rows_;
+  for (auto& row : rows)
     for (std::string& c : row) c = ReadableCell(c);
-  return t;
+  return rows;
 }
 
 std::string Table::Aligned() const {
-  if (!readable_) return Readable().MarkReadable().Aligned();
+  const auto rows = ReadableRows();
   std::vector<size_t> w(header_.size());
   for (size_t c = 0; c < header_.size(); ++c) {
     w[c] = header_[c].size();
-    for (const auto& r : rows_) w[c] = std::max(w[c], std::max<size_t>(r[c].size(), 1));
+    for (const auto& r : rows) w[c] = std::max(w[c], std::max<size_t>(r[c].size(), 1));
   }
   const std::vector<bool> right = RightAligned();
   auto line = [&](const std::vector<std::string>& cells) {
@@ -71,7 +71,7 @@ std::string Table::Aligned() const {
   size_t total = 0;
   for (size_t c = 0; c < w.size(); ++c) total += w[c] + (c ? 2 : 0);
   out += std::string(total, '-') + "\n";
-  for (const auto& r : rows_) out += line(r);
+  for (const auto& r : rows) out += line(r);
   return out;
 }
 
@@ -101,7 +101,7 @@ std::vector<bool> Table::RightAligned() const {
 }
 
 std::string Table::Markdown() const {
-  if (!readable_) return Readable().MarkReadable().Markdown();
+  const auto rows = ReadableRows();
   auto line = [](const std::vector<std::string>& cells) {
     std::string s = "|";
     for (const auto& c : cells) s += " " + (c.empty() ? std::string("-") : c) + " |";
@@ -111,12 +111,12 @@ std::string Table::Markdown() const {
   std::string out = line(header_) + "|";
   for (size_t c = 0; c < header_.size(); ++c) out += right[c] ? "---:|" : "---|";
   out += "\n";
-  for (const auto& r : rows_) out += line(r);
+  for (const auto& r : rows) out += line(r);
   return out;
 }
 
 std::string Table::Latex(const std::string& caption, const std::string& label) const {
-  if (!readable_) return Readable().MarkReadable().Latex(caption, label);
+  const auto rows = ReadableRows();
   auto esc = [](const std::string& t) {
     std::string o;
     for (char ch : t) switch (ch) {
@@ -157,7 +157,7 @@ std::string Table::Latex(const std::string& caption, const std::string& label) c
       "\\centering\n\\small\n\\begin{tabular}{" +
       spec + "}\n\\toprule\n";
   out += line(header_) + "\\midrule\n";
-  for (const auto& r : rows_) out += line(r);
+  for (const auto& r : rows) out += line(r);
   out += "\\bottomrule\n\\end{tabular}\n\\caption{" + caption + "}\n\\label{" + label +
          "}\n\\end{table}\n";
   return out;
@@ -199,6 +199,16 @@ std::string Grouped(long long v) {
   std::string s = std::to_string(v < 0 ? -v : v);
   for (int i = static_cast<int>(s.size()) - 3; i > 0; i -= 3) s.insert(i, ",");
   return v < 0 ? "-" + s : s;
+}
+
+std::string Duration(double seconds) {
+  char b[32];
+  if (seconds < 90)
+    std::snprintf(b, sizeof b, "%.0fs", seconds);
+  else
+    std::snprintf(b, sizeof b, "%dm%02ds", static_cast<int>(seconds / 60),
+                  static_cast<int>(seconds) % 60);
+  return b;
 }
 
 }  // namespace meshreuse

@@ -1,6 +1,7 @@
 // A result table rendered as aligned text (for people), CSV (for scripts), Markdown (for notes),
-// LaTeX (booktabs, for papers) or JSON. Cells are strings: the caller decides the precision, so
-// every output shows the same digits. An empty cell is a missing value: "-" in aligned text and
+// LaTeX (booktabs, for papers) or JSON. Cells are strings and the caller decides their precision;
+// CSV and JSON show them as they are, the formats for reading round full-precision cells to four
+// significant digits. An empty cell is a missing value: "-" in aligned text and
 // Markdown, "--" in LaTeX, empty in CSV, null in JSON.
 #pragma once
 
@@ -15,10 +16,6 @@ class Table {
   void AddRow(std::vector<std::string> row);
   size_t Rows() const { return rows_.size(); }
 
-  // A copy for reading: cells written at full precision (more than six decimals, e.g.
-  // JsonNumber's) shown with four significant digits (no decimals from 1000 up). Aligned text,
-  // Markdown and LaTeX are always rendered from it; CSV and JSON keep every digit.
-  Table Readable() const;
   std::string Aligned() const;  // numbers right-aligned, text left-aligned
   std::string Csv() const;      // RFC 4180 quoting
   std::string Markdown() const;
@@ -31,16 +28,16 @@ class Table {
 
  private:
   std::vector<bool> RightAligned() const;  // columns whose every present cell looks numeric
-  Table MarkReadable() && {
-    readable_ = true;
-    return std::move(*this);
-  }
-  bool readable_ = false;  // cells already rounded for reading
+  // The cells for reading: those written at full precision (more than six decimals, e.g.
+  // JsonNumber's) with four significant digits (no decimals from 1000 up). Aligned text, Markdown
+  // and LaTeX render these; CSV and JSON keep every digit.
+  std::vector<std::vector<std::string>> ReadableRows() const;
   std::vector<std::string> header_;
   std::vector<std::vector<std::string>> rows_;
 };
 
 std::string Fixed(double v, int decimals);  // "%.*f"
 std::string Grouped(long long v);           // 1234567 -> "1,234,567"
+std::string Duration(double seconds);       // 42 -> "42s", 125 -> "2m05s" (progress lines)
 
 }  // namespace meshreuse
