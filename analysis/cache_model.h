@@ -5,10 +5,13 @@
 // access (cold accesses count as the largest; if n <= cold no finite capacity explains them).
 // Cost model (the paper's equation 2): (m1 c2 + m1 m2 c3 + m1 m2 m3 cm) * accesses, where m1 is the
 // L1 miss rate and m2, m3 the local miss rates of L2 and L3, which reduces to
-// L1 misses * c2 + L2 misses * c3 + L3 misses * cm.
+// L1 misses * c2 + L2 misses * c3 + L3 misses * cm; for n levels, the sum over levels of its
+// misses times the next level's latency (memory's after the last).
 #pragma once
 
+#include <cmath>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -16,17 +19,47 @@
 
 namespace meshreuse {
 
-struct CacheLevel {
-  std::string name;
-  uint64_t bytes;
-  uint32_t ways = 0;  // associativity for the simulator (cache_sim.h); 0: not given
+// How a set chooses its victim: least recently used (the default; valgrind's and the paper's
+// model), first in first out (hits do not refresh a line), or a seeded pseudo-random way.
+enum class Replacement { kLru, kFifo, kRandom };
+const char* ReplacementName(Replacement r);
+
+// Cycles to serve an access from a level (or memory), as a range (the paper gives L3 and memory
+// latencies as ranges); unknown: NaN.
+struct LatencyRange {
+  double low = NAN, high = NAN;
+  bool known() const { return std::isfinite(low) && std::isfinite(high); }
 };
 
-// "westmere-ex" (the paper's machine: L1=32K/8,L2=256K/8,L3=24M/24) or a list such as
-// "L1=32K,L2=256K,L3=24M" or "L1=32K/8,L2=256K/8,L3=24M/24" (K, M, G are powers of 1024; /W the
-// ways, which the fully associative model ignores and the simulator needs). Throws
-// std::invalid_argument naming the bad part.
-std::vector<CacheLevel> ParseCacheSpec(const std::string& spec);
+struct CacheLevel {
+  CacheLevel() = default;
+  CacheLevel(std::string n, uint64_t b, uint32_t w = 0, Replacement p = Replacement::kLru,
+             LatencyRange l = {})
+      : name(std::move(n)), bytes(b), ways(w), policy(p), latency(l) {}
+  std::string name;
+  uint64_t bytes = 0;
+  uint32_t ways = 0;  // associativity for the simulator (cache_sim.h); 0: not given
+  Replacement policy = Replacement::kLru;
+  LatencyRange latency;  // of an access served here (a hit), for the cost model
+};
+
+// The levels from the closest (L1) out, and memory's latency.
+struct CacheSpec {
+  std::vector<CacheLevel> levels;
+  LatencyRange memory;
+  std::string text;  // as given, for tables and run.json
+  // Every latency the cost model needs (levels 2..n and memory) is known.
+  bool has_latencies() const;
+};
+
+// "westmere-ex" (the paper's machine: L1=32K/8,L2=256K/8@10,L3=24M/24@38-170,mem@175-290; the
+// latencies of Molka et al. 2009 that the paper's equation 2 uses) or a list of levels, each
+// NAME=SIZE[/WAYS[/POLICY]][@CYCLES[-CYCLES]], and optionally mem@CYCLES[-CYCLES]: K, M, G are
+// powers of 1024; WAYS the associativity (the fully associative model ignores it, the simulator
+// needs it); POLICY lru, fifo or random; CYCLES the latency of an access served there. Sizes
+// above 1 GiB (and sums that overflow) are refused. Throws UsageError naming the bad part.
+CacheSpec ParseCacheSpec(const std::string& spec);
+inline constexpr uint64_t kMaxCacheBytes = uint64_t{1} << 30;
 
 struct LevelMisses {
   std::string name;
@@ -48,13 +81,13 @@ inline constexpr uint64_t kInfiniteCapacity = ~uint64_t{0};
 // inverts; cold misses are the part our traces can name.)
 uint64_t CapacityForMisses(const ReuseHistogram& h, uint64_t n, bool exclude_cold = false);
 
-struct Latencies {  // cycles; the paper's Westmere-EX (Molka et al. 2009)
-  double l2 = 10, l3_low = 38, l3_high = 170, mem_low = 175, mem_high = 290;
-};
 struct CostRange {
   double low, high;  // additional cycles
 };
-// levels: the L1, L2, L3 misses (exactly three).
-CostRange AdditionalCycles(const std::vector<LevelMisses>& levels, const Latencies& lat = {});
+// The paper's equation 2 for any number of levels: the misses of level i are served by level i+1
+// (memory after the last), each at that level's latency. `misses` per level, in level order.
+// Nothing (nullopt) when a needed latency is unknown: callers say so rather than drop columns.
+std::optional<CostRange> AdditionalCycles(const std::vector<uint64_t>& misses,
+                                          const CacheSpec& spec);
 
 }  // namespace meshreuse

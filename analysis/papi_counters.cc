@@ -96,8 +96,16 @@ PapiCounters::PapiCounters(const std::vector<std::string>& events, int threads) 
     int presets = 0;
     for (int i = 0; i < PAPI_MAX_PRESET_EVENTS; ++i)
       if (PAPI_query_event(static_cast<int>(i | PAPI_PRESET_MASK)) == PAPI_OK) ++presets;
-    reason_ =
-        Version() + where + ", " + std::to_string(presets) + " preset events available: " + why;
+    // A disabled perf_event component (some hypervisors: "libpfm4 no default PMU found") leaves
+    // even software events missing; say why, the user can do nothing else about it.
+    std::string disabled;
+    for (int i = 0; i < PAPI_num_components(); ++i) {
+      const PAPI_component_info_t* c = PAPI_get_component_info(i);
+      if (c && std::string(c->name) == "perf_event" && c->disabled)
+        disabled = std::string(", perf_event component disabled (") + c->disabled_reason + ")";
+    }
+    reason_ = Version() + where + disabled + ", " + std::to_string(presets) +
+              " preset events available: " + why;
   }
   sets_.assign(threads < 1 ? 1 : threads, PAPI_NULL);
   values_.assign(sets_.size(), std::vector<long long>(events_.size(), 0));
@@ -153,5 +161,11 @@ void PapiCounters::Enter(int) {}
 void PapiCounters::Exit(int) {}
 
 #endif
+
+CounterNote ProbeCounters(const std::vector<std::string>& events, int threads) {
+  if (events.empty()) return {false, ""};
+  const PapiCounters probe(events, threads);
+  return {probe.available(), probe.reason()};
+}
 
 }  // namespace meshreuse

@@ -15,7 +15,7 @@
 #include <string>
 #include <vector>
 
-#include "core/smoother.h"
+#include "core/access.h"
 
 namespace meshreuse {
 
@@ -53,5 +53,13 @@ class PapiCounters : public SweepRegion {
   std::vector<int> sets_;  // per thread, PAPI_NULL until the thread's first Enter
   std::vector<std::vector<long long>> values_;
 };
+
+// Where PAPI stands for these events, probed once: whether any counts, and why some do not (empty
+// when all count, or when no event is asked for).
+struct CounterNote {
+  bool available = false;
+  std::string note;
+};
+CounterNote ProbeCounters(const std::vector<std::string>& events, int threads = 1);
 
 }  // namespace meshreuse

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <stdexcept>
 
 #include "analysis/stack_distance.h"
@@ -164,6 +165,28 @@ void ReuseProfile::Merge(const ReuseProfile& o) {
 double ReuseProfile::Step::mean() const {
   const uint64_t f = accesses - cold;
   return f ? static_cast<double>(static_cast<long double>(sum) / f) : NAN;
+}
+
+void ReuseHistogram::AppendRows(Table* t, const std::vector<std::string>& key,
+                                uint64_t exact_below) const {
+  auto row = [&](std::string lo, std::string hi, uint64_t count) {
+    std::vector<std::string> r = key;
+    r.insert(r.end(), {std::move(lo), std::move(hi), std::to_string(count)});
+    t->AddRow(std::move(r));
+  };
+  for (const Bin& b : Binned(exact_below)) row(std::to_string(b.lo), std::to_string(b.hi), b.count);
+  if (cold_) row("cold", "cold", cold_);
+}
+
+void ReuseProfile::AppendRows(Table* t, const std::vector<std::string>& key) const {
+  for (const Step& st : steps_) {
+    char mean[40] = "";
+    if (st.accesses > st.cold) std::snprintf(mean, sizeof mean, "%.17g", st.mean());
+    std::vector<std::string> r = key;
+    r.insert(r.end(), {std::to_string(st.iteration), std::to_string(st.step),
+                       std::to_string(st.accesses), std::to_string(st.cold), mean});
+    t->AddRow(std::move(r));
+  }
 }
 
 }  // namespace meshreuse

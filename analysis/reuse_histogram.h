@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "core/table.h"
+
 namespace meshreuse {
 
 class ReuseHistogram {
@@ -44,6 +46,10 @@ class ReuseHistogram {
     uint64_t lo, hi, count;  // distances lo..hi inclusive
   };
   std::vector<Bin> Binned(uint64_t exact_below = 64) const;
+  // Its rows, each `key` (the caller's identifying cells) then lo, hi, count: one per bin of
+  // Binned(exact_below), then one "cold", "cold", count row when there are cold accesses. Every
+  // command writes histograms this way (one schema, one plotting script).
+  void AppendRows(Table* t, const std::vector<std::string>& key, uint64_t exact_below = 64) const;
 
  private:
   void Grow(uint64_t d);
@@ -96,6 +102,9 @@ class ReuseProfile {
   };
   const std::vector<Step>& steps() const { return steps_; }
   bool enabled() const { return !lengths_.empty(); }
+  // Its rows, each `key` then iteration, step, accesses, cold, mean (full precision; empty when
+  // the step has no finite distance).
+  void AppendRows(Table* t, const std::vector<std::string>& key) const;
 
  private:
   void AddAtSlow(uint64_t position, uint64_t d);

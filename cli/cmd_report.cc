@@ -1,25 +1,34 @@
 // meshreuse report: the paper's experiment as one run (reports/report.h), behind
 // scripts/reproduce.sh. Options are checked and the output folder made before any work.
 #include <cmath>
+#include <cstdio>
+#include <filesystem>
 #include <thread>
 
 #include "cli/common.h"
-#include "cli/progress.h"
+#include "core/error.h"
+#include "core/orderings/registry.h"
+#include "reports/compare.h"
 #include "reports/report.h"
+#include "tracer/access_stream.h"
 
 namespace meshreuse::cli {
 
 int ReportCommand(const Args& args) {
   po::options_description desc("options");
   std::string orderings = "ori,bfs,rdr", threads, out_dir, triangle_order, cache = "westmere-ex",
-              counters = "PAPI_L1_DCM,PAPI_L2_DCM,PAPI_L3_TCM", fig1_orderings = "random,ori,bfs";
+              counters = "PAPI_L1_DCM,PAPI_L2_DCM,PAPI_L3_TCM", fig1_orderings = "random,ori,bfs",
+              seed = "1", repeat = "3", clock = "wall";
   ReportConfig cfg;
   desc.add_options()("mesh", po::value(&cfg.meshes)->required()->multitoken(), "mesh file(s)")(
       "orderings", po::value(&orderings)->default_value(orderings),
-      "comma-separated orderings (registered names or file:PATH)")(
+      "comma-separated orderings (registered names, file:PATH, LABEL=SPEC)")(
       "threads,t", po::value(&threads), "comma-separated thread counts (default: 1..cores)")(
-      "repeat", po::value(&cfg.repeat)->default_value(3), "timed rounds per (ordering, threads)")(
-      "seed", po::value(&cfg.seed)->default_value(1), "seed of randomised orderings")(
+      "repeat", po::value(&repeat)->default_value("3"),
+      "timed rounds per (ordering, threads), at least 3, or auto[:CAP] (as for compare)")(
+      "seed", po::value(&seed)->default_value("1"), "seed of seeded orderings")(
+      "clock", po::value(&clock)->default_value(clock),
+      "speedups and gains on wall or cpu time (as for compare)")(
       "tol", po::value(&cfg.smooth.tol)->default_value(5e-6, "5e-6"), "stop rule, as for smooth")(
       "max-iters", po::value(&cfg.smooth.max_iters)->default_value(100),
       "at most this many sweeps")("cache", po::value(&cache)->default_value(cache),
@@ -48,47 +57,47 @@ int ReportCommand(const Args& args) {
   if (!ParseOptions(args, "report MESH... --out DIR [--orderings ori,bfs,rdr] [--threads 1,2]",
                     "Runs the paper's experiment on the meshes and writes every table (CSV, "
                     "Markdown, LaTeX; the paper's values beside ours), the data of every figure "
-                    "(plotted by scripts/plot_report.py), run.json and a README.md to DIR. "
-                    "scripts/reproduce.sh runs it on the nine meshes.",
+                    "(plotted by scripts/plot_report.py), run.json, manifest.json and a README.md "
+                    "to DIR. scripts/reproduce.sh runs it on the nine meshes.",
                     desc, pos, vm))
     return 0;
   cfg.orderings = SplitList(orderings);
-  CheckOrderings(cfg.orderings);
   cfg.figure1_orderings = SplitList(fig1_orderings);
-  CheckOrderings(cfg.figure1_orderings);
   if (cfg.figure1_mesh == "none") cfg.figure1_mesh.clear();
   if (cfg.profile_mesh == "none") cfg.profile_mesh.clear();
   cfg.threads = threads.empty() ? std::vector<int>{} : ParseThreadList(threads);
-  if (cfg.threads.empty()) {
-    const int n = std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
-    for (int p = 1; p <= n; ++p) cfg.threads.push_back(p);
-  }
-  if (std::isnan(cfg.smooth.tol)) throw po::error("--tol must be a number");
-  try {
-    cfg.levels = ParseCacheSpec(cache);
-  } catch (const std::invalid_argument& e) {
-    throw po::error(std::string("--cache: ") + e.what());
-  }
-  for (const CacheLevel& l : cfg.levels)
-    if (l.ways == 0)
-      throw po::error("--cache: level " + l.name + " needs its ways (e.g. L1=32K/8)");
+  if (cfg.threads.empty())
+    for (int p = 1; p <= std::max(1, static_cast<int>(std::thread::hardware_concurrency())); ++p)
+      cfg.threads.push_back(p);
+  ParseRepeat(repeat, &cfg.repeat, &cfg.repeat_auto, &cfg.repeat_cap);
+  cfg.seed = ParseCount(seed, "--seed", 0, UINT64_MAX >> 1);
+  cfg.clock = ParseClock(clock);
+  if (std::isnan(cfg.smooth.tol)) throw UsageError("--tol must be a number");
+  cfg.cache = ParseCacheSpec(cache);
   cfg.counter_events = counters == "none" ? std::vector<std::string>{} : SplitList(counters);
   cfg.timing = vm.count("no-timing") == 0;
-  cfg.triangle_order = TriangleOrderOption(triangle_order);
+  cfg.triangle_order = ParseTriangleOrder(triangle_order);
   cfg.command_line = FullCommandLine();
   for (const std::string& m : cfg.meshes)
-    if (!IsMesh(m)) throw po::error("'" + m + "' is not a mesh (.node, .ele or .msh)");
-  try {
-    CheckReportConfig(cfg);
-  } catch (const std::invalid_argument& e) {
-    throw po::error(e.what());
-  }
+    if (ClassifyInput(m) != InputKind::kMesh)
+      throw UsageError("'" + m + "' is not a mesh (.node, .ele or .msh)");
+  CheckReportConfig(cfg);
+  const bool existed = std::filesystem::exists(out_dir);
   PrepareOutDir(out_dir, /*must_be_empty=*/true);
   const Progress progress(vm.count("quiet") > 0);
-  const std::string readme = RunReport(
-      cfg, out_dir, [&](const std::string& s) { progress.Say(s); },
-      [](const std::string& w) { std::fprintf(stderr, "meshreuse: warning: %s\n", w.c_str()); });
-  std::printf("%s\n", readme.c_str());
+  try {
+    std::printf("%s\n", RunReport(cfg, out_dir, MakeLog(progress)).c_str());
+  } catch (...) {
+    // A failed run leaves the folder as it found it (absent, or empty), so a retry can use it.
+    std::error_code ec;
+    if (!existed) {
+      std::filesystem::remove_all(out_dir, ec);
+    } else {
+      for (const auto& e : std::filesystem::directory_iterator(out_dir, ec))
+        std::filesystem::remove_all(e.path(), ec);
+    }
+    throw;
+  }
   return 0;
 }
 

@@ -1,6 +1,6 @@
-// The meshreuse subcommands. Each parses its own options (Boost.Program_options, --help on each)
-// and calls the libraries; none does any computing of its own. The table in main.cc maps names
-// to these functions.
+// The meshreuse subcommands, one file each (cmd_*.cc). Each parses its own options
+// (Boost.Program_options, --help on each) into a runner's configuration (reports/), calls it and
+// prints; none does any computing of its own. The table in main.cc maps names to these functions.
 #pragma once
 
 #include <string>
@@ -22,8 +22,5 @@ int AnalyzeCommand(const Args& args);
 int SimulateCommand(const Args& args);
 int ValidateCommand(const Args& args);
 int ReportCommand(const Args& args);
-
-// The full command line, for run.json.
-const std::vector<std::string>& FullCommandLine();
 
 }  // namespace meshreuse::cli

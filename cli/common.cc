@@ -3,31 +3,41 @@
 
 #include <unistd.h>
 
-#include <boost/program_options/errors.hpp>
 #include <cstdio>
 #include <filesystem>
 #include <sstream>
 
-#include "cli/commands.h"
-#include "core/mesh_io.h"
-#include "core/orderings/registry.h"
-#include "reports/run_info.h"
-#include "reports/table.h"
+#include "core/error.h"
+#include "core/output_file.h"
+#include "core/schedule.h"
+#include "core/table.h"
 
 namespace meshreuse::cli {
 
-Mesh LoadMesh(const std::string& path, const Progress& progress) {
-  progress.Say("reading " + path);
-  std::vector<std::string> warnings;
-  Mesh m = ReadMesh(path, &warnings);
-  for (const std::string& w : warnings) std::fprintf(stderr, "meshreuse: warning: %s\n", w.c_str());
-  progress.Say("read " + Grouped(m.NumVertices()) + " vertices, " + Grouped(m.NumTriangles()) +
-               " triangles");
-  return m;
+void AddFormatOptions(po::options_description& desc, bool markdown) {
+  desc.add_options()("json", "print JSON")("csv", "print CSV (every digit)");
+  if (markdown) desc.add_options()("markdown", "print Markdown tables");
 }
 
-void WriteText(const std::string& path, const std::string& text) {
-  WriteAtomically(path, [&](std::FILE* f) { std::fputs(text.c_str(), f); });
+OutputFormat FormatOption(const po::variables_map& vm) {
+  std::string given;
+  int n = 0;
+  for (const char* f : {"json", "csv", "markdown"})
+    if (vm.count(f)) given += std::string(n++ ? " and --" : "--") + f;
+  if (n > 1) throw UsageError(given + " exclude each other: give one");
+  return vm.count("json")       ? OutputFormat::kJson
+         : vm.count("csv")      ? OutputFormat::kCsv
+         : vm.count("markdown") ? OutputFormat::kMarkdown
+                                : OutputFormat::kText;
+}
+
+Log MakeLog(const Progress& progress) {
+  Log log;
+  log.progress = [&progress](const std::string& s) { progress.Say(s); };
+  log.warn = [](const std::string& w) {
+    std::fprintf(stderr, "meshreuse: warning: %s\n", w.c_str());
+  };
+  return log;
 }
 
 std::vector<std::string> SplitList(const std::string& s) {
@@ -38,28 +48,43 @@ std::vector<std::string> SplitList(const std::string& s) {
   return out;
 }
 
-void CheckOrderings(const std::vector<std::string>& specs) {
-  if (specs.empty()) throw boost::program_options::error("no ordering given");
-  for (const std::string& s : specs) try {
-      CheckOrderingSpec(s);
-    } catch (const std::invalid_argument& e) {
-      throw boost::program_options::error(e.what());
+uint64_t ParseCount(const std::string& text, const std::string& option, uint64_t lo, uint64_t hi) {
+  const std::string range = std::to_string(lo) + ".." + std::to_string(hi);
+  if (text.empty() || text.size() > 19 || text.find_first_not_of("0123456789") != std::string::npos)
+    throw UsageError(option + " takes a whole number in " + range + ", found '" + text + "'");
+  const uint64_t v = std::stoull(text);
+  if (v < lo || v > hi) throw UsageError(option + " must be in " + range + ", found " + text);
+  return v;
+}
+
+std::vector<int> ParseThreadList(const std::string& s) {
+  std::vector<int> out;
+  for (const std::string& t : SplitList(s))
+    out.push_back(static_cast<int>(ParseCount(t, "--threads", 1, kMaxThreads)));
+  if (out.empty()) throw UsageError("--threads is empty");
+  return out;
+}
+
+void PrepareOutDir(const std::string& dir, bool must_be_empty) {
+  namespace fs = std::filesystem;
+  if (dir.empty()) throw UsageError("--out: the folder name is empty");
+  std::error_code ec;
+  for (fs::path p = fs::path(dir); !p.empty(); p = p.parent_path()) {
+    if (fs::exists(p, ec)) {
+      if (!fs::is_directory(p, ec))
+        throw UsageError("cannot write to '" + dir + "': '" + p.string() + "' is not a folder");
+      break;
     }
-}
-
-std::string RunJsonHeader(const std::string& tool) {
-  return "  \"tool\": " + JsonString(tool) +
-         ",\n  \"command\": " + CommandLineJson(FullCommandLine()) +
-         ",\n  \"git_revision\": " + JsonString(GitRevision()) + ",\n  \"build\": " + BuildJson() +
-         ",\n  \"time_utc\": " + JsonString(UtcTimestamp()) + ",\n  \"machine\": " + MachineJson() +
-         ",\n";
-}
-
-bool IsMesh(const std::string& p) {
-  auto ends = [&](const std::string& x) {
-    return p.size() >= x.size() && p.compare(p.size() - x.size(), x.size(), x) == 0;
-  };
-  return ends(".node") || ends(".ele") || ends(".msh") || std::filesystem::exists(p + ".node");
+    if (p == p.parent_path()) break;
+  }
+  fs::create_directories(dir, ec);
+  if (ec) throw UsageError("cannot make the folder '" + dir + "': " + ec.message());
+  if (::access(dir.c_str(), W_OK) != 0)
+    throw UsageError("cannot write to the folder '" + dir + "': permission denied");
+  if (must_be_empty && !fs::is_empty(dir, ec))
+    throw UsageError("the folder '" + dir +
+                     "' is not empty (a previous run's files would mix with this one's): give a "
+                     "new folder");
 }
 
 void AddTriangleOrderOption(po::options_description& desc, std::string* value) {
@@ -69,82 +94,10 @@ void AddTriangleOrderOption(po::options_description& desc, std::string* value) {
                      "paper's ORI)");
 }
 
-TriangleOrder TriangleOrderOption(const std::string& value) {
-  try {
-    return ParseTriangleOrder(value);
-  } catch (const std::invalid_argument& e) {
-    throw po::error(e.what());
-  }
-}
-
-Mesh LayOut(const std::string& path, const std::string& ordering, uint64_t seed,
-            TriangleOrder triangles, const Progress& progress) {
-  Mesh m = LoadMesh(path, progress);
-  if (ordering == "ori" && triangles == TriangleOrder::kFile) return m;
-  progress.Say("laying out in " + ordering + " order, triangles " + TriangleOrderName(triangles));
-  ApplyPermutationInPlace(&m, ComputeOrdering(ordering, m, seed), triangles);
-  return m;
-}
-
-}  // namespace meshreuse::cli
-
-namespace meshreuse::cli {
-
-void CheckWritable(const std::string& path) {
-  const std::filesystem::path p(path);
-  const std::filesystem::path dir = p.has_parent_path() ? p.parent_path() : ".";
-  std::error_code ec;
-  if (!std::filesystem::is_directory(dir, ec))
-    throw po::error("cannot write '" + path + "': '" + dir.string() + "' is not a folder");
-  if (std::filesystem::is_directory(p, ec))
-    throw po::error("cannot write '" + path + "': it is a folder");
-}
-
-void CheckOneFormat(const po::variables_map& vm) {
-  std::string given;
-  int n = 0;
-  for (const char* f : {"json", "csv", "markdown"})
-    if (vm.count(f)) given += std::string(n++ ? " and --" : "--") + f;
-  if (n > 1) throw po::error(given + " exclude each other: give one");
-}
-
-void PrepareOutDir(const std::string& dir, bool must_be_empty) {
-  namespace fs = std::filesystem;
-  std::error_code ec;
-  for (fs::path p = fs::path(dir); !p.empty(); p = p.parent_path()) {
-    if (fs::exists(p, ec)) {
-      if (!fs::is_directory(p, ec))
-        throw po::error("cannot write to '" + dir + "': '" + p.string() + "' is not a folder");
-      break;
-    }
-    if (p == p.parent_path()) break;
-  }
-  fs::create_directories(dir, ec);
-  if (ec) throw po::error("cannot make the folder '" + dir + "': " + ec.message());
-  if (::access(dir.c_str(), W_OK) != 0)
-    throw po::error("cannot write to the folder '" + dir + "': permission denied");
-  if (must_be_empty && !fs::is_empty(dir, ec))
-    throw po::error("the folder '" + dir +
-                    "' is not empty (a previous run's files would mix "
-                    "with this one's): give a new folder");
-}
-
-std::vector<int> ParseThreadList(const std::string& s) {
-  std::vector<int> out;
-  for (const std::string& t : SplitList(s)) {
-    size_t used = 0;
-    int v = 0;
-    try {
-      v = std::stoi(t, &used);
-    } catch (const std::exception&) {
-      used = 0;
-    }
-    if (used != t.size()) throw po::error("--threads takes numbers, found '" + t + "'");
-    if (v < 1 || v > 1024) throw po::error("--threads must be between 1 and 1024");
-    out.push_back(v);
-  }
-  if (out.empty()) throw po::error("--threads is empty");
-  return out;
+void WriteRunJson(const std::string& dir, const std::string& tool, const Json& configuration,
+                  const Json& extra) {
+  WriteTextFile(dir + "/run.json",
+                RunJsonText(RunJson(tool, FullCommandLine(), configuration, extra)));
 }
 
 }  // namespace meshreuse::cli

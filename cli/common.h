@@ -1,5 +1,6 @@
-// Small pieces the subcommands share: loading a mesh with its warnings and progress, writing a
-// text file atomically, splitting comma lists, the run.json header.
+// What the subcommands share: option parsing with --help (options.h), the output format flags,
+// the progress and warning lines on stderr (a Log for the runners), lists, thread lists, output
+// folders, run.json. Errors are thrown as they are (core/error.h); main maps them to exit codes.
 #pragma once
 
 #include <string>
@@ -7,39 +8,39 @@
 
 #include "cli/options.h"
 #include "cli/progress.h"
-#include "core/mesh.h"
 #include "core/permutation.h"
+#include "reports/log.h"
+#include "reports/output.h"
+#include "reports/run_info.h"
 
 namespace meshreuse::cli {
 
-Mesh LoadMesh(const std::string& path, const Progress& progress);
-void WriteText(const std::string& path, const std::string& text);
-// Before any work: an output file's folder must exist and be a folder (po::error otherwise), so a
-// long run does not fail at its last step.
-void CheckWritable(const std::string& path);
-// --json, --csv and --markdown exclude each other: po::error when more than one is given.
-void CheckOneFormat(const po::variables_map& vm);
-// An output folder, before any work: made if missing (with its parents); po::error if it or an
+// --json, --csv, --markdown (those a command offers): one at most (UsageError otherwise).
+void AddFormatOptions(po::options_description& desc, bool markdown = false);
+OutputFormat FormatOption(const po::variables_map& vm);
+
+// Progress lines through `progress` (silent with --quiet); warnings always, as
+// "meshreuse: warning: ...".
+Log MakeLog(const Progress& progress);
+
+std::vector<std::string> SplitList(const std::string& s);  // "a,b,,c" -> {a, b, c}
+// "1,2,4" -> {1, 2, 4}: UsageError for a non-number, a count outside 1..kMaxThreads, an empty list.
+std::vector<int> ParseThreadList(const std::string& s);
+// A number option that must be within [lo, hi] (UsageError naming it). Parsed as text so that a
+// negative value is refused rather than wrapped.
+uint64_t ParseCount(const std::string& text, const std::string& option, uint64_t lo, uint64_t hi);
+
+// An output folder, before any work: made if missing (with its parents); UsageError if it or an
 // ancestor is a file, it cannot be written, or (must_be_empty) it already holds files.
 void PrepareOutDir(const std::string& dir, bool must_be_empty = false);
-std::vector<std::string> SplitList(const std::string& s);
-// "1,2,4" -> {1, 2, 4}: po::error for a non-number, a count outside 1..1024 or an empty list.
-std::vector<int> ParseThreadList(const std::string& s);  // "a,b,,c" -> {a, b, c}
-// Throws a usage error (exit 2) for an empty list or a name the ordering registry does not know,
-// before any work is done.
-void CheckOrderings(const std::vector<std::string>& specs);
-// True for a mesh path (.node, .ele, .msh, or a prefix with a .node beside it), false for traces.
-bool IsMesh(const std::string& path);
 
 // --triangle-order sorted|file, the same text on every command that lays a mesh out.
 void AddTriangleOrderOption(po::options_description& desc, std::string* value);
-TriangleOrder TriangleOrderOption(const std::string& value);  // po::error on a bad name
-// The mesh at `path` laid out in `ordering` (ori included) with the triangle policy; the ordering
-// name must have been checked (CheckOrderings).
-Mesh LayOut(const std::string& path, const std::string& ordering, uint64_t seed,
-            TriangleOrder triangles, const Progress& progress);
 
-// The fields every run.json starts with: tool, command, git revision, time, machine.
-std::string RunJsonHeader(const std::string& tool);
+// The full command line, for run.json.
+const std::vector<std::string>& FullCommandLine();
+// DIR/run.json for this command.
+void WriteRunJson(const std::string& dir, const std::string& tool, const Json& configuration,
+                  const Json& extra = Json::object());
 
 }  // namespace meshreuse::cli

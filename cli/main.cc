@@ -1,6 +1,6 @@
 // meshreuse: the command-line front end. One table maps subcommand names to functions; errors are
-// reported here and only here: bad input (InputError, a bad option) exits 2, a failed external
-// tool or any other failure exits 1.
+// reported here and only here (core/error.h): bad input or options exit 2, a failing environment
+// (disk full, permission denied, a missing program, out of memory) exits 3, a bug exits 1.
 #include <malloc.h>
 
 #include <boost/program_options/errors.hpp>
@@ -11,8 +11,9 @@
 #include <vector>
 
 #include "cli/commands.h"
+#include "cli/common.h"
 #include "core/error.h"
-#include "core/triangle_runner.h"
+#include "core/output_file.h"
 #include "reports/run_info.h"
 
 namespace meshreuse::cli {
@@ -73,10 +74,11 @@ const std::vector<std::string>& FullCommandLine() { return g_argv; }
 
 int Main(int argc, char** argv) {
   g_argv.assign(argv, argv + argc);
+  InstallOutputCleanup();
   const std::vector<std::string> args(argv + 1, argv + argc);
   if (args.empty() || args[0] == "--help" || args[0] == "-h" || args[0] == "help") {
     Usage(args.empty() ? stderr : stdout);
-    return args.empty() ? 2 : 0;
+    return args.empty() ? kExitBadInput : 0;
   }
   if (args[0] == "--version" || args[0] == "version") {
     std::printf("%s\n", VersionString().c_str());
@@ -89,31 +91,47 @@ int Main(int argc, char** argv) {
     if (n > used) cmd = &c, used = n;
   }
   if (!cmd) {
+    // "mesh" alone, or "mesh --help": the group's commands.
+    if (args[0] == "mesh") {
+      const bool help = args.size() > 1 && (args[1] == "--help" || args[1] == "-h");
+      std::FILE* out = help ? stdout : stderr;
+      if (!help && args.size() > 1)
+        std::fprintf(stderr, "meshreuse: unknown command 'mesh %s'\n\n", args[1].c_str());
+      std::fprintf(out, "usage: meshreuse mesh info|generate|convert [options]\n\n");
+      for (const Command& c : kCommands)
+        if (std::strncmp(c.name, "mesh ", 5) == 0)
+          std::fprintf(out, "  %-16s %s\n", c.name, c.summary);
+      return help ? 0 : kExitBadInput;
+    }
     std::fprintf(stderr, "meshreuse: unknown command '%s'\n\n", args[0].c_str());
     Usage(stderr);
-    return 2;
+    return kExitBadInput;
   }
+  // The error taxonomy of core/error.h, mapped here and only here.
   try {
     return cmd->run(Args(args.begin() + used, args.end()));
   } catch (const InputError& e) {
     std::fprintf(stderr, "meshreuse: error: %s\n", e.what());
-    return 2;
+    return kExitBadInput;
+  } catch (const UsageError& e) {
+    std::fprintf(stderr, "meshreuse %s: %s (see --help)\n", cmd->name, e.what());
+    return kExitBadInput;
   } catch (const boost::program_options::error& e) {
     std::fprintf(stderr, "meshreuse %s: %s (see --help)\n", cmd->name, e.what());
-    return 2;
+    return kExitBadInput;
+  } catch (const EnvironmentError& e) {
+    std::fprintf(stderr, "meshreuse: error: %s\n", e.what());
+    return kExitEnvironment;
   } catch (const std::bad_alloc&) {
-    // Readers never size anything from a header before its records arrive, so this is a genuinely
-    // too-large input for this machine, or a bug.
+    // Readers never size anything from a header before its records arrive, and option products
+    // are checked up front: the input is larger than this machine can hold.
     std::fprintf(stderr,
                  "meshreuse: error: out of memory (the input is larger than this machine "
-                 "can hold, or this is a bug: please report it)\n");
-    return 1;
-  } catch (const ToolError& e) {
-    std::fprintf(stderr, "meshreuse: error: %s\n", e.what());
-    return 1;
+                 "can hold)\n");
+    return kExitEnvironment;
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "meshreuse: error: %s\n", e.what());
-    return 1;
+    std::fprintf(stderr, "meshreuse: internal error (a bug, please report it): %s\n", e.what());
+    return kExitBug;
   }
 }
 

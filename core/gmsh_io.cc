@@ -121,6 +121,7 @@ class GmshReader {
   }
 
   void AddNode(int64_t tag, std::string_view x, std::string_view y, std::string_view z) {
+    if (tag < 1) f_.Fail("node tag " + std::to_string(tag) + " is below 1");
     f_.ParseDouble(z, "the z coordinate");
     if (!tag_to_id_.emplace(tag, static_cast<int32_t>(raw_.vertex_tag.size())).second)
       f_.Fail("node " + std::to_string(tag) + " is defined twice");
@@ -149,14 +150,19 @@ class GmshReader {
       f_.Fail("expected 'numEntityBlocks numNodes minNodeTag maxNodeTag'");
     const int64_t blocks = Count(tok[0], "the number of entity blocks");
     const int64_t total = Count(tok[1], "the number of nodes");
-    f_.ParseInt(tok[2], "the smallest node tag");
-    f_.ParseInt(tok[3], "the largest node tag");
+    // The rules of the binary reader (gmsh_binary_io.cc): tags from 1, within this range.
+    const int64_t min_tag = f_.ParseInt(tok[2], "the smallest node tag");
+    const int64_t max_tag = f_.ParseInt(tok[3], "the largest node tag");
+    if (total > 0 && (min_tag < 1 || max_tag < min_tag))
+      f_.Fail("the node tag range " + std::to_string(min_tag) + ".." + std::to_string(max_tag) +
+              " is empty or starts below 1");
     tag_to_id_.reserve(f_.Reservable(total, 8));  // a tag line and an "x y z" line
     std::vector<int64_t> tags;
     for (int64_t b = 0; b < blocks; ++b) {
       if (Split(Item("$Nodes", b, blocks, "entity blocks"), tok) != 4)
         f_.Fail("expected 'entityDim entityTag parametric numNodesInBlock'");
-      f_.ParseInt(tok[0], "the entity dimension");
+      const int64_t dim = f_.ParseInt(tok[0], "the entity dimension");
+      if (dim < 0 || dim > 3) f_.Fail("entity dimension " + std::to_string(dim) + " is not 0..3");
       f_.ParseInt(tok[1], "the entity tag");
       const bool parametric = f_.ParseInt(tok[2], "the parametric flag") != 0;
       const int64_t n = Count(tok[3], "the number of nodes in the block");
@@ -166,6 +172,9 @@ class GmshReader {
         if (Split(Item("$Nodes", i, n, "nodes of the block"), tok) != 1)
           f_.Fail("expected one node tag per line");
         tags.push_back(f_.ParseInt(tok[0], "the node tag"));
+        if (tags.back() < min_tag || tags.back() > max_tag)
+          f_.Fail("node tag " + std::to_string(tags.back()) + " is outside the header's range " +
+                  std::to_string(min_tag) + ".." + std::to_string(max_tag));
       }
       for (int64_t i = 0; i < n; ++i) {
         const int cols = Split(Line("$Nodes"), tok);

@@ -8,6 +8,7 @@
 
 #include <sys/stat.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstdint>
 #include <cstdio>
@@ -41,6 +42,13 @@ class InputFile {
   int64_t size_ = -1;
 };
 
+// Bytes read from standard input to look at it (a trace's magic) and given back: the next
+// InputFile("-") reads them first. One process reads stdin once, so one buffer serves.
+inline std::string& StdinPushback() {
+  static std::string bytes;
+  return bytes;
+}
+
 inline InputFile::InputFile(const std::string& path) : path_(path) {
   if (path == "-") {
     f_ = stdin;
@@ -71,6 +79,13 @@ inline InputFile::~InputFile() {
 }
 
 inline size_t InputFile::Read(void* buf, size_t n) {
+  std::string& back = StdinPushback();
+  if (f_ == stdin && !back.empty() && n > 0) {
+    const size_t k = std::min(n, back.size());
+    std::memcpy(buf, back.data(), k);
+    back.erase(0, k);
+    return k;
+  }
   const size_t got = std::fread(buf, 1, n, f_);
   if (got < n && std::ferror(f_))
     throw InputError(path_, 0, std::string("read error: ") + std::strerror(errno));

@@ -38,7 +38,8 @@ class RunIndex {
     for (int64_t v : values) Push(v);
   }
   void Push(int64_t value) {
-    if (size_ == 0 || value != last_ + 1) {
+    // last_ + 1 would overflow for a tag of INT64_MAX (a Gmsh file may hold one): a new run.
+    if (size_ == 0 || last_ == INT64_MAX || value != last_ + 1) {
       first_item_.push_back(size_);
       first_value_.push_back(value);
     }

@@ -6,6 +6,7 @@
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
+#include <stdexcept>
 
 #include "core/error.h"
 #include "core/quality.h"
@@ -45,30 +46,7 @@ Mesh ReadMesh(const std::string& path, std::vector<std::string>* warnings) {
   return m;
 }
 
-void WriteAtomically(const std::string& path, const std::function<void(std::FILE*)>& body) {
-  const std::string tmp = path + ".tmp." + std::to_string(::getpid());
-  std::FILE* f = std::fopen(tmp.c_str(), "wb");
-  if (!f) throw InputError(path, 0, std::string("cannot write: ") + std::strerror(errno));
-  try {
-    body(f);
-  } catch (...) {
-    std::fclose(f);
-    std::remove(tmp.c_str());
-    throw;
-  }
-  const bool bad = std::ferror(f) != 0;
-  if (std::fclose(f) != 0 || bad) {
-    std::remove(tmp.c_str());
-    throw InputError(path, 0, "write failed (disk full?)");
-  }
-  if (std::rename(tmp.c_str(), path.c_str()) != 0) {
-    const int e = errno;
-    std::remove(tmp.c_str());
-    throw InputError(path, 0, std::string("cannot rename into place: ") + std::strerror(e));
-  }
-}
-
-void WriteVtk(const Mesh& m, const std::string& path) {
+void WriteVtk(const Mesh& m, const std::string& path, const std::vector<VtkField>& fields) {
   const int32_t nv = m.NumVertices(), nt = m.NumTriangles();
   const std::vector<double> vq = VertexQualities(m);
   const std::vector<double> tq = TriangleQualities(m);
@@ -90,6 +68,12 @@ void WriteVtk(const Mesh& m, const std::string& path) {
     for (int32_t v = 0; v < nv; ++v) std::fprintf(f, "%.9g\n", vq[v]);
     std::fprintf(f, "SCALARS boundary int 1\nLOOKUP_TABLE default\n");
     for (int32_t v = 0; v < nv; ++v) std::fprintf(f, "%d\n", int{m.boundary[v]});
+    for (const VtkField& field : fields) {
+      if (field.values.size() != static_cast<size_t>(nv))
+        throw std::logic_error("VTK field " + field.name + " has the wrong length");
+      std::fprintf(f, "SCALARS %s double 1\nLOOKUP_TABLE default\n", field.name.c_str());
+      for (double x : field.values) std::fprintf(f, "%.9g\n", x);
+    }
   });
 }
 
@@ -101,6 +85,33 @@ void WritePermutation(const std::vector<int32_t>& new_to_old, const std::string&
                  comment.c_str());
     for (int32_t o : new_to_old) std::fprintf(f, "%d\n", o);
   });
+}
+
+std::vector<std::string> MeshOutputFiles(const std::string& target) {
+  if (EndsWith(target, ".vtk")) return {target};
+  const std::string prefix =
+      EndsWith(target, ".node") ? target.substr(0, target.size() - 5) : target;
+  return {prefix + ".node", prefix + ".ele"};
+}
+
+std::vector<std::string> InputFiles(const std::vector<std::string>& inputs) {
+  std::vector<std::string> out;
+  for (const std::string& p : inputs) {
+    std::string prefix;
+    if (EndsWith(p, ".node"))
+      prefix = p.substr(0, p.size() - 5);
+    else if (EndsWith(p, ".ele"))
+      prefix = p.substr(0, p.size() - 4);
+    else if (!EndsWith(p, ".msh") && (Exists(p + ".node") || Exists(p + ".ele")))
+      prefix = p;
+    if (prefix.empty()) {
+      out.push_back(p);
+    } else {
+      out.push_back(prefix + ".node");
+      out.push_back(prefix + ".ele");
+    }
+  }
+  return out;
 }
 
 std::vector<std::string> WriteMesh(const Mesh& m, const std::string& target) {

@@ -11,6 +11,8 @@
 #include <cstdlib>
 #include <stdexcept>
 
+#include "core/error.h"
+
 namespace meshreuse {
 
 Permutation Permutation::Clone() const {
@@ -55,7 +57,7 @@ Permutation Permutation::Inverse() const {
 TriangleOrder ParseTriangleOrder(const std::string& s) {
   if (s == "sorted") return TriangleOrder::kSorted;
   if (s == "file") return TriangleOrder::kFile;
-  throw std::invalid_argument("unknown triangle order '" + s + "' (sorted or file)");
+  throw UsageError("unknown triangle order '" + s + "' (sorted or file)");
 }
 
 const char* TriangleOrderName(TriangleOrder t) {

@@ -43,7 +43,7 @@ class Permutation {
 //   kFile:             the file's triangle order, corners renumbered (ori + kFile = the file as
 //                      is, the paper's ORI).
 enum class TriangleOrder { kSorted, kFile };
-TriangleOrder ParseTriangleOrder(const std::string& s);  // sorted | file; std::invalid_argument
+TriangleOrder ParseTriangleOrder(const std::string& s);  // sorted | file; UsageError
 const char* TriangleOrderName(TriangleOrder t);
 
 // The reordered mesh: vertex new_id is old vertex p.OldOf(new_id). Triangles are renumbered

@@ -1,9 +1,13 @@
 // Non-template parts of the smoother: names of the update modes.
 #include "core/smoother.h"
 
+#include <time.h>
+
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+
+#include "core/error.h"
 
 namespace meshreuse {
 
@@ -18,13 +22,13 @@ const char* QualityModeName(QualityMode m) {
 QualityMode ParseQualityMode(const std::string& s) {
   if (s == "per-move") return QualityMode::kPerMove;
   if (s == "per-sweep") return QualityMode::kPerSweep;
-  throw std::invalid_argument("unknown quality mode '" + s + "' (per-move or per-sweep)");
+  throw UsageError("unknown quality mode '" + s + "' (per-move or per-sweep)");
 }
 
 UpdateMode ParseUpdateMode(const std::string& s) {
   if (s == "gs" || s == "gauss-seidel") return UpdateMode::kGaussSeidel;
   if (s == "jacobi") return UpdateMode::kJacobi;
-  throw std::invalid_argument("unknown update mode '" + s + "' (expected gauss-seidel or jacobi)");
+  throw UsageError("unknown update mode '" + s + "' (expected gauss-seidel or jacobi)");
 }
 
 std::vector<uint64_t> AccessesPerSweep(const Mesh& m, int threads) {
@@ -32,10 +36,16 @@ std::vector<uint64_t> AccessesPerSweep(const Mesh& m, int threads) {
   const int64_t ni = static_cast<int64_t>(m.interior.size());
   for (int64_t k = 0; k < ni; ++k) {
     const int32_t v = m.interior[k];
-    n[smoother_detail::StaticOwner(k, ni, static_cast<int>(n.size()))] +=
+    n[StaticOwner(k, ni, static_cast<int>(n.size()))] +=
         2 + m.v2v.RowSize(v) + 3 * m.v2t.RowSize(v);
   }
   return n;
+}
+
+double ThreadCpuSeconds() {
+  timespec ts{};
+  ::clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
 }
 
 void FlushCaches(uint64_t bytes) {
@@ -53,14 +63,14 @@ std::vector<uint64_t> RefsPerSweep(const Mesh& m, int threads, UpdateMode mode) 
   const int64_t ni = static_cast<int64_t>(m.interior.size());
   for (int64_t k = 0; k < ni; ++k) {
     const int32_t v = m.interior[k];
-    n[smoother_detail::StaticOwner(k, ni, p)] +=
-        mode == UpdateMode::kGaussSeidel ? 7 + 2 * m.v2v.RowSize(v) + 13 * m.v2t.RowSize(v)
-                                         : 5 + 2 * m.v2v.RowSize(v);
+    n[StaticOwner(k, ni, p)] += mode == UpdateMode::kGaussSeidel
+                                    ? 7 + 2 * m.v2v.RowSize(v) + 13 * m.v2t.RowSize(v)
+                                    : 5 + 2 * m.v2v.RowSize(v);
   }
   for (uint64_t& c : n) c += 1;  // the loop bound's last test
   if (mode == UpdateMode::kJacobi) {
     const int64_t nt = m.NumTriangles();
-    for (int64_t t = 0; t < nt; ++t) n[smoother_detail::StaticOwner(t, nt, p)] += 12;
+    for (int64_t t = 0; t < nt; ++t) n[StaticOwner(t, nt, p)] += 12;
     for (uint64_t& c : n) c += 1;
   }
   return n;

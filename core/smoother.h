@@ -10,7 +10,7 @@
 // is the last one, and there are at most `max_iters` sweeps.
 // Tracing is the template parameter: Smooth<NullSink> is the timed, uninstrumented kernel.
 //
-// What a tracing sink sees (tracer/sink.h): every load and store of mesh data the compiled sweep
+// What a tracing sink sees (core/access.h): every load and store of mesh data the compiled sweep
 // makes, in program order, with its array and size; the element touches (the paper's model) ride
 // on the accesses that read or write a vertex record. One Gauss-Seidel visit of interior vertex v
 // (the k-th entry of `interior`), with deg(v) neighbours and tris(v) triangles:
@@ -47,11 +47,13 @@
 #include <functional>
 #include <string>
 #include <utility>
+#include <type_traits>
 #include <vector>
 
+#include "core/access.h"
 #include "core/mesh.h"
 #include "core/quality.h"
-#include "tracer/sink.h"
+#include "core/schedule.h"
 
 namespace meshreuse {
 
@@ -63,17 +65,8 @@ const char* UpdateModeName(UpdateMode m);
 enum class QualityMode { kPerMove, kPerSweep };
 const char* QualityModeName(QualityMode m);
 QualityMode ParseQualityMode(const std::string& s);  // per-move | per-sweep
-// Accepts "gs", "gauss-seidel", "jacobi"; throws std::invalid_argument otherwise.
+// Accepts "gs", "gauss-seidel", "jacobi"; throws UsageError otherwise.
 UpdateMode ParseUpdateMode(const std::string& s);
-
-// Each thread of a sweep's parallel region calls Enter(thread) before its share of the sweep and
-// Exit(thread) after it: where hardware counters are read (analysis/papi_counters.h). Untraced
-// runs only; the cost is two virtual calls per thread per sweep.
-struct SweepRegion {
-  virtual ~SweepRegion() = default;
-  virtual void Enter(int thread) = 0;
-  virtual void Exit(int thread) = 0;
-};
 
 struct SmoothOptions {
   int max_iters = 100;
@@ -86,7 +79,16 @@ struct SmoothOptions {
   // bytes of a scratch buffer: the caches then hold nothing of the mesh, like a simulator's empty
   // caches (scripts/validate_callgrind.sh). 0: no flush.
   uint64_t flush_bytes = 0;
+  // Traced runs only (a tracing sink; untraced runs are real threads): how the threads' streams
+  // are interleaved into the one the sink receives. Each thread's own stream is the same whatever
+  // the interleaving (it depends on the mesh and the static schedule alone).
+  //   0 (kSerialShares): thread 0's whole share of a sweep, then thread 1's, ... (as before);
+  //   k > 0: k vertex visits of each thread in turn (1: a visit each; 64: blocks of 64);
+  //   kAccessGrain (-1): a visit of each thread in turn, their accesses dealt one at a time.
+  int interleave = 0;
 };
+inline constexpr int kSerialShares = 0;
+inline constexpr int kAccessGrain = -1;
 
 // Writes and reads `bytes` of a scratch buffer, one access per 64 bytes (see flush_bytes).
 void FlushCaches(uint64_t bytes);
@@ -96,6 +98,39 @@ struct SweepRecord {
   double quality = 0;      // global quality after the sweep (incremental value)
   double improvement = 0;  // quality - previous quality
   double seconds = 0;      // wall time of the sweep alone
+  double cpu_seconds = 0;  // thread CPU time of the sweep, summed over its threads (untraced)
+};
+
+// The calling thread's CPU time (CLOCK_THREAD_CPUTIME_ID): what a thread spent running, not
+// waiting for a core another process holds.
+double ThreadCpuSeconds();
+
+// Thread CPU time of a sweep's parallel sections, per thread, summed: read at each thread's Enter
+// and Exit, so the swept loop itself is untouched (two clock reads per thread per section). It
+// forwards to an inner region (hardware counters) around its own reads.
+class CpuTimeRegion : public SweepRegion {
+ public:
+  CpuTimeRegion(SweepRegion* inner, int threads) : inner_(inner), slots_(threads) {}
+  void Enter(int t) override {
+    if (inner_) inner_->Enter(t);
+    slots_[t].start = ThreadCpuSeconds();
+  }
+  void Exit(int t) override {
+    slots_[t].total += ThreadCpuSeconds() - slots_[t].start;
+    if (inner_) inner_->Exit(t);
+  }
+  double Take() {  // the sum over threads since the last Take
+    double s = 0;
+    for (Slot& x : slots_) s += x.total, x.total = 0;
+    return s;
+  }
+
+ private:
+  struct alignas(64) Slot {  // a line each: threads never share one
+    double start = 0, total = 0;
+  };
+  SweepRegion* inner_;
+  std::vector<Slot> slots_;
 };
 
 struct SmoothResult {
@@ -103,6 +138,7 @@ struct SmoothResult {
   double quality_before = 0;  // GlobalQuality() of the input, recomputed directly
   double quality_after = 0;   // GlobalQuality() of the output, recomputed directly
   double seconds = 0;         // sum of sweep times
+  double cpu_seconds = 0;     // sum of the sweeps' thread CPU times
   bool converged = false;     // false when max_iters stopped it
 };
 
@@ -178,19 +214,6 @@ inline double TracedTriangleQuality(const double* xy, const int32_t* tri, int64_
   return TriangleQuality(xy, c);
 }
 
-// The thread that OpenMP's schedule(static) without a chunk size gives iteration k of n to: P
-// contiguous blocks, the first n % P of them one longer (libgomp's split).
-inline int StaticOwner(int64_t k, int64_t n, int threads) {
-  const int64_t q = n / threads, r = n % threads;
-  return static_cast<int>(k < r * (q + 1) ? k / (q + 1) : r + (k - r * (q + 1)) / (q > 0 ? q : 1));
-}
-// The same split as a range: thread t of P gets [*b, *e).
-inline void StaticRange(int64_t n, int threads, int t, int64_t* b, int64_t* e) {
-  const int64_t q = n / threads, r = n % threads;
-  *b = t < r ? t * (q + 1) : r * (q + 1) + (t - r) * q;
-  *e = *b + (t < r ? q + 1 : q);
-}
-
 // Sums body(p, thread) over p = items + k * stride for k in [0, n), split as schedule(static) among
 // `threads` threads: in parallel for NullSink (each thread calls region->Enter/Exit around its
 // share), serially for a tracing sink (thread 0's share, then thread 1's, ...: each stream exact,
@@ -200,11 +223,82 @@ inline void StaticRange(int64_t n, int threads, int t, int64_t* b, int64_t* e) {
 // reports (array kLoopBound), so the address stream is exact by construction: one bound read per
 // iteration plus one per thread's share. (A cursor pointer, not an index: an index would need the
 // base pointer in one more register.)
+// A tracing sink's interleaving (SmoothOptions::interleave): its `interleave` member when it has
+// one, else thread shares in turn. With kAccessGrain it must also have EndTurn(), which deals the
+// turn's buffered accesses out one at a time.
+template <class S>
+auto InterleaveOf(const S& s, int) -> decltype(static_cast<int>(s.interleave)) {
+  return s.interleave;
+}
+template <class S>
+int InterleaveOf(const S&, long) {
+  return kSerialShares;
+}
+template <class S>
+auto EndTurnOf(S& s, int) -> decltype(s.EndTurn()) {
+  return s.EndTurn();
+}
+template <class S>
+void EndTurnOf(S&, long) {}
+
+// A tracing sink that records from real threads (kParallelTrace, thread-safe per thread): the
+// traced loop then runs in the OpenMP region like the untraced one (the tests compare its
+// per-thread streams with the serial traced run's).
+template <class S, class = void>
+struct ParallelTraced : std::false_type {};
+template <class S>
+struct ParallelTraced<S, std::void_t<decltype(S::kParallelTrace)>>
+    : std::bool_constant<S::kParallelTrace> {};
+
 template <int64_t stride, class Sink, class T, class Body>
 inline double ForStatic(T* items, int64_t n, int threads, Sink& sink, SweepRegion* region,
                         const Body& body) {
   double sum = 0.0;
-  if constexpr (Sink::kEnabled) {
+  if constexpr (ParallelTraced<Sink>::value) {
+#pragma omp parallel num_threads(threads) if (threads > 1) reduction(+ : sum)
+    {
+      const int tid = omp_get_thread_num();
+      int64_t b, e;
+      StaticRange(n, omp_get_num_threads(), tid, &b, &e);
+      T* volatile end = items + e * stride;
+      for (T* p = items + b * stride;; p += stride) {
+        Report(sink, tid, const_cast<T* const*>(&end), sizeof(T*), Array::kLoopBound, false);
+        if (!(p < end)) break;
+        sum += body(p, tid);
+      }
+    }
+    return sum;
+  } else if constexpr (Sink::kEnabled) {
+    if (const int grain = InterleaveOf(sink, 0); grain != kSerialShares && threads > 1) {
+      // The same per-thread streams as below, their visits taken `grain` at a time from each
+      // thread in turn (one per turn for kAccessGrain, the sink dealing their accesses).
+      const int per_turn = grain > 0 ? grain : 1;
+      std::vector<T*> cursor(threads);
+      std::vector<T*> end(threads);
+      std::vector<uint8_t> done(threads, 0);
+      for (int t = 0; t < threads; ++t) {
+        int64_t b, e;
+        StaticRange(n, threads, t, &b, &e);
+        cursor[t] = items + b * stride;
+        end[t] = items + e * stride;
+      }
+      for (int left = threads; left > 0;) {
+        for (int t = 0; t < threads; ++t) {
+          for (int k = 0; k < per_turn && !done[t]; ++k) {
+            Report(sink, t, const_cast<T* const*>(&end[t]), sizeof(T*), Array::kLoopBound, false);
+            if (!(cursor[t] < end[t])) {
+              done[t] = 1;
+              --left;
+              break;
+            }
+            sum += body(cursor[t], t);
+            cursor[t] += stride;
+          }
+        }
+        EndTurnOf(sink, 0);
+      }
+      return sum;
+    }
     for (int t = 0; t < threads; ++t) {
       int64_t b, e;
       StaticRange(n, threads, t, &b, &e);
@@ -376,22 +470,27 @@ SmoothResult Smooth(Mesh& mesh, const SmoothOptions& opt, Sink& sink,
     sink.Bind(l);
   }
   if (opt.flush_bytes) FlushCaches(opt.flush_bytes);
+  // Untimed runs read each thread's CPU time around its share; traced runs are serial and slow,
+  // their CPU time means nothing.
+  CpuTimeRegion cpu(opt.region, threads);
+  SweepRegion* region = Sink::kEnabled ? opt.region : &cpu;
   for (int it = 1; it <= opt.max_iters; ++it) {
     if constexpr (Sink::kEnabled) sink.BeginSweep(it);
     const auto t0 = Clock::now();
     double q_new;
     if (opt.mode == UpdateMode::kGaussSeidel && opt.quality == QualityMode::kPerSweep) {
-      q_new = smoother_detail::LeanGaussSeidelSweep(mesh, wq.data(), threads, sink, opt.region);
+      q_new = smoother_detail::LeanGaussSeidelSweep(mesh, wq.data(), threads, sink, region);
     } else if (opt.mode == UpdateMode::kGaussSeidel) {
       q_new = q + smoother_detail::GaussSeidelSweep(smoother_detail::ArraysOf(mesh), mesh.interior,
-                                                    wq.data(), threads, sink, opt.region);
+                                                    wq.data(), threads, sink, region);
     } else {
-      q_new = smoother_detail::JacobiSweep(mesh, next, wq.data(), threads, sink, opt.region);
+      q_new = smoother_detail::JacobiSweep(mesh, next, wq.data(), threads, sink, region);
     }
     const double secs = std::chrono::duration<double>(Clock::now() - t0).count();
-    SweepRecord rec{it, q_new, q_new - q, secs};
+    SweepRecord rec{it, q_new, q_new - q, secs, Sink::kEnabled ? 0.0 : cpu.Take()};
     r.sweeps.push_back(rec);
     r.seconds += secs;
+    r.cpu_seconds += rec.cpu_seconds;
     q = q_new;
     if (on_sweep) on_sweep(rec);
     if (rec.improvement < opt.tol) {

@@ -83,7 +83,12 @@ bool TextFile::NextDataLine(std::string_view* line) {
   while (NextLine(&l)) {
     if (comment_ != '\0') {
       const size_t c = l.find(comment_);
-      if (c != std::string_view::npos) l = l.substr(0, c);
+      if (c != std::string_view::npos) {
+        constexpr std::string_view kPair = "# meshreuse pair ";
+        if (c == 0 && l.substr(0, kPair.size()) == kPair)
+          pair_mark_ = std::string(Trim(l.substr(kPair.size()).substr(0, 200)));
+        l = l.substr(0, c);
+      }
     }
     l = Trim(l);
     if (!l.empty()) {

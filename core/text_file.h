@@ -34,6 +34,9 @@ class TextFile {
   // Bytes after the last line returned, or -1 when unknown (a pipe).
   int64_t BytesLeft() const;
   [[noreturn]] void Fail(const std::string& problem) const;
+  // The words after the last "# meshreuse pair " comment seen so far ("" if none): files written
+  // as a pair carry the same one (triangle_io.cc), so a reader can tell a mismatched pair.
+  const std::string& pair_mark() const { return pair_mark_; }
 
   // Parsing helpers that fail at the current line, naming what was expected.
   int64_t ParseInt(std::string_view token, const char* what) const;
@@ -53,6 +56,7 @@ class TextFile {
   bool eof_ = false, first_ = true;
   int64_t line_ = 0;
   char comment_;
+  std::string pair_mark_;
 };
 
 // Splits a line on blanks (spaces, tabs, carriage returns).

@@ -73,7 +73,7 @@ void ExpectEnd(TextFile& f, int64_t count, const char* items) {
 // The .ele, on its own thread: it needs from the .node only the vertex count and numbering base,
 // known once the .node's header and first vertex are read. `stop` is set when the .node failed.
 void ReadEle(const std::string& node_path, const std::string& ele_path, int64_t nv, int64_t base,
-             const std::atomic<bool>& stop, RawMesh* out) {
+             const std::atomic<bool>& stop, RawMesh* out, std::string* pair_mark) {
   RawMesh& raw = *out;
   TextFile ele(ele_path);
   std::string_view line, tok[kMaxCols];
@@ -115,6 +115,7 @@ void ReadEle(const std::string& node_path, const std::string& ele_path, int64_t 
     raw.triangle_line.Push(ele.line());
   }
   ExpectEnd(ele, nt, "triangle");
+  *pair_mark = ele.pair_mark();
 }
 
 // Runs ReadEle on a thread; joins it (asking it to stop) on every way out of the .node's reader.
@@ -123,7 +124,7 @@ class EleThread {
   void Start(const std::string& node_path, const std::string& ele_path, int64_t nv, int64_t base) {
     thread_ = std::thread([=] {
       try {
-        ReadEle(node_path, ele_path, nv, base, stop_, &raw_);
+        ReadEle(node_path, ele_path, nv, base, stop_, &raw_, &pair_mark_);
       } catch (...) {
         error_ = std::current_exception();
       }
@@ -134,6 +135,7 @@ class EleThread {
     if (error_) std::rethrow_exception(error_);
     return std::move(raw_);
   }
+  const std::string& pair_mark() const { return pair_mark_; }
   ~EleThread() {
     if (thread_.joinable()) {
       stop_ = true;
@@ -146,6 +148,7 @@ class EleThread {
   std::atomic<bool> stop_{false};
   std::exception_ptr error_;
   RawMesh raw_;
+  std::string pair_mark_;
 };
 
 }  // namespace
@@ -198,6 +201,15 @@ RawMesh ReadTriangleFiles(const std::string& node_path, const std::string& ele_p
   }
   ExpectEnd(node, nv, "vertex");
   RawMesh tris = ele.Join();  // the .ele's error, if any, now that the .node has none
+  // Written as a pair by meshreuse: both files carry one mark; different marks (or one without)
+  // mean the two were not written together (a disk full between them, two writers of a prefix).
+  if (!node.pair_mark().empty() || !ele.pair_mark().empty()) {
+    if (node.pair_mark() != ele.pair_mark())
+      throw InputError(ele_path, 0,
+                       "does not belong with " + node_path + ": meshreuse wrote them as a pair " +
+                           "marked '" + node.pair_mark() + "' and '" + ele.pair_mark() +
+                           "' (written at different times; write the mesh again)");
+  }
   raw.tri = std::move(tris.tri);
   raw.triangle_line = std::move(tris.triangle_line);
   return raw;
@@ -205,20 +217,34 @@ RawMesh ReadTriangleFiles(const std::string& node_path, const std::string& ele_p
 
 void WriteTriangleFiles(const Mesh& m, const std::string& prefix) {
   const int32_t nv = m.NumVertices(), nt = m.NumTriangles();
-  WriteAtomically(prefix + ".node", [&](std::FILE* f) {
-    std::fprintf(f, "%d 2 0 1\n", nv);
-    for (int32_t v = 0; v < nv; ++v)
-      std::fprintf(f, "%d %.17g %.17g %d\n", v + 1, m.xy[2 * int64_t{v}], m.xy[2 * int64_t{v} + 1],
-                   int{m.boundary[v]});
-    std::fprintf(f, "# written by meshreuse\n");
-  });
-  WriteAtomically(prefix + ".ele", [&](std::FILE* f) {
-    std::fprintf(f, "%d 3 0\n", nt);
-    for (int32_t t = 0; t < nt; ++t)
-      std::fprintf(f, "%d %d %d %d\n", t + 1, m.tri[3 * int64_t{t}] + 1,
-                   m.tri[3 * int64_t{t} + 1] + 1, m.tri[3 * int64_t{t} + 2] + 1);
-    std::fprintf(f, "# written by meshreuse\n");
-  });
+  // As a unit: a .node never lands beside an .ele it was not written with. Both carry one mark,
+  // the counts and a hash of the arrays, which the reader compares (a pair from two runs differs).
+  uint64_t h = 1469598103934665603ull;  // FNV-1a over the coordinates' and corners' bytes
+  auto mix = [&h](const void* p, size_t n) {
+    for (size_t i = 0; i < n; ++i)
+      h = (h ^ static_cast<const unsigned char*>(p)[i]) * 1099511628211ull;
+  };
+  mix(m.xy.data(), m.xy.size() * sizeof(double));
+  mix(m.tri.data(), m.tri.size() * sizeof(int32_t));
+  char mark[96];
+  std::snprintf(mark, sizeof mark, "# meshreuse pair %d vertices %d triangles %016llx\n", nv, nt,
+                static_cast<unsigned long long>(h));
+  WriteAtomicallyAll({{prefix + ".node",
+                       [&](std::FILE* f) {
+                         std::fprintf(f, "%d 2 0 1\n", nv);
+                         for (int32_t v = 0; v < nv; ++v)
+                           std::fprintf(f, "%d %.17g %.17g %d\n", v + 1, m.xy[2 * int64_t{v}],
+                                        m.xy[2 * int64_t{v} + 1], int{m.boundary[v]});
+                         std::fprintf(f, "# written by meshreuse\n%s", mark);
+                       }},
+                      {prefix + ".ele", [&](std::FILE* f) {
+                         std::fprintf(f, "%d 3 0\n", nt);
+                         for (int32_t t = 0; t < nt; ++t)
+                           std::fprintf(f, "%d %d %d %d\n", t + 1, m.tri[3 * int64_t{t}] + 1,
+                                        m.tri[3 * int64_t{t} + 1] + 1,
+                                        m.tri[3 * int64_t{t} + 2] + 1);
+                         std::fprintf(f, "# written by meshreuse\n%s", mark);
+                       }}});
 }
 
 }  // namespace meshreuse

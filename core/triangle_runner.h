@@ -11,13 +11,9 @@
 #include <stdexcept>
 #include <string>
 
-namespace meshreuse {
+#include "core/error.h"
 
-// The external program is missing or failed; the message says how to install or what it printed.
-class ToolError : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
-};
+namespace meshreuse {
 
 struct TriangulateOptions {
   int64_t target_vertices = 0;
@@ -38,8 +34,14 @@ struct TriangulateResult {
   std::string node_file, ele_file;
 };
 
+// Checks a .poly before Triangle sees it (InputError naming the line): vertices in the file, at
+// least 3, finite, spanning an area in (0, 1e30); segments and holes as many as announced, each
+// segment between two of the vertices. Returns the vertices' bounding-box area.
+double CheckPoly(const std::string& poly_path);
+
 // Meshes `poly_path` and writes PREFIX.node and PREFIX.ele (creating PREFIX's folder). Throws
-// ToolError when `triangle` is missing or fails, InputError for an unreadable .poly, and
+// EnvironmentError when `triangle` is missing or fails, InputError for a .poly that Triangle
+// cannot mesh (CheckPoly's reasons; Triangle's own refusals; holes covering everything), and
 // std::runtime_error when the count cannot be reached (e.g. fewer vertices than the outline has).
 TriangulateResult TriangulatePoly(const std::string& poly_path, const std::string& prefix,
                                   const TriangulateOptions& opt);

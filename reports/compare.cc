@@ -9,18 +9,18 @@
 #include <stdexcept>
 
 #include "analysis/papi_counters.h"
+#include "core/error.h"
 #include "core/mesh_io.h"
 #include "core/orderings/registry.h"
 #include "core/permutation.h"
-#include "reports/run_info.h"
+#include "reports/speedup.h"
 
 namespace meshreuse {
 
-double Median(std::vector<double> v) {
-  if (v.empty()) return NAN;
-  std::sort(v.begin(), v.end());
-  const size_t n = v.size();
-  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+std::vector<double> CompareRow::Values(double CompareRound::*field) const {
+  std::vector<double> v;
+  for (const CompareRound& r : rounds) v.push_back(r.*field);
+  return v;
 }
 
 namespace {
@@ -30,19 +30,150 @@ double Since(Clock::time_point t0) {
   return std::chrono::duration<double>(Clock::now() - t0).count();
 }
 
+double MedianSweep(const SmoothResult& res, double SweepRecord::*field) {
+  std::vector<double> v;
+  for (const SweepRecord& s : res.sweeps) v.push_back(s.*field);
+  return Median(v);
+}
+
+// One mesh's rows, measured: warm-up, then rounds until enough.
+class MeshTiming {
+ public:
+  MeshTiming(const CompareConfig& cfg, const std::string& path, const Mesh& base,
+             std::vector<CompareRow>* rows, const std::function<void(const std::string&)>& say)
+      : cfg_(cfg), path_(path), base_(base), rows_(rows), say_(say), first_(rows->size()) {}
+
+  void Prepare() {
+    for (const std::string& spec : cfg_.orderings) {
+      // The working copy goes first: the ordering's and the span's scratch memory then never
+      // adds to two meshes, and the first apply of each ordering allocates, as a fresh reorder
+      // would.
+      work_ = Mesh();
+      Permutation p = ComputeOrdering(spec, base_, cfg_.seed);
+      const EdgeSpan span = MeasureEdgeSpan(base_, p);
+      const auto t0 = Clock::now();
+      ApplyPermutationInto(base_, p, cfg_.triangle_order, &work_);
+      const double apply_first = Since(t0);
+      perms_.push_back(p.new_to_old());
+      for (int t : cfg_.threads) {
+        CompareRow r;
+        r.mesh = path_, r.ordering = ParseOrderingSpec(spec).label, r.threads = t;
+        r.vertices = base_.NumVertices(), r.triangles = base_.NumTriangles();
+        r.apply_first_seconds = apply_first;
+        r.span = span;
+        rows_->push_back(std::move(r));
+      }
+    }
+  }
+
+  // One pass over every (ordering, threads): the ordering computed (timed), applied (timed) and
+  // smoothed. `timed` false: the warm-up, nothing recorded.
+  void Round(bool timed, int round) {
+    size_t k = first_;
+    for (size_t oi = 0; oi < cfg_.orderings.size(); ++oi) {
+      auto t0 = Clock::now();
+      const Permutation again = ComputeOrdering(cfg_.orderings[oi], base_, cfg_.seed);
+      const double order = Since(t0);
+      (void)again;  // the same permutation: perms_ is applied, so every run starts alike
+      for (int t : cfg_.threads) {
+        CompareRow& r = (*rows_)[k++];
+        t0 = Clock::now();
+        ApplyPermutationInto(base_, Permutation::FromNewToOld(perms_[oi]), cfg_.triangle_order,
+                             &work_);
+        const double apply = Since(t0);
+        SmoothOptions o = cfg_.smooth;
+        o.threads = t;
+        std::unique_ptr<PapiCounters> papi;
+        if (timed && !cfg_.counter_events.empty()) {
+          papi = std::make_unique<PapiCounters>(cfg_.counter_events, t);
+          if (papi->available()) o.region = papi.get();
+        }
+        const SmoothResult res = Smooth(work_, o);
+        if (!timed) continue;
+        if (papi && papi->available()) {
+          if (!papi->error().empty()) throw std::runtime_error("counters failed: " + papi->error());
+          r.counter_events = papi->events();
+          r.counters.push_back(papi->Sum());
+        }
+        CompareRound c;
+        c.sweeps = static_cast<int>(res.sweeps.size());
+        c.total_wall = res.seconds, c.total_cpu = res.cpu_seconds;
+        c.sweep_wall = MedianSweep(res, &SweepRecord::seconds);
+        c.sweep_cpu = MedianSweep(res, &SweepRecord::cpu_seconds);
+        c.order = order, c.apply = apply;
+        r.rounds.push_back(c);
+        if (round == 0) r.final_quality = res.quality_after;
+        say_("  round " + std::to_string(round + 1) + " " + r.ordering + " x" + std::to_string(t) +
+             ": " + std::to_string(c.sweeps) + " sweeps, " + Fixed(res.seconds, 3) + " s wall, " +
+             Fixed(res.cpu_seconds, 3) + " s CPU");
+      }
+    }
+  }
+
+  // Spreads, speedups and gains of this mesh's rows from their rounds.
+  void Summarize() {
+    for (size_t i = first_; i < rows_->size(); ++i) {
+      CompareRow& r = (*rows_)[i];
+      const uint64_t s = cfg_.seed + i;
+      r.order = SpreadOf(r.Values(&CompareRound::order), s);
+      r.apply = SpreadOf(r.Values(&CompareRound::apply), s + 1);
+      r.total = SpreadOf(r.Values(&CompareRound::total_wall), s + 2);
+      r.sweep = SpreadOf(r.Values(&CompareRound::sweep_wall), s + 3);
+      r.sweep_cpu = SpreadOf(r.Values(&CompareRound::sweep_cpu), s + 4);
+      std::vector<double> ratio;
+      for (const CompareRound& c : r.rounds)
+        if (c.total_wall > 0) ratio.push_back(c.total_cpu / (c.total_wall * r.threads));
+      r.cpu_per_wall = Median(ratio);
+      r.cv = CoefficientOfVariation(r.Values(&CompareRound::sweep_wall));
+      r.counter_medians.clear();
+      for (size_t e = 0; e < r.counter_events.size(); ++e) {
+        std::vector<double> v;
+        for (const auto& round : r.counters) v.push_back(static_cast<double>(round[e]));
+        r.counter_medians.push_back(Median(v));
+      }
+    }
+    const std::vector<CompareRow> mine(rows_->begin() + first_, rows_->end());
+    const TimingIndex index(mine);
+    for (size_t i = first_; i < rows_->size(); ++i) {
+      CompareRow& r = (*rows_)[i];
+      r.speedup_vs_ori1 = Speedup(index.Find(path_, "ori", 1), &r, cfg_.seed, cfg_.clock);
+      r.gain_vs_bfs = Gain(index.Find(path_, "bfs", r.threads), &r, cfg_.seed, cfg_.clock);
+    }
+  }
+
+  // --repeat auto: every speedup against ori on one thread known within +-2%.
+  bool Settled() const {
+    for (size_t i = first_; i < rows_->size(); ++i) {
+      const Spread& s = (*rows_)[i].speedup_vs_ori1;
+      if (std::isfinite(s.median) && !(s.RelativeHalfWidth() <= 0.02)) return false;
+    }
+    return true;
+  }
+
+ private:
+  const CompareConfig& cfg_;
+  const std::string& path_;
+  const Mesh& base_;
+  std::vector<CompareRow>* rows_;
+  const std::function<void(const std::string&)>& say_;
+  size_t first_;
+  Mesh work_;
+  std::vector<std::vector<int32_t>> perms_;
+};
+
 }  // namespace
 
-std::vector<CompareRow> RunCompare(const CompareConfig& cfg,
-                                   const std::function<void(const std::string&)>& progress,
-                                   const std::function<void(const std::string&)>& warn) {
-  auto say = [&](const std::string& s) {
+CompareResult RunCompare(const CompareConfig& cfg,
+                         const std::function<void(const std::string&)>& progress,
+                         const std::function<void(const std::string&)>& warn) {
+  const std::function<void(const std::string&)> say = [&](const std::string& s) {
     if (progress) progress(s);
   };
-  std::vector<CompareRow> rows;
-  const size_t per_mesh = cfg.orderings.size() * cfg.threads.size() * cfg.repeat;
-  const size_t total_runs = per_mesh * cfg.meshes.size();
-  size_t runs_done = 0;
-  const auto start = Clock::now();
+  if (cfg.repeat < 3 && !cfg.repeat_auto)
+    throw UsageError("--repeat must be at least 3 (a median and its interval need rounds)");
+  CompareResult out;
+  out.noise.cores = Cores();
+  out.noise.load_before = LoadAverage();
   for (size_t mi = 0; mi < cfg.meshes.size(); ++mi) {
     const std::string& path = cfg.meshes[mi];
     say("mesh " + std::to_string(mi + 1) + "/" + std::to_string(cfg.meshes.size()) + ": reading " +
@@ -51,125 +182,60 @@ std::vector<CompareRow> RunCompare(const CompareConfig& cfg,
     const Mesh base = ReadMesh(path, &warnings);
     if (warn)
       for (const std::string& w : warnings) warn(w);
-    // Memory: the base mesh, one working copy and a permutation per ordering (4 bytes a vertex),
-    // not a reordered mesh per ordering. Before each run the working copy is reordered from the
-    // base (ApplyPermutationInto, into the same arrays), which also restores the start.
-    std::vector<std::vector<int32_t>> perms;
-    std::vector<std::vector<double>> apply_ms(cfg.orderings.size());
-    Mesh work;
-    const size_t first_row = rows.size();
-    for (const std::string& spec : cfg.orderings) {
-      // The working copy goes first: the ordering's and the span's scratch memory then never
-      // adds to two meshes, and the first apply of each ordering allocates, as a fresh reorder
-      // would.
-      work = Mesh();
-      auto t0 = Clock::now();
-      Permutation p = ComputeOrdering(spec, base, cfg.seed);
-      const double order_s = Since(t0);
-      const EdgeSpan span = MeasureEdgeSpan(base, p);
-      t0 = Clock::now();
-      ApplyPermutationInto(base, p, cfg.triangle_order, &work);
-      const double apply_s = Since(t0);
-      std::vector<int32_t> new_to_old = p.new_to_old();
-      perms.push_back(std::move(new_to_old));
-      say("  " + spec + ": ordering " + Fixed(1e3 * order_s, 1) + " ms, apply " +
-          Fixed(1e3 * apply_s, 1) + " ms");
-      for (int t : cfg.threads) {
-        CompareRow r;
-        r.mesh = path, r.ordering = spec, r.threads = t;
-        r.vertices = base.NumVertices(), r.triangles = base.NumTriangles();
-        r.order_seconds = order_s, r.apply_first_seconds = apply_s;
-        r.span = span;
-        rows.push_back(std::move(r));
-      }
-    }
-    for (int round = 0; round < cfg.repeat; ++round) {
-      size_t k = first_row;
-      for (size_t oi = 0; oi < cfg.orderings.size(); ++oi)
-        for (int t : cfg.threads) {
-          CompareRow& r = rows[k++];
-          {
-            const Permutation p = Permutation::FromNewToOld(perms[oi]);
-            const auto t0 = Clock::now();
-            ApplyPermutationInto(base, p, cfg.triangle_order, &work);
-            apply_ms[oi].push_back(Since(t0));
-          }
-          Mesh& m = work;
-          SmoothOptions o = cfg.smooth;
-          o.threads = t;
-          std::unique_ptr<PapiCounters> papi;
-          if (!cfg.counter_events.empty()) {
-            papi = std::make_unique<PapiCounters>(cfg.counter_events, t);
-            if (papi->available()) o.region = papi.get();
-          }
-          const SmoothResult res = Smooth(m, o);
-          if (papi && papi->available()) {
-            if (!papi->error().empty())
-              throw std::runtime_error("counters failed: " + papi->error());
-            r.counter_events = papi->events();
-            r.counters.push_back(papi->Sum());
-          }
-          r.sweeps.push_back(static_cast<int>(res.sweeps.size()));
-          r.total_seconds.push_back(res.seconds);
-          for (const SweepRecord& s : res.sweeps) r.sweep_seconds.push_back(s.seconds);
-          if (round == 0) r.final_quality = res.quality_after;
-          ++runs_done;
-          const double el = Since(start);
-          say("  round " + std::to_string(round + 1) + "/" + std::to_string(cfg.repeat) + " " +
-              r.ordering + " x" + std::to_string(t) + ": " + std::to_string(res.sweeps.size()) +
-              " sweeps, " + Fixed(res.seconds, 3) + " s  [" + std::to_string(runs_done) + "/" +
-              std::to_string(total_runs) + " runs, ~" +
-              Duration(el / runs_done * (total_runs - runs_done)) + " left]");
+    MeshTiming m(cfg, path, base, &out.rows, say);
+    m.Prepare();
+    say("  warm-up: every ordering computed, applied and smoothed once, untimed");
+    m.Round(false, 0);
+    const int rounds = cfg.repeat_auto ? cfg.repeat_cap : cfg.repeat;
+    for (int round = 0; round < rounds; ++round) {
+      m.Round(true, round);
+      if (cfg.repeat_auto && round + 1 >= 3) {
+        m.Summarize();
+        if (m.Settled()) {
+          say("  every speedup within +-2% after " + std::to_string(round + 1) + " rounds");
+          break;
         }
-    }
-    // Medians and the paper's ratios, within this mesh.
-    std::map<std::pair<std::string, int>, double> t_of;
-    for (size_t i = first_row; i < rows.size(); ++i) {
-      CompareRow& r = rows[i];
-      r.apply_seconds = Median(apply_ms[(i - first_row) / cfg.threads.size()]);
-      for (size_t e = 0; e < r.counter_events.size(); ++e) {
-        std::vector<double> v;
-        for (const auto& round : r.counters) v.push_back(static_cast<double>(round[e]));
-        r.counter_medians.push_back(Median(v));
       }
-      rows[i].median_total = Median(rows[i].total_seconds);
-      rows[i].median_sweep = Median(rows[i].sweep_seconds);
-      t_of[{rows[i].ordering, rows[i].threads}] = rows[i].median_total;
     }
-    const auto ori1 = t_of.find({"ori", 1});
-    for (size_t i = first_row; i < rows.size(); ++i) {
-      CompareRow& r = rows[i];
-      r.speedup_vs_ori1 = ori1 != t_of.end() ? ori1->second / r.median_total : NAN;
-      const auto bfs = t_of.find({"bfs", r.threads});
-      r.gain_vs_bfs = bfs != t_of.end() ? (bfs->second - r.median_total) / bfs->second : NAN;
-    }
+    m.Summarize();
   }
-  return rows;
+  out.noise.load_after = LoadAverage();
+  for (const CompareRow& r : out.rows) {
+    if (std::isfinite(r.cpu_per_wall) && !(out.noise.cpu_per_wall <= r.cpu_per_wall))
+      out.noise.cpu_per_wall = r.cpu_per_wall;
+    if (std::isfinite(r.cv) && !(out.noise.cv >= r.cv)) out.noise.cv = r.cv;
+  }
+  return out;
 }
 
 namespace {
-std::string SweepRange(const std::vector<int>& s) {
-  const auto [lo, hi] = std::minmax_element(s.begin(), s.end());
-  return *lo == *hi ? std::to_string(*lo) : std::to_string(*lo) + "-" + std::to_string(*hi);
+std::string SweepRange(const CompareRow& r) {
+  if (r.rounds.empty()) return "";
+  int lo = r.rounds[0].sweeps, hi = lo;
+  for (const CompareRound& c : r.rounds) lo = std::min(lo, c.sweeps), hi = std::max(hi, c.sweeps);
+  return lo == hi ? std::to_string(lo) : std::to_string(lo) + "-" + std::to_string(hi);
 }
-std::string OrDash(double v, int decimals) { return std::isfinite(v) ? Fixed(v, decimals) : ""; }
+void Append(std::vector<std::string>* row, const std::vector<std::string>& more) {
+  row->insert(row->end(), more.begin(), more.end());
+}
+std::string VerdictOf(const Spread& ratio) {
+  return std::isfinite(ratio.median) ? VerdictName(SpeedupVerdict(ratio)) : "";
+}
+std::string GainVerdictOf(const Spread& gain) {
+  return std::isfinite(gain.median) ? VerdictName(GainVerdict(gain)) : "";
+}
 }  // namespace
 
 Table CompareTable(const std::vector<CompareRow>& rows) {
-  std::vector<std::string> head = {"mesh",
-                                   "ordering",
-                                   "threads",
-                                   "sweeps",
-                                   "final_quality",
-                                   "order_ms",
-                                   "apply_ms",
-                                   "apply_first_ms",
-                                   "span_median",
-                                   "span_p90",
-                                   "median_ms_per_sweep",
-                                   "median_total_s",
-                                   "speedup_vs_ori1",
-                                   "gain_vs_bfs_%"};
+  std::vector<std::string> head = {"mesh",   "ordering",      "threads",     "rounds",
+                                   "sweeps", "final_quality", "span_median", "span_p90"};
+  for (const char* n : {"order_ms", "apply_ms", "sweep_ms", "sweep_cpu_ms", "total_s"})
+    Append(&head, SpreadColumns(n));
+  Append(&head, {"apply_first_ms", "cpu_per_wall", "cv"});
+  Append(&head, SpreadColumns("speedup_vs_ori1"));
+  head.push_back("vs_ori1");
+  Append(&head, SpreadColumns("gain_vs_bfs_pct"));
+  head.push_back("vs_bfs");
   std::vector<std::string> events;  // counters recorded in any row, in first-seen order
   for (const CompareRow& r : rows)
     for (const std::string& e : r.counter_events)
@@ -180,112 +246,218 @@ Table CompareTable(const std::vector<CompareRow>& rows) {
     std::vector<std::string> row = {r.mesh,
                                     r.ordering,
                                     std::to_string(r.threads),
-                                    SweepRange(r.sweeps),
-                                    Fixed(r.final_quality, 6),
-                                    Fixed(1e3 * r.order_seconds, 1),
-                                    Fixed(1e3 * r.apply_seconds, 1),
-                                    Fixed(1e3 * r.apply_first_seconds, 1),
+                                    std::to_string(r.rounds.size()),
+                                    SweepRange(r),
+                                    ExactNumber(r.final_quality),
                                     std::to_string(r.span.median),
-                                    std::to_string(r.span.p90),
-                                    Fixed(1e3 * r.median_sweep, 3),
-                                    Fixed(r.median_total, 3),
-                                    OrDash(r.speedup_vs_ori1, 3),
-                                    OrDash(100 * r.gain_vs_bfs, 1)};
+                                    std::to_string(r.span.p90)};
+    Append(&row, SpreadCells(r.order, 1e3));
+    Append(&row, SpreadCells(r.apply, 1e3));
+    Append(&row, SpreadCells(r.sweep, 1e3));
+    Append(&row, SpreadCells(r.sweep_cpu, 1e3));
+    Append(&row, SpreadCells(r.total));
+    Append(&row, {ExactNumber(1e3 * r.apply_first_seconds), ExactNumber(r.cpu_per_wall),
+                  ExactNumber(r.cv)});
+    Append(&row, SpreadCells(r.speedup_vs_ori1));
+    row.push_back(VerdictOf(r.speedup_vs_ori1));
+    Append(&row, SpreadCells(r.gain_vs_bfs, 100));
+    row.push_back(GainVerdictOf(r.gain_vs_bfs));
     for (const std::string& e : events) {
       const auto it = std::find(r.counter_events.begin(), r.counter_events.end(), e);
       row.push_back(it == r.counter_events.end()
                         ? ""
-                        : Fixed(r.counter_medians[it - r.counter_events.begin()], 0));
+                        : ExactNumber(r.counter_medians[it - r.counter_events.begin()]));
     }
     t.AddRow(row);
   }
   return t;
 }
 
-CounterNote ProbeCounters(const std::vector<std::string>& events) {
-  const PapiCounters probe(events, 1);
-  return {probe.available(), probe.reason()};
+namespace {
+std::string WithInterval(const Spread& s, double k, int decimals) {
+  if (!std::isfinite(s.median)) return "";
+  std::string t = Fixed(k * s.median, decimals);
+  if (std::isfinite(s.lo))
+    t += " [" + Fixed(k * s.lo, decimals) + ", " + Fixed(k * s.hi, decimals) + "]";
+  return t;
+}
+}  // namespace
+
+Table CompareTextTable(const std::vector<CompareRow>& rows) {
+  Table t({"mesh", "ordering", "threads", "rounds", "sweeps", "ms/sweep [95%]", "cpu ms/sweep",
+           "total s", "speedup vs ori1 [95%]", "verdict", "gain vs bfs % [95%]", "verdict"});
+  for (const CompareRow& r : rows)
+    t.AddRow({r.mesh, r.ordering, std::to_string(r.threads), std::to_string(r.rounds.size()),
+              SweepRange(r), WithInterval(r.sweep, 1e3, 3), Fixed(1e3 * r.sweep_cpu.median, 3),
+              Fixed(r.total.median, 3), WithInterval(r.speedup_vs_ori1, 1, 3),
+              VerdictOf(r.speedup_vs_ori1), WithInterval(r.gain_vs_bfs, 100, 1),
+              GainVerdictOf(r.gain_vs_bfs)});
+  return t;
 }
 
-Table CompareSummaryTable(const std::vector<CompareRow>& rows) {
-  // Per mesh, the median totals by (ordering, threads); then means over meshes.
-  std::map<std::pair<std::string, std::string>, double> t;  // (mesh, ordering@threads)
-  auto key = [](const std::string& o, int p) { return o + "@" + std::to_string(p); };
+void ParseRepeat(const std::string& text, int* repeat, bool* automatic, int* cap) {
+  *automatic = text.rfind("auto", 0) == 0;
+  if (*automatic) {
+    *repeat = 3;
+    if (text == "auto") return;
+    const std::string c = text.size() > 5 && text[4] == ':' ? text.substr(5) : "";
+    if (c.empty() || c.size() > 4 || c.find_first_not_of("0123456789") != std::string::npos ||
+        std::stoi(c) < 3)
+      throw UsageError("--repeat auto:CAP takes a cap of at least 3 rounds, found '" + text + "'");
+    *cap = std::stoi(c);
+    return;
+  }
+  if (text.empty() || text.size() > 4 || text.find_first_not_of("0123456789") != std::string::npos)
+    throw UsageError("--repeat takes a number of rounds (at least 3), auto or auto:CAP, found '" +
+                     text + "'");
+  *repeat = std::stoi(text);
+  if (*repeat < 3)
+    throw UsageError(
+        "--repeat must be at least 3: a median and its interval need rounds (auto: "
+        "as many as the intervals need)");
+}
+
+Table CompareSummaryTable(const std::vector<CompareRow>& rows, uint64_t seed, TimeClock clock) {
+  const TimingIndex index(rows);
   std::vector<std::pair<std::string, int>> cells;
+  std::vector<std::string> meshes;
   for (const CompareRow& r : rows) {
-    t[{r.mesh, key(r.ordering, r.threads)}] = r.median_total;
     if (std::find(cells.begin(), cells.end(), std::make_pair(r.ordering, r.threads)) == cells.end())
       cells.emplace_back(r.ordering, r.threads);
-  }
-  std::vector<std::string> meshes;
-  for (const CompareRow& r : rows)
     if (std::find(meshes.begin(), meshes.end(), r.mesh) == meshes.end()) meshes.push_back(r.mesh);
-  Table out({"ordering", "threads", "meshes", "speedup_vs_ori1", "T_ori/T", "T_bfs/T",
-             "gain_vs_ori_%", "gain_vs_bfs_%"});
+  }
+  std::vector<std::string> head = {"ordering", "threads", "meshes"};
+  for (const char* n : {"speedup_vs_ori1", "T_ori/T", "T_bfs/T"}) {
+    Append(&head, SpreadColumns(n));
+    head.push_back(std::string(n) + "_verdict");
+  }
+  for (const char* n : {"gain_vs_ori_pct", "gain_vs_bfs_pct"}) {
+    Append(&head, SpreadColumns(n));
+    head.push_back(std::string(n) + "_verdict");
+  }
+  Table out(head);
+  // Means over the meshes where both sides exist.
+  auto mean = [&](const std::string& ord, int p, const std::string& ref, int ref_p, bool gain) {
+    std::vector<std::pair<const CompareRow*, const CompareRow*>> pairs;
+    for (const std::string& m : meshes)
+      pairs.emplace_back(index.Find(m, ref, ref_p), index.Find(m, ord, p));
+    return MeanRatio(pairs, seed, gain, clock);
+  };
   for (const auto& [ord, p] : cells) {
-    double speed = 0, vs_ori = 0, vs_bfs = 0, g_ori = 0, g_bfs = 0;
-    int n_speed = 0, n_ori = 0, n_bfs = 0;
-    for (const std::string& m : meshes) {
-      const auto self = t.find({m, key(ord, p)});
-      if (self == t.end()) continue;
-      const double T = self->second;
-      if (auto o1 = t.find({m, key("ori", 1)}); o1 != t.end()) speed += o1->second / T, ++n_speed;
-      if (auto op = t.find({m, key("ori", p)}); op != t.end())
-        vs_ori += op->second / T, g_ori += (op->second - T) / op->second, ++n_ori;
-      if (auto bp = t.find({m, key("bfs", p)}); bp != t.end())
-        vs_bfs += bp->second / T, g_bfs += (bp->second - T) / bp->second, ++n_bfs;
+    std::vector<std::string> row = {ord, std::to_string(p), std::to_string(meshes.size())};
+    for (const Spread& s : {mean(ord, p, "ori", 1, false), mean(ord, p, "ori", p, false),
+                            mean(ord, p, "bfs", p, false)}) {
+      Append(&row, SpreadCells(s));
+      row.push_back(VerdictOf(s));
     }
-    auto mean = [](double s, int n, double scale) {
-      return n ? OrDash(scale * s / n, 3) : std::string();
-    };
-    out.AddRow({ord, std::to_string(p), std::to_string(meshes.size()), mean(speed, n_speed, 1),
-                mean(vs_ori, n_ori, 1), mean(vs_bfs, n_bfs, 1), mean(g_ori, n_ori, 100),
-                mean(g_bfs, n_bfs, 100)});
+    for (const char* ref : {"ori", "bfs"}) {
+      const Spread g = mean(ord, p, ref, p, true);
+      Append(&row, SpreadCells(g, 100));
+      row.push_back(GainVerdictOf(g));
+    }
+    out.AddRow(row);
   }
   return out;
 }
 
-std::string CompareJson(const std::vector<CompareRow>& rows) {
-  std::string s = "[";
-  for (size_t i = 0; i < rows.size(); ++i) {
-    const CompareRow& r = rows[i];
-    auto list = [](const auto& v) {
-      std::string o = "[";
-      for (size_t k = 0; k < v.size(); ++k) o += (k ? ", " : "") + JsonNumber(double(v[k]));
-      return o + "]";
+Table CompareSummaryTextTable(const Table& summary) {
+  Table t(
+      {"ordering", "threads", "meshes", "speedup_vs_ori1", "verdict", "gain_vs_bfs_%", "verdict"});
+  for (const auto& r : summary.JsonValue()) {
+    auto cell = [&](const char* k, int decimals) {
+      const auto& v = r[k];
+      if (v.is_null()) return std::string();
+      return v.is_string() ? v.get<std::string>() : Fixed(v.get<double>(), decimals);
     };
-    s += std::string(i ? ",\n    " : "\n    ") + "{\"mesh\": " + JsonString(r.mesh) +
-         ", \"ordering\": " + JsonString(r.ordering) +
-         ", \"threads\": " + std::to_string(r.threads) +
-         ", \"vertices\": " + std::to_string(r.vertices) +
-         ", \"triangles\": " + std::to_string(r.triangles) +
-         ", \"order_seconds\": " + JsonNumber(r.order_seconds) +
-         ", \"apply_seconds\": " + JsonNumber(r.apply_seconds) +
-         ", \"apply_first_seconds\": " + JsonNumber(r.apply_first_seconds) +
-         ", \"edge_span\": {\"median\": " + std::to_string(r.span.median) +
-         ", \"p90\": " + std::to_string(r.span.p90) + ", \"p99\": " + std::to_string(r.span.p99) +
-         ", \"max\": " + std::to_string(r.span.max) + ", \"mean\": " + JsonNumber(r.span.mean) +
-         "}" + ", \"sweeps\": " + list(r.sweeps) + ", \"total_seconds\": " + list(r.total_seconds) +
-         ", \"median_total_seconds\": " + JsonNumber(r.median_total) +
-         ", \"median_seconds_per_sweep\": " + JsonNumber(r.median_sweep) +
-         ", \"final_quality\": " + JsonNumber(r.final_quality) +
-         ", \"speedup_vs_ori1\": " + JsonNumber(r.speedup_vs_ori1) +
-         ", \"gain_vs_bfs\": " + JsonNumber(r.gain_vs_bfs) + ", \"counters\": " +
-         [&] {
-           if (r.counter_events.empty()) return std::string("null");
-           std::string c = "{";
-           for (size_t e = 0; e < r.counter_events.size(); ++e) {
-             std::vector<long long> per;
-             for (const auto& round : r.counters) per.push_back(round[e]);
-             c += std::string(e ? ", " : "") + JsonString(r.counter_events[e]) +
-                  ": {\"median\": " + JsonNumber(r.counter_medians[e]) +
-                  ", \"per_round\": " + list(per) + "}";
-           }
-           return c + "}";
-         }() +
-         "}";
+    t.AddRow({cell("ordering", 0), cell("threads", 0), cell("meshes", 0),
+              cell("speedup_vs_ori1", 3), cell("speedup_vs_ori1_verdict", 0),
+              cell("gain_vs_bfs_pct", 1), cell("gain_vs_bfs_pct_verdict", 0)});
   }
-  return s + "\n  ]";
+  return t;
+}
+
+Json CompareJson(const std::vector<CompareRow>& rows) {
+  Json a = Json::array();
+  auto num = [](double v) { return std::isfinite(v) ? Json(v) : Json(nullptr); };
+  for (const CompareRow& r : rows) {
+    Json j;
+    j["mesh"] = r.mesh;
+    j["ordering"] = r.ordering;
+    j["threads"] = r.threads;
+    j["vertices"] = r.vertices;
+    j["triangles"] = r.triangles;
+    j["rounds"] = r.rounds.size();
+    j["order_seconds"] = SpreadJson(r.order);
+    j["apply_seconds"] = SpreadJson(r.apply);
+    j["apply_first_seconds"] = num(r.apply_first_seconds);
+    j["edge_span"] = {{"median", r.span.median},
+                      {"p90", r.span.p90},
+                      {"p99", r.span.p99},
+                      {"max", r.span.max},
+                      {"mean", num(r.span.mean)}};
+    j["seconds_per_sweep"] = SpreadJson(r.sweep);
+    j["cpu_seconds_per_sweep"] = SpreadJson(r.sweep_cpu);
+    j["total_seconds"] = SpreadJson(r.total);
+    j["cpu_per_wall"] = num(r.cpu_per_wall);
+    j["cv"] = num(r.cv);
+    Json rounds = Json::array();
+    for (const CompareRound& c : r.rounds)
+      rounds.push_back({{"sweeps", c.sweeps},
+                        {"total_wall", c.total_wall},
+                        {"total_cpu", c.total_cpu},
+                        {"sweep_wall", c.sweep_wall},
+                        {"sweep_cpu", c.sweep_cpu},
+                        {"order", c.order},
+                        {"apply", c.apply}});
+    j["rounds_measured"] = rounds;
+    j["final_quality"] = num(r.final_quality);
+    j["speedup_vs_ori1"] = SpreadJson(r.speedup_vs_ori1);
+    j["speedup_vs_ori1_verdict"] = VerdictOf(r.speedup_vs_ori1);
+    j["gain_vs_bfs"] = SpreadJson(r.gain_vs_bfs);
+    j["gain_vs_bfs_verdict"] = GainVerdictOf(r.gain_vs_bfs);
+    if (r.counter_events.empty()) {
+      j["counters"] = nullptr;
+    } else {
+      Json cj;
+      for (size_t e = 0; e < r.counter_events.size(); ++e) {
+        std::vector<long long> per;
+        for (const auto& round : r.counters) per.push_back(round[e]);
+        cj[r.counter_events[e]] = {{"median", num(r.counter_medians[e])}, {"per_round", per}};
+      }
+      j["counters"] = cj;
+    }
+    a.push_back(std::move(j));
+  }
+  return a;
+}
+
+const char* ClockName(TimeClock c) { return c == TimeClock::kCpu ? "cpu" : "wall"; }
+
+TimeClock ParseClock(const std::string& s) {
+  if (s == "wall") return TimeClock::kWall;
+  if (s == "cpu") return TimeClock::kCpu;
+  throw UsageError("--clock: '" + s + "' is not a clock (wall or cpu)");
+}
+
+Json CompareConfigJson(const CompareConfig& cfg) {
+  Json j;
+  j["meshes"] = cfg.meshes;
+  j["orderings"] = cfg.orderings;
+  Json seeds = Json::object();
+  for (const auto& [label, s] : SeededOrderings(cfg.orderings, cfg.seed)) seeds[label] = s;
+  j["ordering_seeds"] = seeds;
+  j["threads"] = cfg.threads;
+  j["repeat"] = cfg.repeat_auto ? Json("auto") : Json(cfg.repeat);
+  j["repeat_cap"] = cfg.repeat_cap;
+  j["seed"] = cfg.seed;
+  j["clock"] = ClockName(cfg.clock);
+  j["triangle_order"] = TriangleOrderName(cfg.triangle_order);
+  j["counters"] = cfg.counter_events;
+  j["mode"] = UpdateModeName(cfg.smooth.mode);
+  j["quality"] = QualityModeName(cfg.smooth.quality);
+  j["tol"] = cfg.smooth.tol;
+  j["max_iters"] = cfg.smooth.max_iters;
+  return j;
 }
 
 }  // namespace meshreuse

@@ -1,12 +1,15 @@
-// The experiment runner behind `meshreuse compare`: meshes x orderings x thread counts. Each mesh
-// is read once and each ordering computed once (ordering and apply times measured separately); then
-// `repeat` rounds each smooth every (ordering, threads) pair once from the same start, so noise on
-// a shared machine hits all pairs alike. It holds the mesh, one working copy and the permutations:
-// the working copy is reordered from the mesh before every run. Times are medians over the rounds.
-// The paper's formulas:
-//   Speedup(ord, p) = T_ori(1) / T_ord(p)          Gain(ord vs bfs, p) = (T_bfs(p) - T_ord(p)) /
-//   T_bfs(p)
-// with T the total smoothing time to convergence.
+// The experiment runner behind `meshreuse compare` (and the report's timing): meshes x orderings x
+// thread counts, under the timing discipline of timing.h. Per mesh: the mesh read once; an untimed
+// warm-up of every (ordering, threads) pair (computing and applying the ordering, smoothing to
+// convergence); then rounds, each computing every ordering and smoothing every pair once from the
+// same start, so noise on a shared machine hits all pairs alike. Each round records per pair the
+// wall and the thread CPU time of the sweeps (per thread, summed), the ordering's and the apply's
+// time. Rounds: `repeat` (at least 3), or with `repeat_auto` as many as it takes for every
+// speedup's interval to be within +-2% (at least 3, at most `repeat_cap`). Every timed cell then
+// carries its spread (min, median, max, 95% interval of the median), and Speedup and Gain
+// (speedup.h) are ratios of per-sweep medians with their intervals.
+// Memory: the mesh, one working copy (reordered from the mesh before every run) and a permutation
+// per ordering, not a reordered mesh per ordering.
 #pragma once
 
 #include <cstdint>
@@ -16,65 +19,93 @@
 
 #include "core/permutation.h"
 #include "core/smoother.h"
-#include "reports/table.h"
+#include "core/table.h"
+#include "reports/run_info.h"
+#include "reports/timing.h"
 
 namespace meshreuse {
+
+// The clock that Speedup and Gain are computed on: wall time (what a user waits for; the right one
+// for scaling, on a quiet machine) or the thread CPU time of the sweeps summed over threads (the
+// work an ordering costs, steadier where other work shares the cores).
+enum class TimeClock { kWall, kCpu };
+const char* ClockName(TimeClock c);          // "wall", "cpu"
+TimeClock ParseClock(const std::string& s);  // throws UsageError
 
 struct CompareConfig {
   std::vector<std::string> meshes;
   std::vector<std::string> orderings = {"ori", "bfs", "rdr", "random"};
   std::vector<int> threads = {1};
-  int repeat = 5;
-  uint64_t seed = 1;
-  SmoothOptions smooth;  // tol, max_iters, mode; threads are taken from `threads`
+  int repeat = 5;            // rounds, at least 3
+  bool repeat_auto = false;  // rounds until every speedup is within +-2%, at most repeat_cap
+  int repeat_cap = 15;
+  uint64_t seed = 1;                   // seeded orderings and the bootstrap
+  TimeClock clock = TimeClock::kWall;  // of the speedups and gains
+  SmoothOptions smooth;                // tol, max_iters, mode; threads are taken from `threads`
   TriangleOrder triangle_order = TriangleOrder::kSorted;
-  // PAPI events to count around the sweeps of every run (empty: none). Events this machine
-  // cannot count are dropped; `counter_note` then says why (counters_available: any left).
+  // PAPI events to count around the sweeps of every run (empty: none); events this machine
+  // cannot count are dropped.
   std::vector<std::string> counter_events;
 };
 
+struct CompareRound {
+  int sweeps = 0;
+  double total_wall = 0, total_cpu = 0;  // all sweeps of the run
+  double sweep_wall = 0, sweep_cpu = 0;  // medians over the run's sweeps
+  double order = 0, apply = 0;           // computing the ordering, applying it to the working copy
+};
+
 struct CompareRow {
-  std::string mesh, ordering;
+  std::string mesh, ordering;  // ordering: its label
   int threads = 1;
   int32_t vertices = 0, triangles = 0;
-  double order_seconds = 0;
-  // Applying the ordering to the mesh: the median over the runs, each into the reused working copy
-  // (what a code that reorders its own arrays pays), and the first apply, into new arrays (page
-  // faults included).
-  double apply_seconds = 0, apply_first_seconds = 0;
-  EdgeSpan span;                      // locality of the ordering (permutation.h)
-  std::vector<int> sweeps;            // per round
-  std::vector<double> total_seconds;  // per round
-  std::vector<double> sweep_seconds;  // every sweep of every round
-  double final_quality = 0;           // of the first round
-  double median_total = 0, median_sweep = 0;
-  double speedup_vs_ori1 = 0;  // NaN when the run has no ori on one thread
-  double gain_vs_bfs = 0;      // NaN when the run has no bfs at this thread count
+  double apply_first_seconds = 0;  // the first apply, into new arrays (page faults included)
+  EdgeSpan span;                   // locality of the ordering (permutation.h)
+  std::vector<CompareRound> rounds;
+  double final_quality = 0;  // of the first round
+  // Over the rounds: seconds. `sweep` is the per-sweep median (wall), `sweep_cpu` its thread CPU
+  // time (summed over the threads), `total` the time to convergence.
+  Spread order, apply, total, sweep, sweep_cpu;
+  double cpu_per_wall = NAN;  // median over rounds of CPU / (wall x threads) of the sweeps
+  double cv = NAN;            // coefficient of variation of the rounds' per-sweep medians (wall)
+  Spread speedup_vs_ori1;     // T_ori(1) / T (per-sweep medians, wall); NaN without ori at 1
+  Spread gain_vs_bfs;         // (T_bfs - T) / T_bfs at the same threads; NaN without bfs
   // Counters (CompareConfig::counter_events that count here): per event, the sum over threads
   // and sweeps of each round, and its median over the rounds.
   std::vector<std::string> counter_events;
   std::vector<std::vector<long long>> counters;  // [round][event]
   std::vector<double> counter_medians;           // [event]
+  // The rounds' values of one kind, in round order.
+  std::vector<double> Values(double CompareRound::*field) const;
 };
 
-// Why configured counters are not (all) recorded here, empty if they are; and whether any is.
-struct CounterNote {
-  bool available = false;
-  std::string note;
+struct CompareResult {
+  std::vector<CompareRow> rows;
+  Noise noise;
 };
-CounterNote ProbeCounters(const std::vector<std::string>& events);
 
 // `progress` gets progress lines; `warn` the readers' warnings (dropped vertices, skipped
 // elements), which a caller should show even when progress is silenced.
-std::vector<CompareRow> RunCompare(const CompareConfig& cfg,
-                                   const std::function<void(const std::string&)>& progress = {},
-                                   const std::function<void(const std::string&)>& warn = {});
+CompareResult RunCompare(const CompareConfig& cfg,
+                         const std::function<void(const std::string&)>& progress = {},
+                         const std::function<void(const std::string&)>& warn = {});
 
-double Median(std::vector<double> v);
+// One row per mesh x ordering x threads: sweeps, final quality, edge span, the spreads of the
+// ordering's, apply's, per-sweep (wall and CPU) and total times, CPU/wall, CV, Speedup and Gain
+// with their intervals and verdicts.
 Table CompareTable(const std::vector<CompareRow>& rows);
-// The paper's headline numbers, averaged (arithmetic mean) over the meshes, per ordering and thread
-// count: Speedup T_ori(1)/T_ord(p), and the ratios and gains against ori and bfs at the same p.
-Table CompareSummaryTable(const std::vector<CompareRow>& rows);
-std::string CompareJson(const std::vector<CompareRow>& rows);  // a JSON array
+// The same for people: medians with their intervals in brackets, the verdicts.
+Table CompareTextTable(const std::vector<CompareRow>& rows);
+// "5" -> {5, false, 15}; "auto" -> {3, true, 15}; "auto:20" -> {3, true, 20}. UsageError below 3.
+void ParseRepeat(const std::string& text, int* repeat, bool* automatic, int* cap);
+// The paper's headline numbers per ordering and thread count, averaged over the meshes (with
+// intervals from resampling every mesh's rounds): Speedup T_ori(1)/T, T_ori/T and T_bfs/T at the
+// same p, and the gains against ori and bfs; verdicts.
+Table CompareSummaryTable(const std::vector<CompareRow>& rows, uint64_t seed,
+                          TimeClock clock = TimeClock::kWall);
+// Its medians and verdicts for people.
+Table CompareSummaryTextTable(const Table& summary);
+Json CompareJson(const std::vector<CompareRow>& rows);  // an array, one object per row
+Json CompareConfigJson(const CompareConfig& cfg);
 
 }  // namespace meshreuse

@@ -8,12 +8,6 @@
 
 namespace meshreuse::paper {
 
-const std::vector<std::string>& MeshNames() {
-  static const std::vector<std::string> n = {"carabiner", "crake",  "dialog", "lake",  "riverflow",
-                                             "ocean",     "stress", "valve",  "wrench"};
-  return n;
-}
-
 std::optional<MeshSize> Table1(const std::string& name) {
   static const std::map<std::string, MeshSize> t = {
       {"carabiner", {"M1", 328082, 652920}}, {"crake", {"M2", 298898, 595638}},
@@ -117,10 +111,6 @@ std::optional<Figure1Caption> Figure1(const std::string& ordering) {
 bool Sized(const std::string& name, int64_t vertices) {
   const auto t = Table1(name);
   return t && std::fabs(static_cast<double>(vertices - t->vertices)) <= 0.05 * t->vertices;
-}
-
-std::string ShortName(const std::string& path) {
-  return std::filesystem::path(path).stem().string();
 }
 
 }  // namespace meshreuse::paper

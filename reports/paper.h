@@ -13,9 +13,6 @@
 
 namespace meshreuse::paper {
 
-// The nine meshes in the paper's order (Table 1: M1..M9).
-const std::vector<std::string>& MeshNames();
-
 struct MeshSize {
   std::string label;  // M1..M9
   int32_t vertices, triangles;
@@ -50,8 +47,5 @@ constexpr std::array<double, 2> kRdrGainVsOri = {20, 30}, kRdrGainVsBfs = {10, 3
 
 // Within 5% of the paper's vertex count for a mesh of that name.
 bool Sized(const std::string& name, int64_t vertices);
-
-// "out/meshes/paper/carabiner.node" -> "carabiner".
-std::string ShortName(const std::string& path);
 
 }  // namespace meshreuse::paper

@@ -1,31 +1,32 @@
 // The paper's experiment as one run (`meshreuse report`, behind scripts/reproduce.sh): meshes x
 // orderings x thread counts x repetitions from one configuration, writing every table of the
-// paper with its published values beside ours, the data behind every figure, run.json and a
-// results README.md into one folder.
+// paper with its published values beside ours, the data behind every figure, run.json, a
+// manifest of what was written (manifest.json: the plotting script and the checker read it) and
+// a results README.md into one folder.
 //
-// What it runs, per mesh (each read once; each ordering computed once per step):
-//   - Table 1: vertices, triangles (and interior vertices) beside the paper's;
+// What it measures, per mesh (each read once; report_data.h):
+//   - Table 1: vertices, triangles (and interior vertices);
 //   - Table 2: the first sweep's element stream (66-byte vertex records, the paper's model)
-//     through the exact LRU analyzer: quantiles 50/75/90/100%, accesses, mean, the histogram;
-//   - Figure 1 (one mesh, random/ori/bfs): the reuse distance of every access of the first sweep,
-//     binned in time x log2 distance so ten million points stay readable;
-//   - the profile figure (one mesh, `profile_sweeps` sweeps): mean distance in 100 steps a sweep;
+//     through the exact LRU analyzer; Figure 1 (one mesh, random/ori/bfs): every access's
+//     distance, binned in time x log2 distance; the profile (one mesh, `profile_sweeps` sweeps);
 //   - Table 3 and the miss rates: RunValidation (validation.h), the simulator or counters;
-//   - execution times (RunCompare, compare.h): to convergence, per sweep, on each thread count,
-//     the paper's speedups and gains, and the reordering's cost in ORI sweeps.
+// then the execution times (RunCompare, compare.h). What it writes is declared once, in
+// report_outputs.h: each table, data file and figure one line, each builder one file in
+// reports/outputs/.
 // Non-timing outputs (tables 1-3, misses, the figure data) depend only on the configuration and
 // the binary: the same configuration gives them byte for byte (reports/report_test.cc). Timing
 // outputs are medians over `repeat` interleaved rounds.
 #pragma once
 
 #include <cstdint>
-#include <functional>
 #include <string>
 #include <vector>
 
 #include "analysis/cache_model.h"
 #include "core/permutation.h"
 #include "core/smoother.h"
+#include "reports/compare.h"
+#include "reports/log.h"
 
 namespace meshreuse {
 
@@ -33,11 +34,14 @@ struct ReportConfig {
   std::vector<std::string> meshes;  // mesh files (.node, .msh)
   std::vector<std::string> orderings = {"ori", "bfs", "rdr"};
   std::vector<int> threads = {1};
-  int repeat = 3;
+  int repeat = 3;            // timed rounds, at least 3
+  bool repeat_auto = false;  // rounds until every speedup is within +-2%, at most repeat_cap
+  int repeat_cap = 15;
   uint64_t seed = 1;
-  SmoothOptions smooth;  // tol, max_iters (threads come from `threads`)
+  TimeClock clock = TimeClock::kWall;  // of the speedups and gains
+  SmoothOptions smooth;                // tol, max_iters (threads come from `threads`)
   TriangleOrder triangle_order = TriangleOrder::kSorted;
-  std::vector<CacheLevel> levels;  // with ways; empty: the paper's Westmere-EX
+  CacheSpec cache = ParseCacheSpec("westmere-ex");  // with ways
   uint32_t element_bytes = 66, line_bytes = 64;
   int validate_sweeps = 2;  // traced sweeps for Table 3 and the miss rates
   int profile_sweeps = 8;
@@ -48,28 +52,29 @@ struct ReportConfig {
   std::vector<std::string> figure1_orderings = {"random", "ori", "bfs"};
   int figure1_time_bins = 400;
   bool timing = true;  // false: no RunCompare (the non-timing tables only; tests)
+  // The many-core part (the paper's Figure 11 and its 32-core claims, simulated): each mesh x
+  // ordering streamed at every thread count of `machine_threads` (a visit of each thread per
+  // turn) through `machine` with both placements, `machine_sweeps` sweeps of which the last
+  // (warm) is counted; and at one thread with a next-line prefetcher at `prefetch_levels`
+  // (Table 3's gap). "" or "none": no many-core part.
+  std::string machine = "westmere-ex";
+  std::vector<int> machine_threads = {1, 2, 4, 8, 16, 24, 32};
+  int machine_sweeps = 2;
+  std::string prefetch_levels = "L1,L2";
+  std::vector<std::string> figure11_meshes = {"carabiner", "crake", "dialog"};
   std::vector<std::string> counter_events = {"PAPI_L1_DCM", "PAPI_L2_DCM", "PAPI_L3_TCM"};
   std::vector<std::string> command_line;  // for run.json
   std::string label;                      // e.g. "quick", "full", "scale": in run.json and README
 };
 
-// Throws std::invalid_argument for a configuration that cannot run (no mesh, no ordering, a bad
-// thread count, a duplicate mesh name), before any work.
+// Throws UsageError for a configuration that cannot run (no mesh, no ordering, a bad thread
+// count, a duplicate mesh name, a missing permutation file), before any work.
 void CheckReportConfig(const ReportConfig& cfg);
 
 // Writes into `out_dir` (created; must not hold a previous report's files): tables/*.{csv,md,tex},
-// data/*.csv (figures' input), run.json, README.md. Returns the README's path. Files are written
-// atomically. `progress` gets "step, mesh, ordering, elapsed, remaining" lines; `warn` the
-// readers' warnings.
-std::string RunReport(const ReportConfig& cfg, const std::string& out_dir,
-                      const std::function<void(const std::string&)>& progress = {},
-                      const std::function<void(const std::string&)>& warn = {});
-
-// The figures the plotting scripts make from a report's data (scripts/plot_report.py), as
-// "name: what" lines for the README; the files are figures/<name>.{png,pdf}.
-struct FigureSpec {
-  std::string name, title;
-};
-std::vector<FigureSpec> ReportFigures(const ReportConfig& cfg);
+// data/*, run.json, manifest.json, README.md. Returns the README's path. Files are written
+// atomically. `log` gets "step, mesh, ordering, elapsed, remaining" lines and the readers'
+// warnings.
+std::string RunReport(const ReportConfig& cfg, const std::string& out_dir, const Log& log);
 
 }  // namespace meshreuse

@@ -4,7 +4,6 @@
 #include <sys/utsname.h>
 #include <unistd.h>
 
-#include <cmath>
 #include <cstdio>
 #include <ctime>
 #include <fstream>
@@ -14,60 +13,10 @@
 
 namespace meshreuse {
 
-std::string JsonString(const std::string& s) {
-  std::string o = "\"";
-  for (unsigned char c : s) {
-    switch (c) {
-      case '"':
-        o += "\\\"";
-        break;
-      case '\\':
-        o += "\\\\";
-        break;
-      case '\n':
-        o += "\\n";
-        break;
-      case '\t':
-        o += "\\t";
-        break;
-      case '\r':
-        o += "\\r";
-        break;
-      default:
-        if (c < 0x20) {
-          char b[8];
-          std::snprintf(b, sizeof b, "\\u%04x", c);
-          o += b;
-        } else {
-          o += static_cast<char>(c);
-        }
-    }
-  }
-  return o + "\"";
-}
-
-std::string JsonNumber(double v) {
-  if (!std::isfinite(v)) return "null";
-  if (v == std::floor(v) && std::fabs(v) < 9007199254740992.0) {  // an integer: no exponent
-    char b[32];
-    std::snprintf(b, sizeof b, "%.0f", v);
-    return b;
-  }
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.17g", v);
-  double back = 0;
-  for (int p = 6; p <= 17; ++p) {  // the shortest that reads back exactly
-    char b[32];
-    std::snprintf(b, sizeof b, "%.*g", p, v);
-    if (std::sscanf(b, "%lf", &back) == 1 && back == v) return b;
-  }
-  return buf;
-}
-
 namespace {
-std::string CacheSizesJson() {
+Json CacheSizesJson() {
   // Linux's description of cpu0's caches: {"L1d": "48K", "L2": "1280K", ...}.
-  std::string s;
+  Json s = Json::object();
   for (int i = 0; i < 16; ++i) {
     const std::string dir = "/sys/devices/system/cpu/cpu0/cache/index" + std::to_string(i) + "/";
     std::ifstream level(dir + "level"), type(dir + "type"), size(dir + "size");
@@ -75,13 +24,13 @@ std::string CacheSizesJson() {
     if (!(level >> l) || !(type >> t) || !(size >> z)) break;
     if (t == "Instruction") continue;
     const std::string name = "L" + l + (t == "Data" ? "d" : "");
-    s += (s.empty() ? "" : ", ") + JsonString(name) + ": " + JsonString(z);
+    s[name] = z;
   }
-  return "{" + s + "}";
+  return s;
 }
 }  // namespace
 
-std::string MachineJson() {
+Json MachineJson() {
   char host[256] = "unknown";
   ::gethostname(host, sizeof host - 1);
   std::string cpu = "unknown";
@@ -95,10 +44,14 @@ std::string MachineJson() {
   struct utsname u {};
   std::string os = "unknown";
   if (::uname(&u) == 0) os = std::string(u.sysname) + " " + u.release + " " + u.machine;
-  return "{\"hostname\": " + JsonString(host) + ", \"cpu\": " + JsonString(cpu) +
-         ", \"cores\": " + std::to_string(std::thread::hardware_concurrency()) +
-         ", \"os\": " + JsonString(os) + ", \"caches\": " + CacheSizesJson() +
-         ", \"compiler\": " + JsonString(__VERSION__) + "}";
+  Json j;
+  j["hostname"] = host;
+  j["cpu"] = cpu;
+  j["cores"] = std::thread::hardware_concurrency();
+  j["os"] = os;
+  j["caches"] = CacheSizesJson();
+  j["compiler"] = __VERSION__;
+  return j;
 }
 
 std::string GitRevision() {
@@ -110,14 +63,16 @@ std::string VersionString() {
          MESHREUSE_BUILD_TYPE + ", " + MESHREUSE_COMPILER + ")";
 }
 
-std::string BuildJson() {
-  return "{\"version\": " + JsonString(MESHREUSE_VERSION) +
-         ", \"git_revision\": " + JsonString(MESHREUSE_GIT_REV) +
-         ", \"git_dirty\": " + (MESHREUSE_GIT_DIRTY ? "true" : "false") +
-         ", \"compiler\": " + JsonString(MESHREUSE_COMPILER) +
-         ", \"compiler_version\": " + JsonString(__VERSION__) +
-         ", \"build_type\": " + JsonString(MESHREUSE_BUILD_TYPE) +
-         ", \"flags\": " + JsonString(MESHREUSE_CXX_FLAGS) + "}";
+Json BuildJson() {
+  Json j;
+  j["version"] = MESHREUSE_VERSION;
+  j["git_revision"] = MESHREUSE_GIT_REV;
+  j["git_dirty"] = static_cast<bool>(MESHREUSE_GIT_DIRTY);
+  j["compiler"] = MESHREUSE_COMPILER;
+  j["compiler_version"] = __VERSION__;
+  j["build_type"] = MESHREUSE_BUILD_TYPE;
+  j["flags"] = MESHREUSE_CXX_FLAGS;
+  return j;
 }
 
 std::string UtcTimestamp() {
@@ -129,10 +84,20 @@ std::string UtcTimestamp() {
   return buf;
 }
 
-std::string CommandLineJson(const std::vector<std::string>& argv) {
-  std::string s = "[";
-  for (size_t i = 0; i < argv.size(); ++i) s += (i ? ", " : "") + JsonString(argv[i]);
-  return s + "]";
+Json RunJson(const std::string& tool, const std::vector<std::string>& command_line,
+             const Json& configuration, const Json& extra) {
+  Json j;
+  j["tool"] = tool;
+  j["command"] = command_line;
+  j["git_revision"] = GitRevision();
+  j["build"] = BuildJson();
+  j["time_utc"] = UtcTimestamp();
+  j["machine"] = MachineJson();
+  j["configuration"] = configuration;
+  for (const auto& [k, v] : extra.items()) j[k] = v;
+  return j;
 }
+
+std::string RunJsonText(const Json& run) { return run.dump(2) + "\n"; }
 
 }  // namespace meshreuse

@@ -10,10 +10,12 @@
 #include <stdexcept>
 
 #include "analysis/papi_counters.h"
-#include "analysis/trace_analysis.h"
+#include "analysis/reuse_analysis.h"
+#include "core/error.h"
 #include "core/orderings/registry.h"
+#include "core/schedule.h"
+#include "reports/inputs.h"
 #include "reports/paper.h"
-#include "reports/run_info.h"
 
 namespace meshreuse {
 
@@ -32,9 +34,25 @@ std::string Cap(uint64_t c, double scale = 1.0) {
   if (c == kInfiniteCapacity) return "inf";
   return scale == 1.0 ? std::to_string(c) : Fixed(static_cast<double>(c) * scale, 2);
 }
-std::string Ratio(double a, double b) { return b > 0 ? JsonNumber(a / b) : ""; }
+std::string Ratio(double a, double b) { return b > 0 ? ExactNumber(a / b) : ""; }
 
 }  // namespace
+
+void CheckValidationConfig(const ValidationConfig& cfg) {
+  if (cfg.orderings.empty()) throw UsageError("no ordering given");
+  for (const std::string& o : cfg.orderings) CheckOrderingSpec(o);
+  if (cfg.iterations < 1 || cfg.iterations > kMaxStreamSweeps)
+    throw UsageError("--iterations must be 1..65536");
+  if (cfg.threads < 1 || cfg.threads > kMaxThreads)
+    throw UsageError("--threads must be 1.." + std::to_string(kMaxThreads));
+  CheckStreamSweeps(cfg.iterations, cfg.threads);
+  if (cfg.element_bytes == 0) throw UsageError("--element-bytes must be positive");
+  for (const CacheLevel& c : cfg.cache.levels)
+    if (c.ways == 0)
+      throw UsageError("cache level " + c.name + " needs its associativity for simulation, e.g. " +
+                       c.name + "=32K/8");
+  CacheSimulation check(cfg.cache, cfg.line_bytes);  // the geometry and the line size
+}
 
 std::vector<OrderingValidation> RunValidation(
     const Mesh& base, const ValidationConfig& cfg,
@@ -42,7 +60,8 @@ std::vector<OrderingValidation> RunValidation(
   auto say = [&](const std::string& s) {
     if (progress) progress(s);
   };
-  if (cfg.levels.empty()) throw std::invalid_argument("no cache levels");
+  if (cfg.cache.levels.empty()) throw std::invalid_argument("no cache levels");
+  const std::vector<CacheLevel>& levels = cfg.cache.levels;
   const SmoothOptions sweeps = Sweeps(cfg);
   std::vector<OrderingValidation> out;
   for (const std::string& ord : cfg.orderings) {
@@ -50,30 +69,27 @@ std::vector<OrderingValidation> RunValidation(
     const Mesh laid =
         ApplyPermutation(base, ComputeOrdering(ord, base, cfg.seed), cfg.triangle_order);
     OrderingValidation v;
-    v.mesh = cfg.mesh_name, v.ordering = ord, v.vertices = laid.NumVertices();
+    v.mesh = cfg.mesh_name, v.ordering = ParseOrderingSpec(ord).label;
+    v.vertices = laid.NumVertices();
     v.iterations = cfg.iterations, v.threads = cfg.threads;
 
     // One traced pass into both the reuse analysis and the simulator.
-    TraceAnalysisOptions ao;
-    ao.threads = cfg.threads;
+    ReuseOptions ao;
     ao.line_bytes = cfg.line_bytes;
-    ao.dense_elements = static_cast<uint64_t>(laid.NumVertices());
-    ao.line_base = AddressCanonicalizer::kCanonicalBase / ao.line_bytes;
-    TraceAnalysis analysis(ao);
-    CacheSimulation sim(cfg.levels, cfg.line_bytes, cfg.threads);
+    ao.profile = false;
+    ReuseAnalysis analysis(ao);
+    CacheSimulation sim(cfg.cache, cfg.line_bytes);
     {
       say("validate: " + ord + ": " + std::to_string(cfg.iterations) +
           " traced sweep(s) into the analyzer and the simulator");
       Mesh m = laid.Clone();
-      AnalysisSink a{&analysis};
-      CacheSimSink c{&sim};
-      FanOutSink<AnalysisSink, CacheSimSink> both{a, c};
-      Smooth(m, sweeps, both);
+      FanOut both({&analysis, &sim});
+      StreamMesh(m, sweeps, cfg.mesh_name, v.ordering, both);
     }
     ReuseHistogram eh, lh;
     for (int t = 0; t < cfg.threads; ++t) {
-      eh.Merge(analysis.element(t)->hist);
-      lh.Merge(analysis.line(t)->hist);
+      if (const StreamAnalysis* s = analysis.element(t)) eh.Merge(s->hist);
+      if (const StreamAnalysis* s = analysis.line(t)) lh.Merge(s->hist);
     }
     v.element_accesses = eh.accesses(), v.line_accesses = lh.accesses();
     v.element_cold = eh.cold(), v.line_cold = lh.cold();
@@ -84,10 +100,10 @@ std::vector<OrderingValidation> RunValidation(
     }
 
     // Counters: an untraced run of the same sweeps, where PAPI counts.
-    std::vector<double> counted(cfg.levels.size(), -1);
+    std::vector<double> counted(levels.size(), -1);
     if (!cfg.counter_events.empty()) {
       std::vector<std::string> wanted;
-      for (size_t i = 0; i < cfg.levels.size() && i < cfg.counter_events.size(); ++i)
+      for (size_t i = 0; i < levels.size() && i < cfg.counter_events.size(); ++i)
         wanted.push_back(cfg.counter_events[i]);
       PapiCounters papi(wanted, cfg.threads);
       if (papi.available()) {
@@ -110,11 +126,12 @@ std::vector<OrderingValidation> RunValidation(
       v.counters = "simulated (no counters asked for)";
     }
 
-    const std::vector<LevelMisses> me = ModelMisses(eh, cfg.levels, cfg.element_bytes);
-    const std::vector<LevelMisses> ml = ModelMisses(lh, cfg.levels, cfg.line_bytes);
-    for (size_t i = 0; i < cfg.levels.size(); ++i) {
+    const std::vector<LevelMisses> me = ModelMisses(eh, levels, cfg.element_bytes);
+    const std::vector<LevelMisses> ml = ModelMisses(lh, levels, cfg.line_bytes);
+    std::vector<uint64_t> model_misses, sim_misses;
+    for (size_t i = 0; i < levels.size(); ++i) {
       LevelValidation l;
-      l.level = cfg.levels[i];
+      l.level = levels[i];
       l.element_capacity = me[i].capacity, l.line_capacity = ml[i].capacity;
       l.model_element = me[i].misses, l.model_line = ml[i].misses;
       for (int t = 0; t < cfg.threads; ++t) l.simulated += sim.Stats(t)[i];
@@ -123,14 +140,12 @@ std::vector<OrderingValidation> RunValidation(
       l.table3_misses = l.measured ? static_cast<uint64_t>(l.counter) : l.simulated.misses;
       l.capacity_elements = CapacityForMisses(eh, l.table3_misses, cfg.exclude_cold);
       l.capacity_lines = CapacityForMisses(lh, l.table3_misses, cfg.exclude_cold);
+      model_misses.push_back(l.model_line);
+      sim_misses.push_back(l.simulated.misses);
       v.levels.push_back(l);
     }
-    if (cfg.levels.size() == 3) {
-      v.cost_model = AdditionalCycles(ml);
-      std::vector<LevelMisses> sm = ml;
-      for (size_t i = 0; i < 3; ++i) sm[i].misses = v.levels[i].simulated.misses;
-      v.cost_simulated = AdditionalCycles(sm);
-    }
+    v.cost_model = AdditionalCycles(model_misses, cfg.cache);
+    v.cost_simulated = AdditionalCycles(sim_misses, cfg.cache);
     out.push_back(std::move(v));
   }
   return out;
@@ -151,8 +166,8 @@ Table ValidationTable(const std::vector<OrderingValidation>& r) {
                 l.measured ? Fixed(l.counter, 0) : "",
                 Ratio(static_cast<double>(l.model_line), static_cast<double>(s.misses)),
                 l.measured ? Ratio(static_cast<double>(s.misses), l.counter) : "",
-                JsonNumber(s.MissRate()),
-                v.line_accesses ? JsonNumber(static_cast<double>(s.misses) / v.line_accesses) : "",
+                ExactNumber(s.MissRate()),
+                v.line_accesses ? ExactNumber(static_cast<double>(s.misses) / v.line_accesses) : "",
                 l.measured ? "measured" : "simulated"});
     }
   return t;
@@ -185,7 +200,7 @@ Table Table3(const std::vector<OrderingValidation>& r) {
   names("", "_capacity_lines");
   Table t(head);
   for (const OrderingValidation& v : r) {
-    const std::string name = paper::ShortName(v.mesh);
+    const std::string name = MeshShortName(v.mesh);
     const auto pt = paper::Table3(name, v.ordering);
     const bool has_paper = n == 3 && pt && paper::Sized(name, v.vertices);
     std::vector<std::string> row = {v.mesh, v.ordering,
@@ -203,6 +218,40 @@ Table Table3(const std::vector<OrderingValidation>& r) {
     t.AddRow(row);
   }
   return t;
+}
+
+Table ValidationCostTable(const std::vector<OrderingValidation>& r) {
+  Table t({"mesh", "ordering", "accesses", "element_accesses", "cost_model_low", "cost_model_high",
+           "cost_simulated_low", "cost_simulated_high", "counters"});
+  auto cell = [](const std::optional<CostRange>& c, bool high) {
+    return c ? Fixed(high ? c->high : c->low, 0) : std::string();
+  };
+  for (const OrderingValidation& o : r)
+    t.AddRow({o.mesh, o.ordering, std::to_string(o.line_accesses),
+              std::to_string(o.element_accesses), cell(o.cost_model, false),
+              cell(o.cost_model, true), cell(o.cost_simulated, false), cell(o.cost_simulated, true),
+              o.counters});
+  return t;
+}
+
+Json ValidationConfigJson(const ValidationConfig& cfg, const std::string& mesh) {
+  Json j;
+  j["mesh"] = mesh;
+  j["orderings"] = cfg.orderings;
+  j["seed"] = cfg.seed;
+  Json seeds = Json::object();
+  for (const auto& [label, s] : SeededOrderings(cfg.orderings, cfg.seed)) seeds[label] = s;
+  j["ordering_seeds"] = seeds;
+  j["iterations"] = cfg.iterations;
+  j["threads"] = cfg.threads;
+  j["mode"] = UpdateModeName(cfg.mode);
+  j["cache"] = cfg.cache.text;
+  j["element_bytes"] = cfg.element_bytes;
+  j["line_bytes"] = cfg.line_bytes;
+  j["triangle_order"] = TriangleOrderName(cfg.triangle_order);
+  j["exclude_cold"] = cfg.exclude_cold;
+  j["counter_events"] = cfg.counter_events;
+  return j;
 }
 
 std::vector<std::string> Table3Notes(const std::vector<OrderingValidation>& r, bool exclude_cold) {

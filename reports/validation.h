@@ -11,6 +11,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -20,7 +21,8 @@
 #include "core/mesh.h"
 #include "core/permutation.h"
 #include "core/smoother.h"
-#include "reports/table.h"
+#include "core/table.h"
+#include "reports/run_info.h"
 
 namespace meshreuse {
 
@@ -32,7 +34,7 @@ struct ValidationConfig {
   int threads = 1;
   UpdateMode mode = UpdateMode::kGaussSeidel;
   TriangleOrder triangle_order = TriangleOrder::kSorted;
-  std::vector<CacheLevel> levels;  // with associativity (the simulator needs it)
+  CacheSpec cache;  // levels with associativity (the simulator needs it), latencies
   uint32_t element_bytes = 66, line_bytes = 64;
   // PAPI events for the levels, in level order (empty: no counters). Missing ones are simulated.
   std::vector<std::string> counter_events = {"PAPI_L1_DCM", "PAPI_L2_DCM", "PAPI_L3_TCM"};
@@ -58,9 +60,13 @@ struct OrderingValidation {
   uint64_t element_accesses = 0, line_accesses = 0, element_cold = 0, line_cold = 0;
   std::vector<LevelValidation> levels;
   std::vector<std::vector<std::vector<LevelStats>>> sweeps;  // simulated: [sweep][thread][level]
-  CostRange cost_model{0, 0}, cost_simulated{0, 0};          // three levels only
-  std::string counters;                                      // "measured (PAPI ...)" or why not
+  // Equation 2 on the line model's and the simulator's misses; nullopt without latencies.
+  std::optional<CostRange> cost_model, cost_simulated;
+  std::string counters;  // "measured (PAPI ...)" or why not
 };
+
+// UsageError for what cannot run: orderings, levels without ways, the geometry, thread counts.
+void CheckValidationConfig(const ValidationConfig& cfg);
 
 std::vector<OrderingValidation> RunValidation(
     const Mesh& base, const ValidationConfig& cfg,
@@ -77,6 +83,10 @@ Table ValidationSweepTable(const std::vector<OrderingValidation>& r);
 // for its nine meshes (carabiner ... wrench at the paper's size, within 5% of its vertex count;
 // ori/bfs/rdr), "-" elsewhere.
 Table Table3(const std::vector<OrderingValidation>& r);
+// Equation 2 on the line model's and on the simulator's misses per ordering (empty cells without
+// latencies).
+Table ValidationCostTable(const std::vector<OrderingValidation>& r);
+Json ValidationConfigJson(const ValidationConfig& cfg, const std::string& mesh);
 // Notes for the tables: where an inverse capacity is infinite, why.
 std::vector<std::string> Table3Notes(const std::vector<OrderingValidation>& r, bool exclude_cold);
 

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Fuzzes every reader with libFuzzer (clang, AddressSanitizer + UndefinedBehaviorSanitizer): the
 # Triangle pair, Gmsh, the binary trace, other tools' traces (text, u32, u64, parda, oracle,
-# lackey; plain or zstd) and permutation files (harnesses in tests/fuzz/, each running everything
+# lackey; plain or zstd, one frame or several, pzstd's too), permutation files and .poly outlines (harnesses in tests/fuzz/, each running everything
 # downstream of the reader on what it accepts).
 # Seeds come from tests/data; corpora grow in build/fuzz/corpus/ and are kept between runs.
 # Limits: 10 s per input, 512 MB of RSS (ASan's quarantine at 32 MB), no single allocation above
@@ -20,7 +20,7 @@ CC=clang CXX=clang++ cmake -S . -B build/fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo 
 cmake --build build/fuzz -j"$(nproc 2>/dev/null || echo 2)" >build/fuzz.build.log 2>&1 ||
   { tail -n 40 build/fuzz.build.log; exit 1; }
 
-harnesses=(triangle gmsh trace external permutation)
+harnesses=(triangle gmsh trace external permutation poly)
 c=build/fuzz/corpus
 rm -rf build/fuzz/logs build/fuzz/artifacts
 mkdir -p build/fuzz/artifacts build/fuzz/logs
@@ -34,19 +34,30 @@ cp tests/data/*.msh tests/data/broken/*.msh "$c/gmsh/"
 cp tests/data/broken/*.trace "$c/trace/"
 [[ -x build/release/cli/meshreuse ]] &&
   build/release/cli/meshreuse trace tests/data/two_interior.node --threads 2 -o "$c/trace/seed-two_interior.trace" --quiet >/dev/null
-for f in tests/data/broken/*.txt; do { printf '\0'; cat "$f"; } >"$c/external/seed-$(basename "$f")"; done
-printf '\0# ids\n1\n2\n0x10\n1\n' >"$c/external/seed-text"
-{ printf '\1'; /usr/bin/python3 -c 'import struct,sys; sys.stdout.buffer.write(struct.pack("<4I",1,2,1,3))'; } >"$c/external/seed-u32"
-{ printf '\2'; cat tests/data/broken/reserved.u64; } >"$c/external/seed-u64"
-# Format byte: format = b % 6 (text u32 u64 parda oracle lackey), instructions = b / 6 % 2,
-# two workers = b / 12 % 2.
-for f in tests/data/broken/*.lackey; do { printf '\5'; cat "$f"; } >"$c/external/seed-$(basename "$f")"; done
-{ printf '\13'; printf '==1== Lackey\nI  0040,2\n L 1000,8\n S 1000,8\n M 103e,4\n'; } >"$c/external/seed-lackey"
-for f in tests/data/broken/*.oracle; do { printf '\4'; cat "$f"; } >"$c/external/seed-$(basename "$f")"; done
-for f in tests/data/broken/*.zst; do { printf '\16'; cat "$f"; } >"$c/external/seed-$(basename "$f")"; done
-{ printf '\16'; /usr/bin/python3 -c 'import struct,sys; sys.stdout.buffer.write(b"".join(struct.pack("<Q", i % 37) for i in range(400)))' | zstd -q -c; } >"$c/external/seed-u64-zst"
+# Format byte (tests/fuzz/fuzz_external.cc): low four bits the format's fixed code in
+# tracer/trace_formats.cc (1 text, 2 u32, 3 u64, 4 parda, 5 oracle, 6 lackey), bit 4 (0x10)
+# instructions, bit 5 (0x20) two workers. Octal escapes below: \043 = u64 on two workers.
+for f in tests/data/broken/*.txt; do { printf '\1'; cat "$f"; } >"$c/external/seed-$(basename "$f")"; done
+printf '\1# ids\n1\n2\n0x10\n1\n' >"$c/external/seed-text"
+{ printf '\2'; /usr/bin/python3 -c 'import struct,sys; sys.stdout.buffer.write(struct.pack("<4I",1,2,1,3))'; } >"$c/external/seed-u32"
+{ printf '\3'; cat tests/data/broken/reserved.u64; } >"$c/external/seed-u64"
+for f in tests/data/broken/*.lackey; do { printf '\6'; cat "$f"; } >"$c/external/seed-$(basename "$f")"; done
+{ printf '\026'; printf '==1== Lackey\nI  0040,2\n L 1000,8\n S 1000,8\n M 103e,4\n'; } >"$c/external/seed-lackey"
+for f in tests/data/broken/*.oracle; do { printf '\5'; cat "$f"; } >"$c/external/seed-$(basename "$f")"; done
+for f in tests/data/broken/*.zst; do { printf '\043'; cat "$f"; } >"$c/external/seed-$(basename "$f")"; done
+{ printf '\043'; /usr/bin/python3 -c 'import struct,sys; sys.stdout.buffer.write(b"".join(struct.pack("<Q", i % 37) for i in range(400)))' | zstd -q -c; } >"$c/external/seed-u64-zst"
 cp tests/data/broken/truncated_trace.zst "$c/trace/seed-truncated_trace.zst"
 cp tests/data/broken/*.perm "$c/permutation/"
+cp core/shapes/*.poly tests/data/broken/*.poly "$c/poly/"
+# zstd as zstd -d reads it: several frames, and pzstd's skippable ones (\043 = u64, two workers).
+u64seed=$(mktemp)
+/usr/bin/python3 -c 'import struct,sys; sys.stdout.buffer.write(b"".join(struct.pack("<Q", i % 53) for i in range(3000)))' >"$u64seed"
+{ printf '\043'; zstd -q -c "$u64seed"; zstd -q -c "$u64seed"; } >"$c/external/seed-two-frames"
+if command -v pzstd >/dev/null; then
+  pzstd -q -c -p 2 "$u64seed" >"$u64seed.pz" && { printf '\043'; cat "$u64seed.pz"; } >"$c/external/seed-pzstd"
+  [[ -s $c/trace/seed-two_interior.trace ]] && pzstd -q -c "$c/trace/seed-two_interior.trace" >"$c/trace/seed-pzstd.trace.zst"
+fi
+rm -f "$u64seed" "$u64seed.pz"
 /usr/bin/python3 -c 'print("\n".join(str(i) for i in range(336)))' >"$c/permutation/seed-identity"
 
 run() {  # run HARNESS: one libFuzzer session, its log and exit code
@@ -68,6 +79,20 @@ for h in "${harnesses[@]}"; do
   fi
 done
 wait || true
+# Option values and output paths (tests/cli/fuzz_options.sh) against the release program, for
+# as long as one harness ran: batches of 200 seeded cases, a new seed each.
+options_rc=0
+if [[ -x build/release/cli/meshreuse ]]; then
+  end=$((SECONDS + secs))
+  s=1
+  while ((SECONDS < end)); do
+    bash tests/cli/fuzz_options.sh build/release/cli/meshreuse tests/data 200 "$s" \
+      >>build/fuzz/logs/options.log 2>&1 || options_rc=1
+    s=$((s + 1))
+  done
+  echo "$options_rc" >build/fuzz/logs/options.rc
+  harnesses+=(options)
+fi
 
 failed=0
 printf '%-12s %12s %8s %8s %8s  %s\n' harness executions cov features corpus result
@@ -75,7 +100,8 @@ for h in "${harnesses[@]}"; do
   log=build/fuzz/logs/$h.log
   rc=$(cat "build/fuzz/logs/$h.rc")
   execs=$(awk '/stat::number_of_executed_units/ {print $2}' "$log" | tail -n 1)
-  last=$(grep -E '^#[0-9]+.*cov: ' "$log" | tail -n 1)
+  [[ $h == options ]] && execs=$(awk '/^option fuzz:/ {n += $3} END {print n}' "$log")
+  last=$(grep -E '^#[0-9]+.*cov: ' "$log" | tail -n 1 || true)
   cov=$(sed -n 's/.*cov: \([0-9]*\).*/\1/p' <<<"$last")
   ft=$(sed -n 's/.*ft: \([0-9]*\).*/\1/p' <<<"$last")
   corp=$(sed -n 's/.*corp: \([0-9]*\).*/\1/p' <<<"$last")

@@ -1,11 +1,22 @@
 """Shared pieces of the report's plotting scripts (scripts/plot_*.py): reading the CSV files that
 `meshreuse report` writes, one colour per ordering across every figure, and writing PNG + PDF
 atomically. C++ writes the data; these scripts only draw it. Needs Debian's python3-matplotlib
-(/usr/bin/python3; scripts/setup.sh --with-plots installs it)."""
+(/usr/bin/python3; scripts/setup.sh --with-plots installs it); run by another python3 first on
+PATH, a script re-runs itself under /usr/bin/python3."""
 import csv
 import os
+import sys
 
-import matplotlib
+try:
+    import matplotlib
+except ImportError:
+    # A python3 first on PATH without matplotlib (pyenv, conda): run this script again under
+    # Debian's, which scripts/setup.sh --with-plots provides.
+    if os.path.realpath(sys.executable) != os.path.realpath("/usr/bin/python3") and \
+            os.path.exists("/usr/bin/python3"):
+        os.execv("/usr/bin/python3", ["/usr/bin/python3"] + sys.argv)
+    raise SystemExit("plot: matplotlib is missing: install python3-matplotlib "
+                     "(scripts/setup.sh --with-plots) and run with /usr/bin/python3")
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402,F401  (re-exported)
@@ -45,6 +56,21 @@ def num(s):
     return None if s is None or s == "" else float(s)
 
 
+def cli(plot, doc, n_inputs):
+    """The command line of a figure script: INPUT... OUT [TITLE] [VARIANT] -> plot(inputs, out,
+    title, variant)."""
+    a = sys.argv[1:]
+    if not n_inputs + 1 <= len(a) <= n_inputs + 3:
+        raise SystemExit(doc)
+    rest = a[n_inputs + 1:] + ["", ""]
+    plot(a[:n_inputs], a[n_inputs], title=rest[0], variant=rest[1])
+
+
+def short(path):
+    """A mesh's or trace's name from its path: out/meshes/paper/ocean.node -> ocean."""
+    return os.path.basename(path).split(".")[0] if path else path
+
+
 def unique(rows, key):
     """Values of `key` in first-seen order."""
     out = []
@@ -75,17 +101,43 @@ def grid(n, width=4.2, height=3.0, max_cols=3):
     return fig, flat[:n]
 
 
-def grouped_bars(ax, groups, series, value, label=None):
+def grouped_bars(ax, groups, series, value, label=None, interval=None, hatched=None):
     """Side by side within each group, one bar per series of height value(group, series) (None:
-    no bar), coloured by series (an ordering)."""
+    no bar), coloured by series (an ordering). interval(group, series) -> (lo, hi) draws an error
+    bar (the 95% interval of the median); hatched(group, series) true hatches the bar (a
+    comparison the interval cannot tell from the reference)."""
     width = 0.8 / len(series)
     for k, s in enumerate(series):
+        xs = [i + (k - (len(series) - 1) / 2) * width for i in range(len(groups))]
         ys = [value(g, s) for g in groups]
-        ax.bar([i + (k - (len(series) - 1) / 2) * width for i in range(len(groups))],
-               [y if y is not None else 0 for y in ys], width=width, color=colour(s),
-               label=label(s) if label else s)
+        bars = ax.bar(xs, [y if y is not None else 0 for y in ys], width=width, color=colour(s),
+                      label=label(s) if label else s)
+        if hatched:
+            for bar, g in zip(bars, groups):
+                if hatched(g, s):
+                    bar.set_hatch("///")
+                    bar.set_edgecolor("white")
+        if interval:
+            for x, y, g in zip(xs, ys, groups):
+                iv = interval(g, s)
+                if y is None or iv is None or None in iv:
+                    continue
+                ax.errorbar(x, y, yerr=[[max(0, y - iv[0])], [max(0, iv[1] - y)]], color="black",
+                            lw=0.8, capsize=2)
     ax.set_xticks(range(len(groups)))
     ax.set_xticklabels(groups, fontsize=8)
+
+
+def interval(row, col, scale=1.0):
+    """(lo, hi) of a spread column (COL_lo, COL_hi) of a CSV row, scaled; None when unknown."""
+    if row is None:
+        return None
+    lo, hi = num(row.get(col + "_lo")), num(row.get(col + "_hi"))
+    return None if lo is None or hi is None else (scale * lo, scale * hi)
+
+
+def not_distinguishable(row, verdict_col):
+    return row is not None and row.get(verdict_col) == "not distinguishable"
 
 
 def legend_below(fig, axes):

@@ -4,16 +4,15 @@ ordering (random, ORI, BFS on ocean), as a density in time x log2(distance) so t
 stay readable; the caption of each panel gives the average distance, the modelled L1 miss rate and
 the time to convergence, ours and the paper's.
 
-  scripts/plot_figure1.py FIGURE1.csv FIGURE1_SUMMARY.csv OUT   (writes OUT.png, OUT.pdf)
+  scripts/plot_figure1.py FIGURE1.csv FIGURE1_SUMMARY.csv OUT [TITLE]   (writes OUT.png, OUT.pdf)
 """
-import sys
-
 import matplotlib.colors as mcolors
 
-from plot_common import num, plt, read_csv, read_rows, save, unique
+from plot_common import cli, num, plt, read_csv, read_rows, save, unique
 
 
-def main(data, summary, out, mesh="ocean"):
+def plot(inputs, out, title="", variant=""):
+    data, summary = inputs
     rows = read_rows(data)
     summ = {r["ordering"]: r for r in read_csv(summary)}
     ords = unique(rows, "ordering")
@@ -51,12 +50,11 @@ def main(data, summary, out, mesh="ocean"):
                      fontsize=9)
         fig.colorbar(h[3], ax=ax, label="accesses per cell")
     axes[-1][0].set_xlabel(f"time: position in the first sweep ({tmax} bins)")
-    fig.suptitle(f"Reuse distance of every access of the first sweep on {mesh}", fontsize=11)
+    fig.suptitle(title[:1].upper() + title[1:] if title else
+                 "Reuse distance of every access of the first sweep", fontsize=11)
     fig.tight_layout()
     save(fig, out)
 
 
 if __name__ == "__main__":
-    if len(sys.argv) not in (4, 5):
-        raise SystemExit(__doc__)
-    main(*sys.argv[1:])
+    cli(plot, __doc__, 2)

@@ -1,43 +1,56 @@
 #!/usr/bin/env python3
-"""First-sweep reuse-distance histograms, one panel per mesh, one line per ordering, with the
-cache capacities (in 66-byte elements) marked: an access to the right of a level's line misses it
-in the fully associative model.
+"""Reuse-distance histograms, one panel per input x granularity, one line per ordering (and thread
+when there are several), with cache capacities marked when given: an access to the right of a
+level's line misses it in the fully associative model. Reads the one histogram schema every
+command writes (`analyze --histogram-csv`, the report's data/histogram.csv): input, ordering,
+thread, granularity, lo, hi, count (a "cold" row counts first touches, shown in the legend).
+CAPACITIES.csv (the report's data/capacities.csv: level, bytes, ways, elements, lines) is optional.
 
-  scripts/plot_histograms.py HISTOGRAM.csv CAPACITIES.csv OUT   (writes OUT.png, OUT.pdf)
+  scripts/plot_histograms.py HISTOGRAM.csv [CAPACITIES.csv] OUT [TITLE]   (writes OUT.png, OUT.pdf)
 """
 import sys
 
-from plot_common import colour, grid, legend_below, read_csv, read_rows, save, unique
+from plot_common import colour, grid, legend_below, read_csv, read_rows, save, short, unique
 
 
-def main(data, caps, out):
-    rows = read_rows(data)
-    levels = read_csv(caps)
-    meshes = unique(rows, "mesh")
-    fig, axes = grid(len(meshes), width=4.2, height=3.0)
-    for ax, m in zip(axes, meshes):
-        for o in unique([r for r in rows if r["mesh"] == m], "ordering"):
-            rs = [r for r in rows if r["mesh"] == m and r["ordering"] == o and r["lo"] != "cold"]
-            xs = [max(1, (int(r["lo"]) + int(r["hi"])) / 2) for r in rs]
-            # counts per distance (bins widen as powers of two)
-            ys = [int(r["count"]) / (int(r["hi"]) - int(r["lo"]) + 1) for r in rs]
-            ax.plot(xs, ys, color=colour(o), lw=1.0, label=o)
+def plot(inputs, out, title="", variant=""):
+    rows = read_rows(inputs[0])
+    levels = read_csv(inputs[1]) if len(inputs) > 1 else []
+    panels = unique([dict(r, panel=(r["input"], r["granularity"])) for r in rows], "panel")
+    threads = len(unique(rows, "thread")) > 1
+    fig, axes = grid(len(panels), width=4.2, height=3.0)
+    for ax, (inp, gran) in zip(axes, panels):
+        mine = [r for r in rows if r["input"] == inp and r["granularity"] == gran]
+        for o in unique(mine, "ordering"):
+            for t in unique([r for r in mine if r["ordering"] == o], "thread"):
+                rs = [r for r in mine if r["ordering"] == o and r["thread"] == t]
+                cold = sum(int(r["count"]) for r in rs if r["lo"] == "cold")
+                rs = [r for r in rs if r["lo"] != "cold" and int(r["count"]) > 0]
+                xs = [max(1, (int(r["lo"]) + int(r["hi"])) / 2) for r in rs]
+                # counts per distance (bins widen as powers of two)
+                ys = [int(r["count"]) / (int(r["hi"]) - int(r["lo"]) + 1) for r in rs]
+                label = o + (f" t{t}" if threads else "") + (f" ({cold:,} cold)" if cold else "")
+                ax.plot(xs, ys, color=colour(o), lw=1.0, label=label)
+        unit = "elements" if gran == "element" else "lines"
         for lv in levels:
-            ax.axvline(int(lv["elements"]), color="0.4", lw=0.7, ls="--")
-            ax.text(int(lv["elements"]), 1.0, f" {lv['level']}", transform=ax.get_xaxis_transform(),
+            ax.axvline(int(lv[unit]), color="0.4", lw=0.7, ls="--")
+            ax.text(int(lv[unit]), 1.0, f" {lv['level']}", transform=ax.get_xaxis_transform(),
                     va="top", fontsize=7, color="0.3")
         ax.set_xscale("log")
         ax.set_yscale("log")
-        ax.set_title(m, fontsize=10)
-        ax.set_xlabel("reuse distance (distinct vertices)")
+        ax.set_title(f"{short(inp)} ({gran})", fontsize=10)
+        ax.set_xlabel(f"reuse distance (distinct {gran}s)")
         ax.set_ylabel("accesses per distance")
-    fig.suptitle("Reuse distances of the first sweep; dashed: cache capacities in 66-byte "
-                 "elements", fontsize=11)
-    legend_below(fig, axes)
+        ax.legend(fontsize=7)
+    fig.suptitle(title[:1].upper() + title[1:] if title else "Reuse-distance histograms" +
+                 ("; dashed: cache capacities" if levels else ""), fontsize=11)
+    fig.tight_layout()
     save(fig, out)
 
 
 if __name__ == "__main__":
-    if len(sys.argv) != 4:
+    a = sys.argv[1:]
+    n = 2 if len(a) >= 3 and a[1].endswith(".csv") else 1  # the capacities are optional
+    if not n + 1 <= len(a) <= n + 2:
         raise SystemExit(__doc__)
-    main(*sys.argv[1:])
+    plot(a[:n], a[n], title=a[n + 1] if len(a) > n + 1 else "")

@@ -1,56 +1,35 @@
 #!/usr/bin/env python3
-"""Draws every figure of a `meshreuse report` folder from its CSV files into DIR/figures/ (PNG and
-PDF): figure1, profile, histograms, miss-rates, time, speedup, speedup-mean, gain, and scale when
-run.json's label is "scale". A figure whose data the report does not have is skipped and said so.
+"""Draws every figure of a `meshreuse report` folder into DIR/figures/ (PNG and PDF). What to draw,
+from which files, with which script, comes from DIR/manifest.json, which the report writes from
+its one table of outputs (reports/report_list.h): this script has no list of its own. Each
+figure's script exposes plot(inputs, out, title, variant).
 
   scripts/plot_report.py DIR
 """
+import importlib
 import json
 import os
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 
-import plot_figure1  # noqa: E402
-import plot_histograms  # noqa: E402
-import plot_misses  # noqa: E402
-import plot_profile  # noqa: E402
-import plot_scale  # noqa: E402
-import plot_speedup  # noqa: E402
-import plot_time  # noqa: E402
+import plot_common  # noqa: E402,F401  (re-runs this script under Debian's python3 if needed)
 
 
 def main(d):
-    data, tables, figs = (os.path.join(d, x) for x in ("data", "tables", "figures"))
+    figs = os.path.join(d, "figures")
     os.makedirs(figs, exist_ok=True)
-    with open(os.path.join(d, "run.json")) as f:
-        run = json.load(f)
-    cfg = run["configuration"]
+    manifest = os.path.join(d, "manifest.json")
+    if not os.path.isfile(manifest):
+        raise SystemExit(f"plot_report: {manifest}: no such file (not a report folder?)")
+    with open(manifest) as f:
+        figures = json.load(f)["figures"]
     made = []
-
-    def have(*paths):
-        return all(os.path.isfile(p) for p in paths)
-
-    if have(os.path.join(data, "figure1.csv")):
-        plot_figure1.main(os.path.join(data, "figure1.csv"),
-                          os.path.join(data, "figure1_summary.csv"),
-                          os.path.join(figs, "figure1"), cfg.get("figure1_mesh", ""))
-        made.append("figure1")
-    if have(os.path.join(data, "profile.csv")):
-        plot_profile.main(os.path.join(data, "profile.csv"), os.path.join(figs, "profile"))
-        made.append("profile")
-    plot_histograms.main(os.path.join(data, "histogram.csv"), os.path.join(data, "capacities.csv"),
-                         os.path.join(figs, "histograms"))
-    plot_misses.main(os.path.join(data, "misses.csv"), os.path.join(figs, "miss-rates"))
-    made += ["histograms", "miss-rates"]
-    if have(os.path.join(tables, "time.csv")):
-        plot_time.main(os.path.join(tables, "time.csv"), os.path.join(figs, "time"))
-        plot_speedup.main(os.path.join(tables, "scaling.csv"), figs)
-        made += ["time", "speedup", "speedup-mean", "gain"]
-    if cfg.get("label") == "scale" and have(os.path.join(tables, "time.csv")):
-        plot_scale.main(os.path.join(tables, "table1.csv"), os.path.join(tables, "time.csv"),
-                        os.path.join(data, "misses.csv"), os.path.join(figs, "scale"))
-        made.append("scale")
+    for fig in figures:
+        module = importlib.import_module(fig["script"][:-3])
+        module.plot([os.path.join(d, i) for i in fig["inputs"]], os.path.join(figs, fig["name"]),
+                    title=fig.get("title", ""), variant=fig.get("variant", ""))
+        made.append(fig["name"])
     print(f"plot_report: {len(made)} figures in {figs}: {', '.join(made)}")
 
 

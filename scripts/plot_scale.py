@@ -5,12 +5,11 @@ working set leaves a cache, the orderings part.
 
   scripts/plot_scale.py TABLE1.csv TIME.csv MISSES.csv OUT   (writes OUT.png, OUT.pdf)
 """
-import sys
-
-from plot_common import colour, legend_below, num, plt, read_csv, read_rows, save, unique
+from plot_common import cli, colour, legend_below, num, plt, read_csv, read_rows, save, unique
 
 
-def main(table1, time, misses, out):
+def plot(inputs, out, title="", variant=""):
+    table1, time, misses = inputs
     sizes = {r["mesh"]: int(r["vertices"]) for r in read_csv(table1)}
     trows = read_csv(time)
     mrows = read_rows(misses)
@@ -45,6 +44,4 @@ def main(table1, time, misses, out):
 
 
 if __name__ == "__main__":
-    if len(sys.argv) != 5:
-        raise SystemExit(__doc__)
-    main(*sys.argv[1:])
+    cli(plot, __doc__, 3)

@@ -7,14 +7,17 @@
 # results README's path: results/<date>/README.md (ours | paper | difference, every figure).
 #
 # Usage: scripts/reproduce.sh [--quick | --scale] [--orderings ori,bfs,rdr,file:my.perm,...]
-#          [--threads 1,2] [--repeat 3] [--vertices N] [--shapes a,b,...] [--out DIR] [--quiet]
-#   --quick   the same pipeline on 20,000-vertex meshes, one round (under two minutes; CI runs it)
+#          [--threads 1,2] [--repeat 3|auto] [--vertices N] [--shapes a,b,...] [--out DIR] [--quiet]
+#   --quick   the same pipeline on 20,000-vertex meshes, three rounds (seconds; CI runs it): too
+#             small for the paper's columns, which the default run on the paper's sizes fills
 #   --scale   one shape (ocean) at 10^4, 10^5, 10^6 and 10^7 vertices, one thread (~15 min): time per vertex
 #             per sweep and simulated misses per access against size (figure "scale")
 #   --orderings  registered names (meshreuse orderings) or file:PATH (a permutation file, one
 #             old vertex id per line in new order; {mesh} in PATH stands for each mesh's name,
-#             e.g. file:perms/{mesh}.perm); ori is always run (the speedups need it)
+#             e.g. file:perms/{mesh}.perm; LABEL=file:PATH names its rows); ori is always run
+#             (the speedups need it). Relative paths (here and --out) are from where you run it.
 set -euo pipefail
+caller=$PWD
 cd "$(dirname "$0")/.."
 
 mode=full vertices="" quiet="" orderings="ori,bfs,rdr" threads="" repeat=3 out=""
@@ -38,14 +41,27 @@ while (($#)); do
   esac
 done
 [[ -z $vertices || $vertices =~ ^[0-9]+$ ]] || die "--vertices takes a number, found '$vertices'"
-[[ $repeat =~ ^[0-9]+$ && $repeat -ge 1 ]] || die "--repeat takes a number >= 1, found '$repeat'"
+[[ $repeat =~ ^(auto(:[0-9]+)?|[0-9]+)$ ]] || die "--repeat takes a number >= 3 or auto, found '$repeat'"
+[[ $repeat == auto* || $repeat -ge 3 ]] || die "--repeat must be at least 3: a median and its interval need rounds"
 [[ -z $threads || $threads =~ ^[0-9]+(,[0-9]+)*$ ]] || die "--threads takes numbers like 1,2, found '$threads'"
 [[ ,$orderings, == *,ori,* ]] || orderings="ori,$orderings"
-for o in ${orderings//,/ }; do  # file:PATH; {mesh} in PATH is each mesh's name (checked later)
-  if [[ $o == file:* && $o != *'{mesh}'* ]]; then
-    [[ -f ${o#file:} ]] || die "--orderings: ${o#file:}: no such file"
+# file:PATH and LABEL=file:PATH resolved from the caller's folder; {mesh} in PATH is each mesh's
+# name (checked by meshreuse report before any work).
+resolved=()
+IFS=, read -r -a specs <<<"$orderings"
+for o in "${specs[@]}"; do
+  label=""
+  [[ $o == *=file:* ]] && label=${o%%=file:*}= && o=${o#*=}
+  if [[ $o == file:* ]]; then
+    p=${o#file:}
+    [[ $p == /* ]] || p=$caller/$p
+    [[ $p == *'{mesh}'* || -f $p ]] || die "--orderings: ${o#file:}: no such file"
+    o=file:$p
   fi
+  resolved+=("$label$o")
 done
+orderings=$(IFS=,; echo "${resolved[*]}")
+[[ -z $out || $out == /* ]] || out=$caller/$out
 say() { [[ -n $quiet ]] || echo "reproduce [$(date -u +%H:%M:%S)]: $*" >&2; }
 start=$(date +%s)
 
@@ -67,8 +83,17 @@ say "building Release in build/release"
 mkdir -p build
 cmake -S . -B build/release -DCMAKE_BUILD_TYPE=Release >build/release.configure.log 2>&1 ||
   { cat build/release.configure.log; exit 1; }
-cmake --build build/release -j"$(nproc 2>/dev/null || echo 2)" >build/release.build.log 2>&1 ||
-  { tail -n 40 build/release.build.log; exit 1; }
+# The program alone (not the tests and benchmarks), its progress shown: a first build takes minutes.
+if [[ -n $quiet ]]; then
+  cmake --build build/release --target meshreuse -j"$(nproc 2>/dev/null || echo 2)" \
+    >build/release.build.log 2>&1 || { tail -n 40 build/release.build.log; exit 1; }
+else
+  if ! cmake --build build/release --target meshreuse -j"$(nproc 2>/dev/null || echo 2)" 2>&1 |
+      tee build/release.build.log | { grep --line-buffered -E '^\[ *[0-9]+%\]' >&2 || true; }; then
+    tail -n 40 build/release.build.log
+    exit 1
+  fi
+fi
 bin=build/release/cli/meshreuse
 "$bin" orderings --check "$orderings"  # exit 2 with the reason for an unknown one
 
@@ -87,7 +112,6 @@ mesh() {  # mesh SHAPE VERTICES DIR -> prints the .node path (meshed once, cache
 }
 
 files=()
-[[ $mode == quick && $repeat == 3 ]] && repeat=1
 args=(--orderings "$orderings" --repeat "$repeat" --label "$mode")
 [[ -n $threads ]] && args+=(--threads "$threads")
 case $mode in
@@ -113,4 +137,5 @@ say "done in $((elapsed / 60)) min $((elapsed % 60)) s"
 echo
 sed -n '/^## Table 2/,/^Files/p' "$out/README.md" | head -n 20
 echo
+[[ $mode == quick ]] && echo "(20,000-vertex meshes: too small for the paper's columns, which stay empty; scripts/reproduce.sh without --quick runs the paper's sizes and fills them)"
 echo "Every table and figure: $out/README.md"

@@ -76,7 +76,7 @@ for ord in bfs rdr; do
     --triangle-order file --quiet
 done
 check "compare ori,bfs,rdr" 300 -- "$bin" compare "$mesh.node" --orderings ori,bfs,rdr \
-  --max-iters 3 --tol -1 --repeat 1 --quiet
+  --max-iters 2 --tol -1 --repeat 3 --quiet
 echo "scale_smoke: $nv vertices; baseline $((base_kb / 1024)) MB subtracted" >&2
 if ((failed)); then
   echo "scale_smoke: FAILED: a command exceeded its memory budget" >&2

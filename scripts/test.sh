@@ -10,8 +10,15 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
+usage() { sed -n '2,9p' "$0" | sed 's/^# \{0,1\}//'; }
 quick=0
-[[ ${1:-} == --quick ]] && quick=1
+for a in "$@"; do
+  case $a in
+    --quick) quick=1 ;;
+    -h|--help) usage; exit 0 ;;
+    *) echo "test.sh: unknown argument '$a' (see --help)" >&2; exit 2 ;;
+  esac
+done
 bash scripts/setup.sh --with-plots
 
 jobs=$(nproc 2>/dev/null || echo 2)
@@ -37,7 +44,7 @@ echo "== the report on small meshes: scripts/reproduce.sh --quick, every file ch
 rm -rf build/quick-report
 bash scripts/reproduce.sh --quick --quiet --out build/quick-report >/dev/null
 /usr/bin/python3 tests/scripts/check_report.py build/quick-report figure1 profile histograms \
-  miss-rates time speedup speedup-mean gain
+  miss-rates time speedup speedup-mean gain meshes smoothing orderings
 if ((quick == 0)); then
   build build/asan -DCMAKE_BUILD_TYPE=Debug -DMESHREUSE_SANITIZE=ON
   ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \

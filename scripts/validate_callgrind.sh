@@ -57,9 +57,13 @@ for ord in "${orderings[@]}"; do
     sim=$("$bin" simulate "$mesh" --orderings "$ord" --triangle-order "$tri" --iterations "$k" \
       --cache "L1=32K/8,$spec" --csv --quiet)
     # columns: input,ordering,thread,sweep,level,size,ways,sets,accesses,hits,misses,...
-    refs_ours=$(awk -F, '$5 == "L1" && $4 == "all" {print $9}' <<<"$sim")
-    d1_sim=$(awk -F, '$5 == "L1" && $4 == "all" {print $11}' <<<"$sim")
-    ll_sim=$(awk -F, -v n="$name" '$5 == n && $4 == "all" {print $11}' <<<"$sim")
+    col() {  # col LEVEL COLUMN: the simulator's CSV cell by header name, sweep "all"
+      awk -F, -v l="$1" -v c="$2" 'NR == 1 {for (i = 1; i <= NF; i++) h[$i] = i; next}
+        $h["level"] == l && $h["sweep"] == "all" {print $h[c]}' <<<"$sim"
+    }
+    refs_ours=$(col L1 accesses)
+    d1_sim=$(col L1 misses)
+    ll_sim=$(col "$name" misses)
     model=$("$bin" analyze "$mesh" --orderings "$ord" --triangle-order "$tri" --iterations "$k" \
       --granularity line --cache "L1=32K,${spec%/*}" --csv --quiet)
     d1_model=$(awk -F, 'NR == 1 {for (i = 1; i <= NF; i++) col[$i] = i} NR == 2 {print $col["L1_misses"]}' <<<"$model")

@@ -11,6 +11,7 @@
 #include "core/mesh.h"
 #include "core/mesh_io.h"
 #include "core/synthetic.h"
+#include "tracer/access_stream.h"
 
 namespace meshreuse::testing {
 
@@ -70,5 +71,15 @@ inline Mesh UnitSquare() {
 
 // The hand-computed sweep's mesh: boundary vertices 0..5 on a 4 x 2 rectangle, interior 6 and 7.
 inline Mesh TwoInterior() { return ReadMesh(DataPath("two_interior.node")); }
+
+// Keeps every access a stream delivers, with the sweep each begins (tracer/access_stream.h).
+struct RecordingConsumer : AccessConsumer {
+  StreamInfo info;
+  std::vector<Access> all;
+  std::vector<size_t> sweep_starts;
+  void Begin(const StreamInfo& i) override { info = i; }
+  void BeginSweep(int) override { sweep_starts.push_back(all.size()); }
+  void Consume(const Access* a, size_t n) override { all.insert(all.end(), a, a + n); }
+};
 
 }  // namespace meshreuse::testing

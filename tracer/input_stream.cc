@@ -6,8 +6,15 @@
 #include <zstd.h>
 #include <zstd_errors.h>
 
+#include <algorithm>
+#include <array>
+#include <cerrno>
 #include <cstdio>
 #include <cstring>
+#include <stdexcept>
+
+#include "core/error.h"
+#include "core/output_file.h"
 
 namespace meshreuse {
 
@@ -16,7 +23,66 @@ constexpr unsigned char kZstdMagic[4] = {0x28, 0xB5, 0x2F, 0xFD};
 // 32 MiB: every zstd level up to 19 and --ultra -20/-21 decode within it; a frame asking more
 // (--ultra -22, --long) is refused rather than allowed ~100 MB from a few header bytes.
 constexpr int kWindowLogMax = 25;
+
+bool IsZstd(const std::vector<char>& b) {  // a zstd frame or a skippable one (pzstd starts so)
+  if (b.size() < 4) return false;
+  if (std::memcmp(b.data(), kZstdMagic, 4) == 0) return true;
+  return (static_cast<unsigned char>(b[0]) & 0xF0) == 0x50 &&
+         static_cast<unsigned char>(b[1]) == 0x2A && static_cast<unsigned char>(b[2]) == 0x4D &&
+         static_cast<unsigned char>(b[3]) == 0x18;
 }
+
+// The content size of a compressed regular file: every frame walked by its headers alone (RFC
+// 8878: frame header, 3-byte block headers, optional checksum; skippable frames skipped), without
+// decompressing. -1 when a frame does not record its size. A walk that does not end at the file's
+// end (a file cut short, damage) gives the first frame's size, so that the decompressor, not a
+// missing size, reports what is wrong.
+int64_t ZstdContentSize(std::FILE* f, int64_t file_bytes) {
+  const int fd = fileno(f);
+  auto at = [&](int64_t off, void* buf, size_t n) {
+    return off >= 0 && off + static_cast<int64_t>(n) <= file_bytes &&
+           pread(fd, buf, n, off) == static_cast<ssize_t>(n);
+  };
+  int64_t off = 0, total = 0, first = -1;
+  auto broken = [&] { return first; };
+  while (off < file_bytes) {
+    unsigned char h[18] = {};  // the largest frame header
+    const size_t n = static_cast<size_t>(std::min<int64_t>(sizeof h, file_bytes - off));
+    if (n < 8 || !at(off, h, n)) return broken();
+    if ((h[0] & 0xF0) == 0x50 && h[1] == 0x2A && h[2] == 0x4D && h[3] == 0x18) {
+      off += 8 + (int64_t{h[4]} | int64_t{h[5]} << 8 | int64_t{h[6]} << 16 | int64_t{h[7]} << 24);
+      continue;
+    }
+    if (std::memcmp(h, kZstdMagic, 4) != 0) return broken();
+    const unsigned d = h[4];  // Frame_Header_Descriptor
+    const bool single = (d >> 5) & 1, checksum = (d >> 2) & 1;
+    if ((d >> 3) & 1) return broken();  // reserved bit
+    const size_t did = std::array<size_t, 4>{0, 1, 2, 4}[d & 3];
+    const size_t fcs = std::array<size_t, 4>{single ? 1u : 0u, 2, 4, 8}[d >> 6];
+    const size_t header = 5 + (single ? 0 : 1) + did + fcs;
+    if (header > n) return broken();
+    if (fcs == 0) return -1;  // this frame does not record its size
+    uint64_t content = 0;
+    for (size_t i = 0; i < fcs; ++i) content |= uint64_t{h[header - fcs + i]} << (8 * i);
+    if (fcs == 2) content += 256;
+    if (content > static_cast<uint64_t>(INT64_MAX - total)) return broken();
+    if (first < 0) first = static_cast<int64_t>(content);
+    total += static_cast<int64_t>(content);
+    off += static_cast<int64_t>(header);
+    for (bool last = false; !last;) {
+      unsigned char b[3];
+      if (!at(off, b, 3)) return broken();
+      const uint32_t word = b[0] | uint32_t{b[1]} << 8 | uint32_t{b[2]} << 16;
+      last = word & 1;
+      const uint32_t type = (word >> 1) & 3, size = word >> 3;
+      if (type == 3) return broken();  // reserved
+      off += 3 + (type == 1 ? 1 : size);
+    }
+    if (checksum) off += 4;
+  }
+  return off == file_bytes ? total : broken();
+}
+}  // namespace
 
 struct InputStream::Zstd {
   ZSTD_DStream* ds = nullptr;
@@ -37,15 +103,12 @@ InputStream::InputStream(const std::string& path) : file_(path) {
     got += n;
   }
   peek_.resize(got);
-  if (got >= 4 && std::memcmp(peek_.data(), kZstdMagic, 4) == 0) {
+  if (IsZstd(peek_)) {
     zstd_ = std::make_unique<Zstd>();
     zstd_->ds = ZSTD_createDStream();
     if (!zstd_->ds) throw InputError(path, 0, "cannot create a zstd decompression stream");
     ZSTD_DCtx_setParameter(zstd_->ds, ZSTD_d_windowLogMax, kWindowLogMax);
-    const unsigned long long content = ZSTD_getFrameContentSize(peek_.data(), peek_.size());
-    if (content != ZSTD_CONTENTSIZE_UNKNOWN && content != ZSTD_CONTENTSIZE_ERROR &&
-        content <= static_cast<unsigned long long>(INT64_MAX))
-      size_ = static_cast<int64_t>(content);
+    if (file_.size() >= 0) size_ = ZstdContentSize(file_.get(), file_.size());
   } else {
     size_ = file_.size();
   }
@@ -101,20 +164,16 @@ size_t InputStream::Read(void* buf, size_t n) {
 
 void CompressFile(const std::string& src, const std::string& dst, int level) {
   InputFile in(src);
-  const std::string tmp = dst + ".tmp." + std::to_string(::getpid());
-  std::FILE* out = std::fopen(tmp.c_str(), "wb");
-  if (!out) throw InputError(dst, 0, std::string("cannot create: ") + std::strerror(errno));
-  ZSTD_CCtx* cc = ZSTD_createCCtx();
-  auto fail = [&](const std::string& why) {
-    ZSTD_freeCCtx(cc);
-    std::fclose(out);
-    std::remove(tmp.c_str());
-    throw InputError(dst, 0, why);
-  };
-  if (!cc) fail("cannot create a zstd compression context");
-  ZSTD_CCtx_setParameter(cc, ZSTD_c_compressionLevel, level);
-  ZSTD_CCtx_setParameter(cc, ZSTD_c_checksumFlag, 1);
-  if (in.size() >= 0) ZSTD_CCtx_setPledgedSrcSize(cc, static_cast<unsigned long long>(in.size()));
+  AtomicOutput out(dst);
+  struct Ctx {
+    ZSTD_CCtx* cc = ZSTD_createCCtx();
+    ~Ctx() { ZSTD_freeCCtx(cc); }
+  } ctx;
+  if (!ctx.cc) throw std::runtime_error("cannot create a zstd compression context");
+  ZSTD_CCtx_setParameter(ctx.cc, ZSTD_c_compressionLevel, level);
+  ZSTD_CCtx_setParameter(ctx.cc, ZSTD_c_checksumFlag, 1);
+  if (in.size() >= 0)
+    ZSTD_CCtx_setPledgedSrcSize(ctx.cc, static_cast<unsigned long long>(in.size()));
   std::vector<char> ibuf(1 << 20), obuf(ZSTD_CStreamOutSize());
   while (true) {
     const size_t got = in.Read(ibuf.data(), ibuf.size());
@@ -123,19 +182,16 @@ void CompressFile(const std::string& src, const std::string& dst, int level) {
     bool done = false;
     while (!done) {
       ZSTD_outBuffer ob{obuf.data(), obuf.size(), 0};
-      const size_t left = ZSTD_compressStream2(cc, &ob, &ib, mode);
-      if (ZSTD_isError(left)) fail(std::string("zstd: ") + ZSTD_getErrorName(left));
-      if (std::fwrite(obuf.data(), 1, ob.pos, out) != ob.pos)
-        fail(std::string("write error: ") + std::strerror(errno));
+      const size_t left = ZSTD_compressStream2(ctx.cc, &ob, &ib, mode);
+      if (ZSTD_isError(left))
+        throw std::runtime_error(std::string("zstd: ") + ZSTD_getErrorName(left));
+      if (std::fwrite(obuf.data(), 1, ob.pos, out.file()) != ob.pos)
+        throw EnvironmentError(dst, std::string("write failed: ") + std::strerror(errno));
       done = mode == ZSTD_e_end ? left == 0 : ib.pos == ib.size;
     }
     if (mode == ZSTD_e_end) break;
   }
-  ZSTD_freeCCtx(cc);
-  if (std::fclose(out) != 0 || std::rename(tmp.c_str(), dst.c_str()) != 0) {
-    std::remove(tmp.c_str());
-    throw InputError(dst, 0, std::string("cannot write: ") + std::strerror(errno));
-  }
+  out.Commit();
 }
 
 }  // namespace meshreuse

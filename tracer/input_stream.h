@@ -1,10 +1,10 @@
 // An input file read as a byte stream, plain or zstd-compressed, told apart by zstd's magic number
-// (28 B5 2F FD) at its start: every trace reader reads through it, so a `.zst` trace (ours from
-// `trace --compress`, libCacheSim's oracleGeneral `.zst`, or any other format compressed with
-// the zstd tool) reads like the plain file. Opening follows InputFile (directories and devices
-// refused, "-" for standard input). A corrupt or truncated compressed stream is an InputError
-// naming the file and the compressed byte offset; decompression memory is bounded (a frame needing a
-// window above 32 MiB, zstd --long or --ultra -22, is refused by name).
+// (28 B5 2F FD, or a skippable frame's 5X 2A 4D 18) at its start: every trace reader reads through
+// it, so a `.zst` trace (ours from `trace --compress`, libCacheSim's oracleGeneral `.zst`, or any
+// other format compressed with the zstd tool) reads like the plain file. Opening follows InputFile
+// (directories and devices refused, "-" for standard input). A corrupt or truncated compressed
+// stream is an InputError naming the file and the compressed byte offset; decompression memory is
+// bounded (a frame needing a window above 32 MiB, zstd --long or --ultra -22, is refused by name).
 #pragma once
 
 #include <cstdint>
@@ -27,8 +27,9 @@ class InputStream {
   size_t Read(void* buf, size_t n);
   const std::string& path() const { return file_.path(); }
   bool compressed() const { return zstd_ != nullptr; }
-  // Content bytes when known: a plain regular file's size, or the size a zstd frame header
-  // records (written by `trace --compress` and the zstd tool for files); -1 otherwise.
+  // Content bytes when known: a plain regular file's size, or the sum of the sizes its zstd
+  // frame headers record (every frame must: `trace --compress` and `zstd FILE` do, pzstd does
+  // not); -1 otherwise. Several frames and skippable frames (pzstd) read as `zstd -d` reads them.
   int64_t size() const { return size_; }
 
  private:
@@ -41,8 +42,8 @@ class InputStream {
   std::unique_ptr<Zstd> zstd_;
 };
 
-// Compresses `src` into `dst` (via DST.tmp.PID, renamed when complete) at zstd level `level`,
-// recording the content size in the frame header. Throws InputError on I/O failure.
+// Compresses `src` into `dst` (core/output_file.h) at zstd level `level`, recording the content
+// size in the frame header. Throws EnvironmentError when it cannot be written.
 void CompressFile(const std::string& src, const std::string& dst, int level = 3);
 
 }  // namespace meshreuse

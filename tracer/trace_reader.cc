@@ -3,10 +3,13 @@
 
 #include <sys/stat.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstring>
 
+#include "core/access.h"
 #include "core/error.h"
+#include "core/schedule.h"
 
 namespace meshreuse {
 
@@ -23,12 +26,50 @@ struct Cursor {
     pos += sizeof(T);
     return v;
   }
+};
+
+// The rest of the header, read through a 64 KiB window: its tables can be 64 MiB of slots (room
+// reserved when the file was opened), of which only the recorded sweeps are kept.
+struct HeaderStream {
+  InputStream& in;
+  uint64_t left;  // header bytes not yet read
+  const std::string& path;
+  std::vector<char> buf = std::vector<char>(1 << 16);
+  size_t at = 0, end = 0;
+  void Fill(size_t need) {
+    std::memmove(buf.data(), buf.data() + at, end - at);
+    end -= at, at = 0;
+    const size_t want = static_cast<size_t>(std::min<uint64_t>(buf.size() - end, left));
+    const size_t got = in.Read(buf.data() + end, want);
+    left -= got, end += got;
+    if (end < need) throw InputError(path, 0, "truncated trace header");
+  }
+  template <class T>
+  T Get() {
+    if (end - at < sizeof(T)) Fill(sizeof(T));
+    T v;
+    std::memcpy(&v, buf.data() + at, sizeof(T));
+    at += sizeof(T);
+    return v;
+  }
+  // A name, kept printable: bytes below 0x20 and 0x7F become '?', so that a hostile header
+  // cannot put line breaks or escape sequences into tables, CSV or a terminal.
   std::string GetString() {
     const uint16_t n = Get<uint16_t>();
-    if (pos + n > b.size()) throw InputError(path, 0, "truncated trace header");
-    std::string s(b.data() + pos, n);
-    pos += n;
+    std::string s;
+    for (uint16_t i = 0; i < n; ++i) {
+      const unsigned char c = Get<unsigned char>();
+      s += c < 0x20 || c == 0x7F ? '?' : static_cast<char>(c);
+    }
     return s;
+  }
+  void SkipRest() {  // the padding
+    while (left > 0) {
+      const size_t got =
+          in.Read(buf.data(), static_cast<size_t>(std::min<uint64_t>(buf.size(), left)));
+      if (got == 0) throw InputError(path, 0, "truncated trace header");
+      left -= got;
+    }
   }
 };
 }  // namespace
@@ -45,12 +86,9 @@ bool TraceReader::LooksLikeTrace(const std::string& path) {
 
 TraceReader::TraceReader(std::string path) : path_(std::move(path)) {
   in_ = std::make_unique<InputStream>(path_);  // owns the handle: released however this ends
-  if (in_->size() < 0)
-    throw InputError(path_, 0,
-                     in_->compressed() ? "a compressed meshreuse trace must record its size in "
-                                         "the zstd frame header (meshreuse trace --compress and "
-                                         "the zstd tool do)"
-                                       : "a meshreuse trace must be a regular file");
+  // Size unknown (a pipe, standard input, zstd frames that do not record it): the header's record
+  // count is checked as the records are read, and nothing may follow the last.
+  sized_ = in_->size() >= 0;
   std::vector<char> fixed(48);
   const size_t got = in_->Read(fixed.data(), fixed.size());
   if (got < 8 || std::memcmp(fixed.data(), kTraceMagic, 8) != 0)
@@ -73,14 +111,14 @@ TraceReader::TraceReader(std::string path) : path_(std::move(path)) {
   const uint32_t slots = c.Get<uint32_t>();
   header_.vertices = c.Get<uint32_t>();
   header_.records = c.Get<uint64_t>();
-  const uint64_t file_bytes = static_cast<uint64_t>(in_->size());
+  const uint64_t file_bytes = sized_ ? static_cast<uint64_t>(in_->size()) : ~uint64_t{0};
   // Every size is bounded before it is used: the header must fit in the file, its tables in the
   // header (64-bit products of 32-bit fields cannot wrap).
   if (header_bytes < 48 || header_bytes > (1u << 26))
     throw InputError(path_, 0,
                      "corrupt trace header: it claims " + std::to_string(header_bytes) +
                          " bytes (byte offset 12)");
-  if (header_bytes > file_bytes)
+  if (sized_ && header_bytes > file_bytes)
     throw InputError(path_, 0,
                      "truncated trace header: it claims " + std::to_string(header_bytes) +
                          " bytes (byte offset 12), the file has " + std::to_string(file_bytes));
@@ -94,11 +132,13 @@ TraceReader::TraceReader(std::string path) : path_(std::move(path)) {
     throw InputError(path_, 0,
                      "corrupt trace header: " + std::to_string(header_.vertices) +
                          " vertices (byte offset 36) exceed 32-bit vertex ids");
-  std::vector<char> all(header_bytes);
-  std::memcpy(all.data(), fixed.data(), 48);
-  if (in_->Read(all.data() + 48, header_bytes - 48) != header_bytes - 48)
-    throw InputError(path_, 0, "truncated trace header");
-  Cursor h{all, 48, path_};
+  if (uint64_t{iterations} * header_.threads > static_cast<uint64_t>(kMaxStreamSweeps))
+    throw InputError(path_, 0,
+                     "the header announces " + std::to_string(iterations) + " sweeps x " +
+                         std::to_string(header_.threads) + " streams: at most " +
+                         std::to_string(kMaxStreamSweeps) +
+                         " (sweep, stream) pairs (each keeps per-sweep state and rows)");
+  HeaderStream h{*in_, header_bytes - 48u, path_};
   for (uint32_t i = 0; i < slots; ++i) {
     const uint64_t v = h.Get<uint64_t>();
     if (i < iterations) header_.iteration_starts.push_back(v);
@@ -117,9 +157,10 @@ TraceReader::TraceReader(std::string path) : path_(std::move(path)) {
     header_.sweep_elements = header_.sweep_records;  // version 1: every record is a touch
   header_.mesh = h.GetString();
   header_.ordering = h.GetString();
+  h.SkipRest();
   const uint64_t body = file_bytes - header_bytes;
   // Compared by division: records * 16 could wrap for a hostile count.
-  if (body % sizeof(TraceRecord) != 0 || body / sizeof(TraceRecord) != header_.records)
+  if (sized_ && (body % sizeof(TraceRecord) != 0 || body / sizeof(TraceRecord) != header_.records))
     throw InputError(path_, 0,
                      "truncated trace: the header says " + std::to_string(header_.records) +
                          " records (byte offset 40), the file holds " + std::to_string(body) +
@@ -160,7 +201,29 @@ bool TraceReader::Next(std::vector<TraceRecord>* out, size_t max) {
     throw InputError(
         path_, 0,
         "truncated trace: record " + std::to_string(header_.records - left_) + " cannot be read");
+  // Each record checked, so that what reads a trace can index by thread and trust the rest.
+  const uint64_t first = header_.records - left_;
+  auto fail = [&](size_t i, const std::string& what) {
+    throw InputError(path_, 0, "record " + std::to_string(first + i) + " " + what);
+  };
+  for (size_t i = 0; i < out->size(); ++i) {
+    const TraceRecord& rec = (*out)[i];
+    if (rec.thread >= header_.threads)
+      fail(i, "has thread " + std::to_string(rec.thread) + " beyond the header's " +
+                  std::to_string(header_.threads));
+    if (rec.kind > static_cast<uint8_t>(AccessKind::kNone))
+      fail(i, "has kind " + std::to_string(rec.kind) + " (kinds are 0-3)");
+    if (rec.address >= ~uint64_t{0} - std::max<uint64_t>(rec.size, 1) + 1)
+      fail(i, "runs into the last byte of the 64-bit address space, which the analyzer reserves");
+  }
   left_ -= out->size();
+  if (left_ == 0 && !sized_) {
+    char extra;
+    if (in_->Read(&extra, 1) == 1)
+      throw InputError(path_, 0,
+                       "more bytes after the " + std::to_string(header_.records) +
+                           " records the header announces (byte offset 40)");
+  }
   return true;
 }
 

@@ -35,6 +35,13 @@ class TraceReader {
  private:
   std::string path_;
   std::unique_ptr<InputStream> in_;
+  bool sized_ = true;
+
+ public:
+  // Whether the record count was checked against the file's size up front (else as it is read).
+  bool sized() const {
+    return sized_;
+  }  // the content's size is known (checked against the header up front)
   TraceHeader header_;
   uint64_t left_ = 0;
 };

@@ -1,8 +1,6 @@
 // TraceWriter; see trace_writer.h.
 #include "tracer/trace_writer.h"
 
-#include <unistd.h>
-
 #include <cerrno>
 #include <cstring>
 
@@ -52,34 +50,49 @@ std::vector<char> EncodeTraceHeader(const TraceHeader& h, int reserve_iterations
   return b;
 }
 
-TraceWriter::TraceWriter(std::string path, TraceHeader header, int max_iterations)
-    : path_(std::move(path)), header_(std::move(header)), max_iterations_(max_iterations) {
-  if (static_cast<int>(header_.iteration_starts.size()) > max_iterations_)
-    max_iterations_ = static_cast<int>(header_.iteration_starts.size());
-  tmp_ = path_ + ".tmp." + std::to_string(::getpid());
-  f_ = std::fopen(tmp_.c_str(), "wb");
-  if (!f_) throw InputError(path_, 0, std::string("cannot write: ") + std::strerror(errno));
-  const std::vector<char> h = EncodeTraceHeader(header_, max_iterations_);
-  std::fwrite(h.data(), 1, h.size(), f_);
+TraceWriter::TraceWriter(std::string path, TraceHeader header, int max_sweeps)
+    : path_(std::move(path)), header_(std::move(header)), max_sweeps_(max_sweeps) {
+  out_ = std::make_unique<AtomicOutput>(path_);
   buf_.reserve((1 << 20) / sizeof(TraceRecord));
 }
 
-TraceWriter::~TraceWriter() {
-  if (f_) std::fclose(f_);
-  if (!closed_) std::remove(tmp_.c_str());
+TraceWriter::~TraceWriter() = default;
+
+void TraceWriter::Begin(const StreamInfo& info) {
+  header_.threads = static_cast<uint32_t>(info.threads);
+  header_.vertices = static_cast<uint32_t>(info.vertices);
+  if (static_cast<int>(header_.iteration_starts.size()) > max_sweeps_)
+    max_sweeps_ = static_cast<int>(header_.iteration_starts.size());
+  const std::vector<char> h = EncodeTraceHeader(header_, max_sweeps_);
+  if (std::fwrite(h.data(), 1, h.size(), out_->file()) != h.size())
+    throw EnvironmentError(path_, "write failed (disk full?)");
 }
 
 void TraceWriter::BeginSweep(int sweep) {
-  if (sweep > max_iterations_) return;  // only the sweeps the header has room for are marked
+  if (sweep > max_sweeps_) return;  // only the sweeps the header has room for are marked
   header_.iteration_starts.push_back(records());
   header_.sweep_records.emplace_back(header_.threads, 0);
   header_.sweep_elements.emplace_back(header_.threads, 0);
 }
 
+void TraceWriter::Consume(const Access* a, size_t n) {
+  for (size_t i = 0; i < n; ++i) {
+    const Access& r = a[i];
+    if (buf_.size() == buf_.capacity()) Flush();
+    if (!header_.sweep_records.empty()) {
+      ++header_.sweep_records.back()[r.thread];
+      if (r.element != Access::kNoElement) ++header_.sweep_elements.back()[r.thread];
+    }
+    buf_.push_back(TraceRecord{r.address, static_cast<uint32_t>(r.element), r.kind, r.thread,
+                               static_cast<uint8_t>(r.size),
+                               static_cast<uint8_t>(r.array | (r.write ? kStoreBit : 0))});
+  }
+}
+
 void TraceWriter::Flush() {
   if (!buf_.empty() &&
-      std::fwrite(buf_.data(), sizeof(TraceRecord), buf_.size(), f_) != buf_.size())
-    throw InputError(path_, 0, "write failed (disk full?)");
+      std::fwrite(buf_.data(), sizeof(TraceRecord), buf_.size(), out_->file()) != buf_.size())
+    throw EnvironmentError(path_, "write failed (disk full?)");
   records_ += buf_.size();
   buf_.clear();
 }
@@ -87,15 +100,13 @@ void TraceWriter::Flush() {
 void TraceWriter::Close() {
   Flush();
   header_.records = records_;
-  const std::vector<char> h = EncodeTraceHeader(header_, max_iterations_);
-  const bool ok =
-      std::fseek(f_, 0, SEEK_SET) == 0 && std::fwrite(h.data(), 1, h.size(), f_) == h.size();
-  const bool closed_ok = std::fclose(f_) == 0;
-  f_ = nullptr;
-  if (!ok || !closed_ok) throw InputError(path_, 0, "write failed (disk full?)");
-  if (std::rename(tmp_.c_str(), path_.c_str()) != 0)
-    throw InputError(path_, 0, std::string("cannot rename into place: ") + std::strerror(errno));
-  closed_ = true;
+  if (!out_->in_place()) {  // a regular file: the final header over the placeholder
+    const std::vector<char> h = EncodeTraceHeader(header_, max_sweeps_);
+    if (std::fseek(out_->file(), 0, SEEK_SET) != 0 ||
+        std::fwrite(h.data(), 1, h.size(), out_->file()) != h.size())
+      throw EnvironmentError(path_, "write failed (disk full?)");
+  }
+  out_->Commit();
 }
 
 }  // namespace meshreuse

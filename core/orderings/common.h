@@ -29,7 +29,8 @@ std::vector<int32_t> RowsByKey(const Mesh& m, const std::vector<double>& key);
 // box (each axis scaled independently), ties by id: hilbert and morton.
 std::vector<int32_t> SortAlongCurve(const Mesh& m, uint64_t (*index)(uint32_t, uint32_t));
 
-// metis's argument: bytes per part, K/M suffixes; "" gives 256 KiB. Throws std::invalid_argument.
+// metis's argument: bytes per part, K/M suffixes; "" gives 256 KiB. Throws UsageError.
 uint64_t ParseMetisPartBytes(const std::string& arg);
+inline void CheckMetisPartBytes(const std::string& arg) { ParseMetisPartBytes(arg); }
 
 }  // namespace meshreuse::orderings

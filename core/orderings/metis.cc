@@ -11,9 +11,11 @@
 #include <stdexcept>
 #include <string>
 
+#include "core/error.h"
 #include "core/orderings/common.h"
 #include "core/orderings/metis_graph.h"
 #include "core/orderings/registry.h"
+#include "core/stdout_guard.h"
 
 namespace meshreuse {
 
@@ -30,8 +32,7 @@ uint64_t orderings::ParseMetisPartBytes(const std::string& arg) {
   if (used + 1 == arg.size() && (arg[used] == 'K' || arg[used] == 'k')) mult = 1024, ++used;
   if (used + 1 == arg.size() && (arg[used] == 'M' || arg[used] == 'm')) mult = 1 << 20, ++used;
   if (used != arg.size() || v == 0 || v > (uint64_t{1} << 40) / mult)
-    throw std::invalid_argument("metis:BYTES needs a positive size such as 262144 or 256K, not '" +
-                                arg + "'");
+    throw UsageError("metis:BYTES needs a positive size such as 262144 or 256K, not '" + arg + "'");
   return v * mult;
 }
 
@@ -61,10 +62,13 @@ Permutation OrderMetis(const Mesh& m, const OrderingContext& ctx) {
   options[METIS_OPTION_SEED] = static_cast<idx_t>(ctx.seed & 0x7FFFFFFF);
   options[METIS_OPTION_NUMBERING] = 0;
   std::vector<idx_t> part(n);
-  orderings::MetisCheck(
-      METIS_PartGraphKway(&g.n, &ncon, g.xadj.data(), g.adjncy.data(), nullptr, nullptr, nullptr,
-                          &nparts, nullptr, nullptr, options, &cut, part.data()),
-      "METIS_PartGraphKway");
+  {
+    const StdoutToStderr quiet;  // METIS may printf: stdout holds only results
+    orderings::MetisCheck(
+        METIS_PartGraphKway(&g.n, &ncon, g.xadj.data(), g.adjncy.data(), nullptr, nullptr, nullptr,
+                            &nparts, nullptr, nullptr, options, &cut, part.data()),
+        "METIS_PartGraphKway");
+  }
   // Vertices by part (ascending id within each), and the part graph's neighbour sets.
   std::vector<int64_t> first(nparts + 1, 0);
   for (int32_t v = 0; v < n; ++v) ++first[part[v] + 1];

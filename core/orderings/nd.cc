@@ -3,6 +3,7 @@
 // is row perm[i] of A"). Seeded by --seed through METIS_OPTION_SEED, so it is deterministic.
 #include "core/orderings/metis_graph.h"
 #include "core/orderings/registry.h"
+#include "core/stdout_guard.h"
 
 namespace meshreuse {
 
@@ -14,6 +15,7 @@ Permutation OrderNd(const Mesh& m, const OrderingContext& ctx) {
   options[METIS_OPTION_SEED] = static_cast<idx_t>(ctx.seed & 0x7FFFFFFF);
   options[METIS_OPTION_NUMBERING] = 0;
   std::vector<idx_t> perm(g.n), iperm(g.n);
+  const StdoutToStderr quiet;  // METIS may printf: stdout holds only results
   orderings::MetisCheck(METIS_NodeND(&g.n, g.xadj.data(), g.adjncy.data(), nullptr, options,
                                      perm.data(), iperm.data()),
                         "METIS_NodeND");

@@ -17,6 +17,8 @@
 // in id order, so the result is always a permutation.
 #include "core/orderings/rdr.h"
 
+#include <algorithm>
+
 #include "core/orderings/common.h"
 #include "core/orderings/registry.h"
 #include "core/quality.h"
@@ -48,16 +50,24 @@ Permutation RdrOrder(const Mesh& m, const std::vector<double>& quality, RdrChain
     while (true) {
       processed[head] = 1;
       l.clear();
+      const bool hub = off[head + 1] - off[head] > 32;  // sorted once below, O(d log d)
       for (const int32_t* p = idx + off[head]; p != idx + off[head + 1]; ++p) {
         const int32_t u = *p;
         if (processed[u]) continue;
         __builtin_prefetch(idx + off[u]);  // a candidate for the chain's next row
         const double qu = quality[u];
+        if (hub) {
+          l.emplace_back(qu, u);
+          continue;
+        }
         size_t k = l.size();
         l.emplace_back();
         for (; k > 0 && l[k - 1].first > qu; --k) l[k] = l[k - 1];
         l[k] = {qu, u};
       }
+      if (hub)  // stable by quality: ties keep the row's increasing ids
+        std::stable_sort(l.begin(), l.end(),
+                         [](const auto& a, const auto& b) { return a.first < b.first; });
       if (l.empty()) break;
       for (const auto& e : l)
         if (!sorted[e.second]) {

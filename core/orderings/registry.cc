@@ -1,8 +1,10 @@
-// The registry: list.h expanded twice, once to declare the functions and once to build the table.
+// The registry: list.h expanded twice, once to declare the functions and once to build the table;
+// and the one spec parser.
 #include "core/orderings/registry.h"
 
 #include <stdexcept>
 
+#include "core/error.h"
 #include "core/orderings/common.h"
 
 namespace meshreuse {
@@ -13,7 +15,8 @@ namespace meshreuse {
 
 const std::vector<OrderingInfo>& Orderings() {
   static const std::vector<OrderingInfo> kTable = {
-#define MESHREUSE_ORDERING(fn, name, arg, desc, ref) {name, fn, OrderingArgument(arg), desc, ref},
+#define MESHREUSE_ORDERING(fn, name, arg, seeded, check, desc, ref) \
+  {name, fn, OrderingArgument(arg), seeded, check, desc, ref},
 #include "core/orderings/list.h"
 #undef MESHREUSE_ORDERING
   };
@@ -36,37 +39,50 @@ std::string OrderingNames() {
   return s;
 }
 
-void CheckOrderingSpec(const std::string& spec) {
-  const size_t colon = spec.find(':');
-  const std::string name = spec.substr(0, colon);
-  const OrderingInfo* o = FindOrdering(name);
-  if (!o)
-    throw std::invalid_argument("unknown ordering '" + spec + "' (known: " + OrderingNames() + ")");
-  const std::string arg = colon == std::string::npos ? "" : spec.substr(colon + 1);
-  if (o->argument == kArgument && arg.empty())
-    throw std::invalid_argument("ordering '" + name + "' needs an argument: " + name + ":ARG");
-  if (o->argument == kNoArgument && colon != std::string::npos)
-    throw std::invalid_argument("ordering '" + name + "' takes no argument");
-  if (name == "metis") orderings::ParseMetisPartBytes(arg);
+OrderingSpec ParseOrderingSpec(const std::string& text) {
+  OrderingSpec s;
+  s.text = text;
+  std::string body = text;
+  // LABEL=spec: a label is a plain name (no ':' before the '='; a path may hold '=' later).
+  const size_t eq = text.find('='), colon = text.find(':');
+  if (eq != std::string::npos && (colon == std::string::npos || eq < colon)) {
+    s.label = text.substr(0, eq);
+    body = text.substr(eq + 1);
+    if (s.label.empty()) throw UsageError("ordering '" + text + "': an empty label before '='");
+  }
+  const size_t c = body.find(':');
+  s.name = body.substr(0, c);
+  s.info = FindOrdering(s.name);
+  if (!s.info) throw UsageError("unknown ordering '" + text + "' (known: " + OrderingNames() + ")");
+  s.argument = c == std::string::npos ? "" : body.substr(c + 1);
+  if (s.info->argument == kArgument && s.argument.empty())
+    throw UsageError("ordering '" + s.name + "' needs an argument: " + s.name + ":ARG");
+  if (s.info->argument == kNoArgument && c != std::string::npos)
+    throw UsageError("ordering '" + s.name + "' takes no argument");
+  if (s.info->check) s.info->check(s.argument);
+  if (s.label.empty()) s.label = body;
+  return s;
 }
 
-Permutation ComputeOrdering(const std::string& spec, const Mesh& m, uint64_t seed) {
-  const size_t colon = spec.find(':');
-  const std::string name = spec.substr(0, colon);
-  const OrderingInfo* o = FindOrdering(name);
-  if (!o)
-    throw std::invalid_argument("unknown ordering '" + name + "' (known: " + OrderingNames() + ")");
+Permutation ComputeOrdering(const std::string& text, const Mesh& m, uint64_t seed) {
+  const OrderingSpec s = ParseOrderingSpec(text);
   OrderingContext ctx;
   ctx.seed = seed;
-  if (colon != std::string::npos) ctx.argument = spec.substr(colon + 1);
-  if (o->argument == kArgument && ctx.argument.empty())
-    throw std::invalid_argument("ordering '" + name + "' needs an argument: " + name + ":ARG");
-  if (o->argument == kNoArgument && colon != std::string::npos)
-    throw std::invalid_argument("ordering '" + name + "' takes no argument");
-  Permutation p = o->fn(m, ctx);
+  ctx.argument = s.argument;
+  Permutation p = s.info->fn(m, ctx);
   if (p.size() != m.NumVertices())
-    throw std::logic_error("ordering '" + name + "' returned a permutation of the wrong size");
+    throw std::logic_error("ordering '" + s.name + "' returned a permutation of the wrong size");
   return p;
+}
+
+std::vector<std::pair<std::string, uint64_t>> SeededOrderings(const std::vector<std::string>& specs,
+                                                              uint64_t seed) {
+  std::vector<std::pair<std::string, uint64_t>> out;
+  for (const std::string& t : specs) {
+    const OrderingSpec s = ParseOrderingSpec(t);
+    if (s.info->seeded) out.emplace_back(s.label, seed);
+  }
+  return out;
 }
 
 }  // namespace meshreuse

@@ -1,5 +1,8 @@
 // Vertex orderings: each maps a mesh to a Permutation (new -> old). One file per ordering under
 // core/orderings/, one line per ordering in list.h; this header is how everything else finds them.
+// An ordering is named by a spec: "name", "name:argument" (file:PATH, metis:BYTES), optionally
+// labelled "LABEL=name[:argument]" so tables show LABEL (e.g. xsort=file:perms/x.perm). One
+// parser (ParseOrderingSpec) checks every spec, before any work, for every command.
 #pragma once
 
 #include <cstdint>
@@ -12,7 +15,7 @@
 namespace meshreuse {
 
 struct OrderingContext {
-  uint64_t seed = 1;     // for randomised orderings; reported in every output
+  uint64_t seed = 1;     // for seeded orderings (OrderingInfo::seeded); recorded in every output
   std::string argument;  // the part after ':' in "name:argument" (file:PATH, metis:BYTES)
 };
 
@@ -20,11 +23,15 @@ struct OrderingContext {
 enum OrderingArgument { kNoArgument = 0, kArgument = 1, kOptionalArgument = 2 };
 
 using OrderingFn = Permutation (*)(const Mesh&, const OrderingContext&);
+// Checks an argument without the mesh (throws UsageError), for option checking before a long run.
+using ArgumentCheck = void (*)(const std::string& argument);
 
 struct OrderingInfo {
   const char* name;
   OrderingFn fn;
   OrderingArgument argument;
+  bool seeded;          // the order depends on --seed (random, metis, nd)
+  ArgumentCheck check;  // nullptr: any argument the function accepts
   const char* description;
   const char* reference;
   bool takes_argument() const { return argument == kArgument; }  // required
@@ -34,13 +41,28 @@ const std::vector<OrderingInfo>& Orderings();
 const OrderingInfo* FindOrdering(const std::string& name);  // nullptr when unknown
 std::string OrderingNames();                                // "ori, random, ..."
 
-// Checks "name" or "name:argument" without computing anything (for option checking before a long
-// run): the name, the argument's presence, and the argument itself where it can be checked
-// without the mesh (metis:BYTES). Throws std::invalid_argument.
-void CheckOrderingSpec(const std::string& spec);
+struct OrderingSpec {
+  std::string text;      // as given
+  std::string label;     // what tables call it: LABEL when given, else the spec without it
+  std::string name;      // the registered name
+  std::string argument;  // after ':' ("" when none)
+  const OrderingInfo* info = nullptr;
+  std::string spec() const {
+    return argument.empty() && info->argument != kArgument ? name : name + ":" + argument;
+  }
+};
+// Parses and checks a spec: the name is registered, the argument present when required, absent
+// when refused, and valid where it can be checked without the mesh. Throws UsageError.
+OrderingSpec ParseOrderingSpec(const std::string& text);
+inline void CheckOrderingSpec(const std::string& text) { ParseOrderingSpec(text); }
 
-// Computes "name" or "name:argument". Throws std::invalid_argument for an unknown name or a
-// missing/unexpected argument, and whatever the ordering throws (file: InputError).
+// Computes a spec ("name", "name:argument", "LABEL=..."). Throws UsageError for a bad spec and
+// whatever the ordering throws (file: InputError).
 Permutation ComputeOrdering(const std::string& spec, const Mesh& m, uint64_t seed = 1);
+
+// The seeds that matter for these specs: {label: seed} for each seeded ordering among them
+// (run.json, .perm headers).
+std::vector<std::pair<std::string, uint64_t>> SeededOrderings(const std::vector<std::string>& specs,
+                                                              uint64_t seed);
 
 }  // namespace meshreuse

@@ -7,33 +7,44 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <fstream>
 #include <list>
+#include <map>
 #include <random>
 #include <set>
+#include <sstream>
 
 #include "analysis/cache_model.h"
 #include "analysis/reuse_histogram.h"
 #include "analysis/stack_distance.h"
+#include "core/error.h"
 #include "core/smoother.h"
 #include "core/synthetic.h"
+#include "tests/test_util.h"
+#include "tracer/trace_formats.h"
 
 namespace meshreuse {
 namespace {
 
-// The obvious implementation: per level, per set, a list with the most recent line first.
+// The obvious implementation: per level, per set, a list with the most recent line first (LRU),
+// or the most recently installed first (FIFO: a hit leaves the list as it is).
 struct NaiveHierarchy {
   struct Level {
     uint64_t sets, ways;
     std::vector<std::list<uint64_t>> s;
+    bool fifo = false;
   };
   std::vector<Level> levels;
+  std::vector<std::string> names;
   std::set<uint64_t> seen;
   std::vector<LevelStats> stats;
   int shift;
   NaiveHierarchy(const std::vector<CacheLevel>& l, uint32_t line) : shift(__builtin_ctz(line)) {
     for (const CacheLevel& c : l) {
       const uint64_t sets = c.bytes / line / c.ways;
-      levels.push_back({sets, c.ways, std::vector<std::list<uint64_t>>(sets)});
+      levels.push_back(
+          {sets, c.ways, std::vector<std::list<uint64_t>>(sets), c.policy == Replacement::kFifo});
+      names.push_back(c.name);
     }
     stats.resize(l.size());
   }
@@ -41,23 +52,33 @@ struct NaiveHierarchy {
     std::list<uint64_t>& set = L.s[line % L.sets];
     const auto it = std::find(set.begin(), set.end(), line);
     const bool hit = it != set.end();
+    if (hit && L.fifo) return true;
     if (hit) set.erase(it);
     set.push_front(line);
     if (set.size() > L.ways) set.pop_back();
     return hit;
   }
-  void Access(uint64_t a, uint32_t size, bool write) {
+  // A fetch goes through I1 (if any) instead of the first data level; data never goes to I1.
+  void Access(uint64_t a, uint32_t size, bool write, bool fetch = false) {
     const uint64_t first = a >> shift, last = (a + std::max(size, 1u) - 1) >> shift;
     bool cold = false;
     for (uint64_t l = first; l <= last; ++l) cold = seen.insert(l).second || cold;
+    const bool has_i1 = std::count(names.begin(), names.end(), "I1") > 0;
+    bool first_data = true;
     for (size_t i = 0; i < levels.size(); ++i) {
+      if (names[i] == "I1" && !fetch) continue;
+      if (names[i] != "I1") {
+        const bool skip = fetch && has_i1 && first_data;
+        first_data = false;
+        if (skip) continue;
+      }
       ++stats[i].accesses;
       bool hit = true;
       for (uint64_t l = first; l <= last; ++l) hit = Touch(levels[i], l) && hit;
       if (hit) return;
       ++stats[i].misses;
       stats[i].cold += cold;
-      ++(write ? stats[i].write_misses : stats[i].read_misses);
+      ++(fetch ? stats[i].fetch_misses : write ? stats[i].write_misses : stats[i].read_misses);
     }
   }
 };
@@ -68,6 +89,7 @@ void ExpectSame(const LevelStats& a, const LevelStats& b, const std::string& wha
   EXPECT_EQ(a.cold, b.cold) << what;
   EXPECT_EQ(a.read_misses, b.read_misses) << what;
   EXPECT_EQ(a.write_misses, b.write_misses) << what;
+  EXPECT_EQ(a.fetch_misses, b.fetch_misses) << what;
 }
 
 TEST(SetAssociativeCache, ConflictMissesTheFullyAssociativeModelCannotSee) {
@@ -154,18 +176,23 @@ TEST(SetAssociativeCache, NonPowerOfTwoSetsUseTheRemainder) {
   EXPECT_TRUE(c.Access(0));
   EXPECT_FALSE(c.Access(3));
   EXPECT_TRUE(c.Access(1) == false && c.Access(4) == false && c.Access(0) == true);
-  EXPECT_THROW(SetAssociativeCache(1000, 3, 64), std::invalid_argument);
-  EXPECT_THROW(CacheHierarchy({{"L1", 1024, 0}}, 64), std::invalid_argument);
+  EXPECT_THROW(SetAssociativeCache(1000, 3, 64), UsageError);
+  EXPECT_THROW(CacheHierarchy({{"L1", 1024, 0}}, 64), UsageError);
 }
 
 TEST(CacheHierarchy, MatchesANaiveReferenceOnRandomTraces) {
   std::mt19937_64 rng(2024);
   for (int trial = 0; trial < 12; ++trial) {
-    // Small caches (so every level misses), some with set counts that are not powers of two.
+    // Small caches (so every level misses), some with set counts that are not powers of two; LRU
+    // and, on odd trials, a FIFO L2; one access in five an instruction fetch, which every fourth
+    // trial sends through an instruction cache I1 (listed first or second).
     const uint32_t line = trial % 3 == 0 ? 32 : 64;
-    const std::vector<CacheLevel> levels = {{"L1", uint64_t{line} * (2 + trial % 3) * 4, 4},
-                                            {"L2", uint64_t{line} * (5 + trial) * 8, 8},
-                                            {"L3", uint64_t{line} * 96 * (1 + trial % 2) * 12, 12}};
+    const Replacement l2 = trial % 2 ? Replacement::kFifo : Replacement::kLru;
+    std::vector<CacheLevel> levels = {{"L1", uint64_t{line} * (2 + trial % 3) * 4, 4},
+                                      {"L2", uint64_t{line} * (5 + trial) * 8, 8, l2},
+                                      {"L3", uint64_t{line} * 96 * (1 + trial % 2) * 12, 12}};
+    if (trial % 4 == 1)
+      levels.insert(levels.begin() + trial % 8 / 4, CacheLevel{"I1", uint64_t{line} * 3 * 2, 2});
     CacheHierarchy h(levels, line);
     NaiveHierarchy ref(levels, line);
     std::geometric_distribution<uint64_t> step(0.02);
@@ -173,20 +200,114 @@ TEST(CacheHierarchy, MatchesANaiveReferenceOnRandomTraces) {
     for (int i = 0; i < 40000; ++i) {
       a = rng() % 7 == 0 ? rng() % (1 << 20) : a + step(rng) * 4;
       const uint32_t size = std::array<uint32_t, 5>{1, 4, 8, 16, 0}[rng() % 5];
-      const bool write = rng() % 4 == 0;
-      h.Access(a, size, write);
-      ref.Access(a, size, write);
+      const bool write = rng() % 4 == 0, fetch = !write && rng() % 5 == 0;
+      h.Access(a, size, write, fetch);
+      ref.Access(a, size, write, fetch);
     }
     for (size_t l = 0; l < levels.size(); ++l)
       ExpectSame(h.stats()[l], ref.stats[l],
                  "trial " + std::to_string(trial) + " " + levels[l].name);
-    // Each level sees exactly the misses of the one above.
-    EXPECT_EQ(h.stats()[1].accesses, h.stats()[0].misses);
-    EXPECT_EQ(h.stats()[2].accesses, h.stats()[1].misses);
+    // Each level sees exactly the misses of the one above (both first levels, with an I1).
+    std::vector<LevelStats> s = h.stats();
+    if (levels.size() == 4) {
+      const size_t i1 = levels[0].name == "I1" ? 0 : 1;
+      EXPECT_GT(s[i1].fetch_misses, 0u);
+      EXPECT_EQ(s[i1].misses, s[i1].fetch_misses);
+      EXPECT_EQ(s[1 - i1].fetch_misses, 0u);
+      EXPECT_EQ(s[2].accesses, s[0].misses + s[1].misses);
+      s.erase(s.begin(), s.begin() + 1);
+      s[0].misses = s[1].accesses;
+    }
+    EXPECT_EQ(s[1].accesses, s[0].misses);
+    EXPECT_EQ(s[2].accesses, s[1].misses);
   }
 }
 
-TEST(CacheSimulation, PerSweepStatsAddUpAndTheSinkSeesEveryAccess) {
+// Cachegrind's own numbers (tests/data/lackey/make.sh): a static transpose program traced by
+// lackey and simulated by cachegrind with I1=D1=4 KiB 2-way and LL=64 KiB 4-way. With an I1 every
+// count is cachegrind's: I1mr, D1mr/D1mw, DLmr/DLmw, ILmr (a modify is a read and a write that
+// always hits, which cachegrind counts as the read alone). Without --instructions the data levels
+// still match at D1; the LL then misses the instruction lines' evictions.
+TEST(CacheSimulation, LackeyTraceMissesEqualCachegrinds) {
+  const std::string dir = std::string(MESHREUSE_TEST_DATA) + "/lackey/";
+  std::ifstream cg(dir + "transpose.cachegrind");
+  std::string line, events, summary;
+  std::vector<std::string> spec;
+  while (std::getline(cg, line)) {
+    std::istringstream in(line);
+    std::string key, name;
+    in >> key;
+    if (key == "events:") events = line.substr(8);
+    if (key == "summary:") summary = line.substr(9);
+    if (key == "desc:") {  // "desc: D1 cache:  4096 B, 64 B, 2-way associative"
+      uint64_t bytes = 0, line_bytes = 0, ways = 0;
+      std::string b, c;
+      in >> name >> c >> bytes >> b >> line_bytes >> b >> ways;
+      ASSERT_EQ(line_bytes, 64u) << line;
+      spec.push_back((name == "LL" ? "LL" : name) + "=" + std::to_string(bytes) + "/" +
+                     std::to_string(ways));
+    }
+  }
+  std::map<std::string, uint64_t> cgv;
+  std::istringstream e(events), v(summary);
+  for (std::string name; e >> name;) v >> cgv[name];
+  ASSERT_EQ(cgv.size(), 9u) << events;
+  ASSERT_EQ(spec.size(), 3u);
+  const std::string levels = spec[0] + "," + spec[1] + "," + spec[2];  // I1, D1, LL
+  CacheSimulation with_i1(ParseCacheSpec(levels), 64);
+  StreamForeignTrace(dir + "transpose.lackey.zst", ParseTraceFormat("lackey"), true, with_i1);
+  const std::vector<LevelStats>& s = with_i1.Stats(0);
+  EXPECT_EQ(s[0].accesses, cgv["Ir"]);
+  EXPECT_EQ(s[0].fetch_misses, cgv["I1mr"]);
+  EXPECT_EQ(s[0].misses, cgv["I1mr"]);
+  EXPECT_EQ(s[1].read_misses, cgv["D1mr"]);
+  EXPECT_EQ(s[1].write_misses, cgv["D1mw"]);
+  EXPECT_EQ(s[1].fetch_misses, 0u);
+  EXPECT_EQ(s[2].read_misses, cgv["DLmr"]);
+  EXPECT_EQ(s[2].write_misses, cgv["DLmw"]);
+  EXPECT_EQ(s[2].fetch_misses, cgv["ILmr"]);
+  EXPECT_EQ(s[2].accesses, cgv["I1mr"] + cgv["D1mr"] + cgv["D1mw"]);
+  EXPECT_GT(cgv["D1mw"], cgv["D1mr"]);  // the transpose's column-wise stores: mostly write misses
+  CacheSimulation data(ParseCacheSpec(spec[1] + "," + spec[2]), 64);
+  StreamForeignTrace(dir + "transpose.lackey.zst", ParseTraceFormat("lackey"), false, data);
+  EXPECT_EQ(data.Stats(0)[0].read_misses, cgv["D1mr"]);
+  EXPECT_EQ(data.Stats(0)[0].write_misses, cgv["D1mw"]);
+}
+
+TEST(CacheSimulation, AnInstructionCacheNeedsADataLevel) {
+  EXPECT_THROW(CacheSimulation(ParseCacheSpec("I1=4K/2"), 64), UsageError);
+  EXPECT_THROW(CacheSimulation(ParseCacheSpec("I1=4K/2,D1=4K/2,I1=8K/2"), 64), UsageError);
+}
+
+TEST(SetAssociativeCache, FifoAndRandomReplacement) {
+  // One set of two ways. FIFO: a hit does not refresh, so after 0, 1, 0 the next miss evicts 0.
+  SetAssociativeCache fifo(128, 2, 64, Replacement::kFifo);
+  EXPECT_FALSE(fifo.Access(0));
+  EXPECT_FALSE(fifo.Access(1));
+  EXPECT_TRUE(fifo.Access(0));
+  EXPECT_FALSE(fifo.Access(2));  // evicts 0, the first in
+  EXPECT_FALSE(fifo.Access(0));
+  EXPECT_TRUE(fifo.Access(2));
+  SetAssociativeCache lru(128, 2, 64);
+  EXPECT_FALSE(lru.Access(0));
+  EXPECT_FALSE(lru.Access(1));
+  EXPECT_TRUE(lru.Access(0));
+  EXPECT_FALSE(lru.Access(2));  // evicts 1, the least recent
+  EXPECT_TRUE(lru.Access(0));
+  // Random: deterministic for a stream, and never more than `ways` lines in a set.
+  auto run = [] {
+    SetAssociativeCache r(256, 4, 64, Replacement::kRandom);
+    std::vector<bool> hits;
+    for (uint64_t i = 0; i < 200; ++i) hits.push_back(r.Access(i * 7 % 9));
+    return hits;
+  };
+  EXPECT_EQ(run(), run());
+  SetAssociativeCache r(256, 4, 64, Replacement::kRandom);
+  for (uint64_t l = 0; l < 4; ++l) r.Access(l);
+  for (uint64_t l = 0; l < 4; ++l) EXPECT_TRUE(r.Access(l));  // four fit in four ways
+}
+
+TEST(CacheSimulation, PerSweepStatsAddUpAndEveryAccessIsSimulated) {
   SyntheticOptions so;
   so.nx = 30, so.ny = 24, so.holes = 1, so.seed = 3;
   Mesh m = BuildMesh(MakeSyntheticMesh(so));
@@ -194,19 +315,16 @@ TEST(CacheSimulation, PerSweepStatsAddUpAndTheSinkSeesEveryAccess) {
   o.max_iters = 3;
   o.tol = -1;
   o.threads = 2;
-  const std::vector<CacheLevel> levels = {{"L1", 2048, 4}, {"L2", 16384, 8}};
-  CacheSimulation sim(levels, 64, 2);
-  CacheSimSink sink{&sim};
-  RecordingSink rec;
-  FanOutSink<CacheSimSink, RecordingSink> both{sink, rec};
-  Smooth(m, o, both);
+  const CacheSpec levels = ParseCacheSpec("L1=2K/4,L2=16K/8");
+  CacheSimulation sim(levels, 64);
+  testing::RecordingConsumer rec;
+  FanOut both({&sim, &rec});
+  StreamMesh(m, o, "mesh", "ori", both);
   ASSERT_EQ(sim.sweeps(), 3u);
-  // The same accesses replayed into a fresh simulation, thread by thread, at the canonical
-  // addresses the sink uses.
-  CacheSimulation replay(levels, 64, 2);
-  const AddressCanonicalizer canon(rec.layout);
-  for (const RecordingSink::Ref& r : rec.refs)
-    replay.Access(r.thread, canon(r.thread, r.ref), r.ref.size, r.ref.write);
+  // The same accesses replayed into a fresh simulation, thread by thread.
+  CacheSimulation replay(levels, 64);
+  replay.Resize(2);
+  for (const Access& a : rec.all) replay.Access(a.thread, a.address, a.size, a.write);
   const std::vector<uint64_t> per = RefsPerSweep(m, 2);
   for (int t = 0; t < 2; ++t) {
     LevelStats sum;
@@ -216,7 +334,7 @@ TEST(CacheSimulation, PerSweepStatsAddUpAndTheSinkSeesEveryAccess) {
       sum += st[0];
     }
     ExpectSame(sum, sim.Stats(t)[0], "L1 sum of sweeps");
-    for (size_t l = 0; l < levels.size(); ++l)
+    for (size_t l = 0; l < levels.levels.size(); ++l)
       ExpectSame(sim.Stats(t)[l], replay.Stats(t)[l], "replay");
     EXPECT_GT(sim.Stats(t)[0].misses, sim.Stats(t)[0].cold);  // small caches: capacity misses
     // Cold misses in later sweeps: none (every line was touched in sweep 1).
@@ -224,12 +342,41 @@ TEST(CacheSimulation, PerSweepStatsAddUpAndTheSinkSeesEveryAccess) {
   }
 }
 
+// Per-sweep state and rows follow the accesses: of 4 streams and 5 sweeps, one stream accesses
+// in sweeps 2 and 4, another in sweep 5 only; the rest never. Rows: every stream's total, and
+// one row per (stream, sweep) that had an access.
+TEST(CacheSimulation, PerSweepRowsOnlyWhereAStreamHasAccesses) {
+  CacheSimulation sim(ParseCacheSpec("L1=1K/2"), 64);
+  StreamInfo info;
+  info.input = "t";
+  info.threads = 4;
+  sim.Begin(info);
+  for (int s = 1; s <= 5; ++s) {
+    sim.BeginSweep(s - 1);
+    if (s == 2 || s == 4) sim.Access(1, 64 * s, 8, false);
+    if (s == 4) sim.Access(1, 64 * s, 8, true);
+    if (s == 5) sim.Access(3, 0, 8, false);
+  }
+  sim.End();
+  ASSERT_EQ(sim.sweeps(), 5u);
+  EXPECT_EQ(sim.SweepStats(1, 3)[0].accesses, 2u);
+  EXPECT_EQ(sim.SweepStats(1, 2)[0].accesses, 0u);
+  EXPECT_EQ(sim.SweepStats(3, 4)[0].misses, 1u);
+  EXPECT_EQ(sim.SweepStats(0, 4)[0].accesses, 0u);
+  Table t(CacheSimulation::Columns());
+  sim.AppendRows(&t, true);
+  std::vector<std::string> where;
+  for (size_t r = 0; r < t.Rows(); ++r) where.push_back(t.Row(r)[2] + ":" + t.Row(r)[3]);
+  EXPECT_EQ(where,
+            (std::vector<std::string>{"0:all", "1:all", "1:2", "1:4", "2:all", "3:all", "3:5"}));
+}
+
 TEST(CacheSpec, Associativity) {
-  const auto w = ParseCacheSpec("westmere-ex");
+  const auto w = ParseCacheSpec("westmere-ex").levels;
   EXPECT_EQ(w[0].ways, 8u);
   EXPECT_EQ(w[1].ways, 8u);
   EXPECT_EQ(w[2].ways, 24u);
-  const auto c = ParseCacheSpec("L1=48K/12,L2=1280K/20,LLC=30M");
+  const auto c = ParseCacheSpec("L1=48K/12,L2=1280K/20,LLC=30M").levels;
   EXPECT_EQ(c[0].bytes, 48u << 10);
   EXPECT_EQ(c[0].ways, 12u);
   EXPECT_EQ(c[1].bytes, 1280u << 10);

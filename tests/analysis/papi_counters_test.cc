@@ -27,6 +27,10 @@ TEST(PapiCounters, SoftwareEventCountsPerThreadAroundTheSweeps) {
     EXPECT_NE(c.reason().find("built without PAPI"), std::string::npos);
     GTEST_SKIP() << c.reason();
   }
+  // A host whose PAPI perf_event component is off (libpfm4 finds no PMU under some hypervisors)
+  // has no event at all; anywhere else the software event must count.
+  if (!c.available() && c.reason().find("perf_event component disabled") != std::string::npos)
+    GTEST_SKIP() << c.reason();
   ASSERT_TRUE(c.available()) << "perf::TASK-CLOCK should count wherever perf_event works: "
                              << c.reason();
   EXPECT_EQ(c.events(), (std::vector<std::string>{"perf::TASK-CLOCK"}));

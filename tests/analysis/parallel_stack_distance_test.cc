@@ -6,8 +6,8 @@
 
 #include <gtest/gtest.h>
 
+#include "analysis/reuse_analysis.h"
 #include "analysis/synthetic_trace.h"
-#include "analysis/trace_analysis.h"
 #include "core/smoother.h"
 #include "core/synthetic.h"
 
@@ -72,7 +72,7 @@ std::vector<uint64_t> Trimmed(std::vector<uint64_t> v) {  // the array's length 
   return v;
 }
 
-void ExpectSameStreams(const TraceAnalysis& a, const TraceAnalysis& b) {
+void ExpectSameStreams(const ReuseAnalysis& a, const ReuseAnalysis& b) {
   ASSERT_EQ(a.threads(), b.threads());
   for (int t = 0; t < a.threads(); ++t)
     for (int g = 0; g < 2; ++g) {
@@ -106,19 +106,12 @@ TEST(ParallelStackDistance, TraceAnalysisWithWorkersEqualsSerial) {
       so.max_iters = 3;
       so.tol = -1;
       so.threads = threads;
-      TraceAnalysisOptions o;
-      o.threads = threads;
-      o.dense_elements = static_cast<uint64_t>(m.NumVertices());
-      for (uint64_t n : AccessesPerSweep(m, threads))
-        o.iteration_lengths.push_back(std::vector<uint64_t>(3, n));
-      for (uint64_t n : RefsPerSweep(m, threads, so.mode))
-        o.line_iteration_lengths.push_back(std::vector<uint64_t>(3, n));
+      ReuseOptions o;  // profiles from the stream's sweep lengths
       o.workers = workers;
       o.batch_per_worker = batch;
-      auto a = std::make_unique<TraceAnalysis>(o);
-      AnalysisSink sink{a.get()};
-      Smooth(m, so, sink);
-      a->Finish();
+      auto a = std::make_unique<ReuseAnalysis>(o);
+      StreamMesh(m, so, "mesh", "ori", *a);
+      EXPECT_TRUE(a->element(0)->profile.enabled());
       return a;
     };
     const auto serial = run(1, 1);
@@ -131,13 +124,14 @@ TEST(ParallelStackDistance, TraceAnalysisWithWorkersEqualsSerial) {
   }
 }
 
-TEST(ParallelStackDistance, ResultsBeforeFinishAreRefused) {
-  TraceAnalysisOptions o;
+TEST(ParallelStackDistance, ResultsBeforeEndAreRefused) {
+  ReuseOptions o;
   o.workers = 2;
-  TraceAnalysis a(o);
+  ReuseAnalysis a(o);
+  a.Begin(StreamInfo());
   a.AddElement(0, 3);
   EXPECT_THROW(a.element(0), std::logic_error);
-  a.Finish();
+  a.End();
   EXPECT_EQ(a.element(0)->hist.cold(), 1u);
 }
 

@@ -16,24 +16,37 @@
 //   Sweep/analyze            one sweep streamed into the element analyzer (streaming cost)
 //   StreamingRatio           untraced and streamed sweeps alternated: their ratio
 //   Memory/<sweeps>          analyzer bytes per distinct element after 1 and 100 sweeps
+//   Multicore/P              the many-core simulator (westmere-ex, P threads compact, a visit
+//                            per turn) against today's per-stream simulator on the same streams,
+//                            alternated: ns per access and their ratio (the goal: <= 1.5)
+//   Build/fan/N, Build/grid/N  BuildMesh and RDR on a fan (one vertex in N triangles) and on a
+//                            grid of N triangles, alternated: ns per triangle, and fan/grid
+//                            (linear in any degree: the fan within 3x of the grid at 10^5 and
+//                            10^6)
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <map>
 
+#include "analysis/cache_sim.h"
+#include "analysis/machine.h"
+#include "analysis/multicore_sim.h"
 #include "analysis/reference.h"
+#include "analysis/reuse_analysis.h"
 #include "analysis/reuse_histogram.h"
 #include "analysis/stack_distance.h"
 #include "analysis/synthetic_trace.h"
-#include "analysis/trace_analysis.h"
 #include "core/mesh_io.h"
 #include "core/orderings/registry.h"
 #include "core/quality.h"
 #include "core/smoother.h"
 #include "core/synthetic.h"
+#include "tracer/access_stream.h"
+#include "tracer/foreign_trace.h"
 
 namespace meshreuse {
 namespace {
@@ -154,7 +167,7 @@ void ParallelSpeedup(benchmark::State& state, std::string name) {
 // Reading a trace file against analysing it in memory, interleaved: each iteration writes nothing
 // new, but times (a) StackDistance + histogram over the in-memory trace (the Analyzer figure) and
 // (b) what `analyze FILE --format u64 --granularity element` does after start-up: read the u64
-// file through InputStream, feed TraceAnalysis (histogram and profile). The ratio of the sums is
+// file through InputStream, feed ReuseAnalysis (histogram and profile). The ratio of the sums is
 // the whole-process overhead.
 void FileRatio(benchmark::State& state, std::string name) {
   const std::vector<uint64_t>& trace = Trace(name);
@@ -181,13 +194,10 @@ void FileRatio(benchmark::State& state, std::string name) {
     }
     auto t1 = Clock::now();
     {
-      TraceAnalysisOptions o;
+      ReuseOptions o;
       o.granularity = Granularity::kElement;
-      o.iteration_lengths = {{ExternalTraceLength(path, ExternalFormat::kU64)}};
-      TraceAnalysis a(o);
-      ReadExternalTrace(path, ExternalFormat::kU64,
-                        [&a](uint64_t v, uint32_t) { a.AddElement(0, v); });
-      a.Finish();
+      ReuseAnalysis a(o);
+      StreamForeignTrace(path, ParseTraceFormat("u64"), false, a);
       benchmark::DoNotOptimize(a.element(0)->hist.finite());
     }
     auto t2 = Clock::now();
@@ -321,13 +331,11 @@ void SweepAnalyze(benchmark::State& state) {
   o.max_iters = 1;
   o.tol = -1;
   for (auto _ : state) {
-    TraceAnalysisOptions ao;
+    ReuseOptions ao;
     ao.granularity = Granularity::kElement;
-    ao.dense_elements = static_cast<uint64_t>(m.NumVertices());
-    ao.line_base = AddressCanonicalizer::kCanonicalBase / ao.line_bytes;
-    TraceAnalysis a(ao);
-    AnalysisSink sink{&a};
-    const SmoothResult r = Smooth(m, o, sink);
+    ao.profile = false;
+    ReuseAnalysis a(ao);
+    const SmoothResult r = StreamMesh(m, o, "mesh", "ori", a);
     state.SetIterationTime(r.sweeps[0].seconds);
   }
 }
@@ -342,13 +350,11 @@ void StreamingRatio(benchmark::State& state) {
   for (auto _ : state) {
     Mesh a = BaseMesh().Clone(), b = BaseMesh().Clone();
     plain += Smooth(a, o).sweeps[0].seconds;
-    TraceAnalysisOptions ao;
+    ReuseOptions ao;
     ao.granularity = Granularity::kElement;
-    ao.dense_elements = static_cast<uint64_t>(b.NumVertices());
-    ao.line_base = AddressCanonicalizer::kCanonicalBase / ao.line_bytes;
-    TraceAnalysis an(ao);
-    AnalysisSink sink{&an};
-    traced += Smooth(b, o, sink).sweeps[0].seconds;
+    ao.profile = false;
+    ReuseAnalysis an(ao);
+    traced += StreamMesh(b, o, "mesh", "ori", an).sweeps[0].seconds;
   }
   state.counters["plain_ms"] = 1e3 * plain / static_cast<double>(state.iterations());
   state.counters["streamed_ms"] = 1e3 * traced / static_cast<double>(state.iterations());
@@ -362,13 +368,11 @@ void Memory(benchmark::State& state) {
     SmoothOptions o;
     o.max_iters = sweeps;
     o.tol = -1;
-    TraceAnalysisOptions ao;
+    ReuseOptions ao;
     ao.granularity = Granularity::kElement;
-    ao.dense_elements = static_cast<uint64_t>(m.NumVertices());
-    ao.line_base = AddressCanonicalizer::kCanonicalBase / ao.line_bytes;
-    TraceAnalysis a(ao);
-    AnalysisSink sink{&a};
-    Smooth(m, o, sink);
+    ao.profile = false;
+    ReuseAnalysis a(ao);
+    StreamMesh(m, o, "mesh", "ori", a);
     const StreamAnalysis* s = a.element(0);
     state.counters["accesses"] = static_cast<double>(s->sd.accesses());
     state.counters["bytes_per_distinct"] =
@@ -397,6 +401,107 @@ void ReadSpeed(benchmark::State& state, bool build) {
   state.SetBytesProcessed(bytes * state.iterations());
   state.counters["MB_per_s"] = benchmark::Counter(
       static_cast<double>(bytes) * 1e-6 * state.iterations(), benchmark::Counter::kIsRate);
+}
+
+// The streams of two sweeps of the --mesh at P threads, in memory; then both simulators over them.
+void Multicore(benchmark::State& state) {
+  const int p = static_cast<int>(state.range(0));
+  SmoothOptions o;
+  o.max_iters = 2, o.tol = -1, o.threads = p, o.interleave = 1;
+  struct Keep : AccessConsumer {
+    std::vector<Access> all;
+    StreamInfo info;
+    void Begin(const StreamInfo& i) override { info = i; }
+    void Consume(const Access* a, size_t n) override { all.insert(all.end(), a, a + n); }
+  } keep, one;
+  Mesh m = BaseMesh().Clone();
+  StreamMesh(m, o, "m", "ori", keep);
+  o.threads = 1;
+  Mesh m1 = BaseMesh().Clone();
+  StreamMesh(m1, o, "m", "ori", one);  // today's case: one stream, private caches
+  const Machine w = ParseMachine("westmere-ex");
+  const CacheSpec spec = ParseCacheSpec("westmere-ex");
+  std::vector<double> multi, single;
+  for (auto _ : state) {
+    auto t0 = std::chrono::steady_clock::now();
+    MulticoreSimulation a(w, Placement::kCompact);
+    a.Begin(keep.info);
+    for (size_t i = 0; i < keep.all.size(); i += 512)
+      a.Consume(keep.all.data() + i, std::min<size_t>(512, keep.all.size() - i));
+    auto t1 = std::chrono::steady_clock::now();
+    CacheSimulation b(spec, 64);
+    b.Begin(one.info);
+    for (size_t i = 0; i < one.all.size(); i += 512)
+      b.Consume(one.all.data() + i, std::min<size_t>(512, one.all.size() - i));
+    auto t2 = std::chrono::steady_clock::now();
+    benchmark::DoNotOptimize(a.Stats(0).levels[0].misses + b.Stats(0)[0].misses);
+    multi.push_back(1e9 * std::chrono::duration<double>(t1 - t0).count() /
+                    static_cast<double>(keep.all.size()));
+    single.push_back(1e9 * std::chrono::duration<double>(t2 - t1).count() /
+                     static_cast<double>(one.all.size()));
+  }
+  auto median = [](std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    return v[v.size() / 2];
+  };
+  state.counters["multicore_ns_per_access"] = median(multi);
+  state.counters["per_stream_ns_per_access"] = median(single);
+  state.counters["ratio"] = median(multi) / median(single);
+}
+
+// A fan: vertex 0 at the centre of n rim vertices, n triangles around it (its degree is n); or a
+// grid of about n triangles (degree 6). The same triangle count, the one difference the degree.
+RawMesh FanOrGrid(bool fan, int64_t n) {
+  RawMesh r;
+  if (fan) {
+    r.xy = {0.0, 0.0};
+    for (int64_t i = 0; i < n; ++i) {
+      const double a = 2 * M_PI * static_cast<double>(i) / static_cast<double>(n);
+      r.xy.push_back(std::cos(a)), r.xy.push_back(std::sin(a));
+    }
+    for (int64_t i = 0; i < n; ++i)
+      for (int64_t c : {int64_t{0}, i + 1, (i + 1) % n + 1})
+        r.tri.push_back(static_cast<int32_t>(c));
+    return r;
+  }
+  const int64_t k = static_cast<int64_t>(std::sqrt(static_cast<double>(n) / 2)) + 1;
+  for (int64_t y = 0; y <= k; ++y)
+    for (int64_t x = 0; x <= k; ++x) r.xy.push_back(x), r.xy.push_back(y);
+  for (int64_t y = 0; y < k; ++y)
+    for (int64_t x = 0; x < k; ++x) {
+      const int32_t a = static_cast<int32_t>(y * (k + 1) + x), b = a + 1;
+      const int32_t c = static_cast<int32_t>(a + k + 1), d = c + 1;
+      for (int32_t v : {a, b, d, a, d, c}) r.tri.push_back(v);
+    }
+  return r;
+}
+
+void Build(benchmark::State& state) {
+  const int64_t n = state.range(0);
+  const RawMesh fan = FanOrGrid(true, n), grid = FanOrGrid(false, n);
+  std::vector<double> bf, bg, of, og;  // build, order; fan, grid
+  for (auto _ : state) {
+    for (const RawMesh* r : {&fan, &grid}) {
+      RawMesh copy;
+      copy.xy = r->xy, copy.tri = r->tri;
+      const double per = 1e9 / static_cast<double>(r->tri.size() / 3);
+      const auto t0 = std::chrono::steady_clock::now();
+      const Mesh m = BuildMesh(std::move(copy));
+      const auto t1 = std::chrono::steady_clock::now();
+      benchmark::DoNotOptimize(ComputeOrdering("rdr", m).size());
+      const auto t2 = std::chrono::steady_clock::now();
+      (r == &fan ? bf : bg).push_back(per * std::chrono::duration<double>(t1 - t0).count());
+      (r == &fan ? of : og).push_back(per * std::chrono::duration<double>(t2 - t1).count());
+    }
+  }
+  auto median = [](std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    return v[v.size() / 2];
+  };
+  state.counters["build_fan_ns_tri"] = median(bf);
+  state.counters["build_grid_ns_tri"] = median(bg);
+  state.counters["build_fan/grid"] = median(bf) / median(bg);
+  state.counters["rdr_fan/grid"] = median(of) / median(og);
 }
 
 }  // namespace
@@ -452,6 +557,17 @@ int main(int argc, char** argv) {
       ->UseManualTime()
       ->Unit(benchmark::kMillisecond);
   benchmark::RegisterBenchmark("StreamingRatio", StreamingRatio)
+      ->Iterations(5)
+      ->Unit(benchmark::kMillisecond);
+  benchmark::RegisterBenchmark("Multicore", Multicore)
+      ->Arg(1)
+      ->Arg(8)
+      ->Arg(32)
+      ->Iterations(5)
+      ->Unit(benchmark::kMillisecond);
+  benchmark::RegisterBenchmark("Build", Build)
+      ->Arg(100000)
+      ->Arg(1000000)
       ->Iterations(5)
       ->Unit(benchmark::kMillisecond);
   benchmark::RegisterBenchmark("Memory", Memory)

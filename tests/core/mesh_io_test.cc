@@ -10,12 +10,13 @@
 #include <functional>
 #include <sstream>
 
-#include "analysis/trace_analysis.h"
 #include "core/error.h"
 #include "core/orderings/registry.h"
 #include "core/quality.h"
 #include "core/synthetic.h"
+#include "core/triangle_runner.h"
 #include "tests/test_util.h"
+#include "tracer/foreign_trace.h"
 #include "tracer/trace_reader.h"
 
 namespace meshreuse {
@@ -83,11 +84,93 @@ TEST(Readers, GmshBinaryEqualsGmshAscii) {
   EXPECT_EQ(bin.vertex_tag.runs(), 1u);
 }
 
+// Node tags of INT64_MAX then 1 (a run that would overflow), in Gmsh 2.2 ASCII and 4.1 binary:
+// both read (UBSan in the sanitizer build checks the run index), to the same mesh.
+TEST(Readers, NodeTagInt64MaxReads) {
+  const RawMesh a = ReadGmsh(DataPath("tag_int64max22.msh"));
+  const RawMesh b = ReadGmsh(DataPath("tag_int64max41_bin.msh"));
+  EXPECT_EQ(a.vertex_tag.ToVector(), (std::vector<int64_t>{INT64_MAX, 1, 2, 3}));
+  EXPECT_EQ(b.vertex_tag.ToVector(), a.vertex_tag.ToVector());
+  EXPECT_EQ(a.tri, b.tri);
+  EXPECT_EQ(a.xy, b.xy);
+}
+
+// One set of rules for Gmsh 4.1 ASCII and binary: the same small mesh written both ways, with a
+// sparse tag range (accepted by both), a tag outside the header's range, an entity dimension of
+// 5, and a range starting at 0 (each refused by both, with the same words).
+std::string Ascii41(int64_t lo, int64_t hi, const std::vector<int64_t>& tags, int dim) {
+  std::string s = "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$Nodes\n1 4 " + std::to_string(lo) + " " +
+                  std::to_string(hi) + "\n" + std::to_string(dim) + " 1 0 4\n";
+  for (int64_t t : tags) s += std::to_string(t) + "\n";
+  s += "0 0 0\n1 0 0\n0 1 0\n1 1 0\n$EndNodes\n$Elements\n1 2 1 2\n2 1 2 2\n";
+  s += "1 " + std::to_string(tags[0]) + " " + std::to_string(tags[1]) + " " +
+       std::to_string(tags[2]) + "\n2 " + std::to_string(tags[1]) + " " + std::to_string(tags[3]) +
+       " " + std::to_string(tags[2]) + "\n$EndElements\n";
+  return s;
+}
+
+std::string Binary41(int64_t lo, int64_t hi, const std::vector<int64_t>& tags, int32_t dim) {
+  std::string s = "$MeshFormat\n4.1 1 8\n";
+  auto put = [&](auto v) { s.append(reinterpret_cast<const char*>(&v), sizeof v); };
+  put(int32_t{1});
+  s += "\n$EndMeshFormat\n$Nodes\n";
+  for (uint64_t v :
+       {uint64_t{1}, uint64_t{4}, static_cast<uint64_t>(lo), static_cast<uint64_t>(hi)})
+    put(v);
+  put(dim), put(int32_t{1}), put(int32_t{0}), put(uint64_t{4});
+  for (int64_t t : tags) put(static_cast<uint64_t>(t));
+  for (double c : {0., 0., 0., 1., 0., 0., 0., 1., 0., 1., 1., 0.}) put(c);
+  s += "\n$EndNodes\n$Elements\n";
+  for (uint64_t v : {uint64_t{1}, uint64_t{2}, uint64_t{1}, uint64_t{2}}) put(v);
+  put(int32_t{2}), put(int32_t{1}), put(int32_t{2}), put(uint64_t{2});
+  for (int64_t v : {int64_t{1}, tags[0], tags[1], tags[2], int64_t{2}, tags[1], tags[3], tags[2]})
+    put(static_cast<uint64_t>(v));
+  s += "\n$EndElements\n";
+  return s;
+}
+
+TEST(Readers, GmshAsciiAndBinaryFollowOneSetOfRules) {
+  testing::TempDir dir;
+  const int64_t big = int64_t{1} << 50;
+  struct Case {
+    int64_t lo, hi;
+    std::vector<int64_t> tags;
+    int dim;
+    const char* error;  // nullptr: reads
+  };
+  const std::vector<Case> cases = {
+      {1, 3 * big, {1, big, 2 * big, 3 * big}, 2, nullptr},
+      {1, 10, {1, 2, 3, 11}, 2, "node tag 11 is outside the header's range 1..10"},
+      {1, 4, {1, 2, 3, 4}, 5, "entity dimension 5 is not 0..3"},
+      {0, 3, {0, 1, 2, 3}, 2, "the node tag range 0..3 is empty or starts below 1"},
+  };
+  for (const Case& c : cases) {
+    const std::string a = dir / "a.msh", b = dir / "b.msh";
+    std::ofstream(a, std::ios::binary) << Ascii41(c.lo, c.hi, c.tags, c.dim);
+    std::ofstream(b, std::ios::binary) << Binary41(c.lo, c.hi, c.tags, c.dim);
+    for (const std::string& f : {a, b}) {
+      SCOPED_TRACE(f + (c.error ? std::string(": ") + c.error : ""));
+      if (!c.error) {
+        const RawMesh r = ReadGmsh(f);
+        EXPECT_EQ(r.vertex_tag.ToVector(), c.tags);
+        EXPECT_EQ(r.tri, (AlignedVector<int32_t>{0, 1, 2, 1, 3, 2}));
+        continue;
+      }
+      try {
+        ReadGmsh(f);
+        ADD_FAILURE() << "read";
+      } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find(c.error), std::string::npos) << e.what();
+      }
+    }
+  }
+}
+
 struct BrokenCase {
   std::string file;
   int64_t line;
   std::string message;
-  std::string kind = "mesh";  // mesh, trace, text, u32, u64, perm (EXPECTED's fourth column)
+  std::string kind = "mesh";  // mesh, trace, text, u32, u64, perm, poly (EXPECTED's 4th column)
 };
 
 void PrintTo(const BrokenCase& c, std::ostream* os) { *os << c.file << ":" << c.line; }
@@ -126,8 +209,14 @@ TEST_P(BrokenInput, FailsWithFileLineAndProblem) {
       }
     } else if (c.kind == "perm") {
       ComputeOrdering("file:" + path, testing::TwoInterior(), 1);
+    } else if (c.kind == "poly") {
+      if (FindProgram("triangle").empty()) GTEST_SKIP() << "Triangle is not installed";
+      testing::TempDir out;
+      TriangulateOptions o;
+      o.target_vertices = 1000;
+      TriangulatePoly(path, out / "g", o);
     } else {
-      ReadExternalTrace(path, ParseExternalFormat(c.kind), [](uint64_t, uint32_t) {});
+      ReadForeignTrace(path, ParseTraceFormat(c.kind), [](uint64_t, uint32_t, bool, bool) {});
     }
     FAIL() << c.file << " was accepted";
   } catch (const InputError& e) {
@@ -200,8 +289,8 @@ TEST(Writers, AtomicWriteLeavesNothingOnFailure) {
   EXPECT_EQ(std::distance(fs::directory_iterator(dir.path()), fs::directory_iterator()), 1);
 }
 
-TEST(Writers, UnwritableTargetIsAnInputError) {
-  EXPECT_THROW(WriteMesh(testing::TwoInterior(), "/nonexistent-dir/m.vtk"), InputError);
+TEST(Writers, AnOutputInAMissingFolderIsRefused) {
+  EXPECT_THROW(WriteMesh(testing::TwoInterior(), "/nonexistent-dir/m.vtk"), UsageError);
 }
 
 // Hostile inputs that cannot live in tests/data as files (issue 8's reproducers 6, 10, 14, 15).
@@ -238,8 +327,8 @@ TEST(HostileInput, DirectoriesAndDevicesAreRefusedByName) {
   expect([&] { ReadMesh(tmp / "zero.node"); }, tmp / "zero.node", "is a character device");
   expect([&] { ComputeOrdering("file:/dev/zero", testing::TwoInterior(), 1); }, "/dev/zero",
          "is a character device");
-  for (ExternalFormat f : {ExternalFormat::kText, ExternalFormat::kU32, ExternalFormat::kU64})
-    expect([&] { ReadExternalTrace(tmp.path().string(), f, [](uint64_t, uint32_t) {}); },
+  for (const TraceFormat& f : TraceFormats())
+    expect([&] { ReadForeignTrace(tmp.path().string(), f, [](uint64_t, uint32_t, bool, bool) {}); },
            tmp.path().string(), "is a directory, not a file");
   expect([&] { TraceReader r(tmp.path().string()); }, tmp.path().string(), "is a directory");
 }

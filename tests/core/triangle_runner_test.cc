@@ -71,7 +71,7 @@ TEST(TriangleRunnerErrors, MissingProgramSaysHowToInstall) {
   try {
     TriangulatePoly(ShapesDir() + "/carabiner.poly", "/tmp/never", o);
     FAIL() << "no error";
-  } catch (const ToolError& e) {
+  } catch (const EnvironmentError& e) {
     EXPECT_NE(std::string(e.what()).find("triangle-bin"), std::string::npos) << e.what();
     EXPECT_NE(std::string(e.what()).find("non-free"), std::string::npos) << e.what();
   }

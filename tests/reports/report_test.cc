@@ -13,6 +13,7 @@
 
 #include "analysis/reference.h"
 #include "core/orderings/registry.h"
+#include "reports/run_info.h"
 #include "tests/test_util.h"
 
 namespace meshreuse {
@@ -100,7 +101,7 @@ std::vector<int32_t> FirstSweepElements(const std::string& path, const std::stri
 TEST(Report, Table2MatchesTheTextbookStackDistance) {
   Fixture f;
   testing::TempDir out;
-  RunReport(f.Config(), out / "r");
+  RunReport(f.Config(), out / "r", {});
   const auto t2 = Csv(out / "r/tables/table2.csv");
   ASSERT_EQ(t2.size(), 6u);
   for (const auto& row : t2) {
@@ -149,13 +150,29 @@ TEST(Report, Table2MatchesTheTextbookStackDistance) {
       EXPECT_NE(readme.find("tables/" + std::string(t) + ext), std::string::npos) << t << ext;
     }
   EXPECT_NE(Slurp(out / "r/tables/table2.tex").find("\\toprule"), std::string::npos);
+  // The manifest names exactly what was written: every table of the registry that this run has
+  // (no timing: the four untimed ones and misses), every data file, every figure with its inputs.
+  const Json manifest = Json::parse(Slurp(out / "r/manifest.json"));
+  std::vector<std::string> tables, figures;
+  for (const Json& t : manifest["tables"]) tables.push_back(t["name"]);
+  EXPECT_EQ(tables,
+            (std::vector<std::string>{"table1", "table2", "table3", "misses", "miss_reduction"}));
+  for (const Json& d : manifest["data"])
+    EXPECT_TRUE(std::filesystem::exists(out / ("r/" + d["file"].get<std::string>()))) << d;
+  for (const Json& fig : manifest["figures"]) {
+    figures.push_back(fig["name"]);
+    for (const Json& in : fig["inputs"])
+      EXPECT_TRUE(std::filesystem::exists(out / ("r/" + in.get<std::string>()))) << fig;
+  }
+  EXPECT_EQ(figures, (std::vector<std::string>{"figure1", "profile", "histograms", "miss-rates",
+                                               "meshes", "smoothing", "orderings"}));
 }
 
 TEST(Report, SameConfigurationSameNonTimingFilesByteForByte) {
   Fixture f;
   testing::TempDir out;
-  RunReport(f.Config(), out / "a");
-  RunReport(f.Config(), out / "b");
+  RunReport(f.Config(), out / "a", {});
+  RunReport(f.Config(), out / "b", {});
   for (const char* file :
        {"tables/table1.csv", "tables/table2.csv", "tables/table2.tex", "tables/table3.csv",
         "tables/misses.csv", "tables/miss_reduction.md", "data/histogram.csv", "data/figure1.csv",
@@ -168,7 +185,7 @@ TEST(Report, PapersValuesOnlyBesideAMeshOfThePapersSize) {
   // Table 1 always shows the paper's sizes for its names; Table 2 and 3 only within 5%.
   Fixture f;
   testing::TempDir out;
-  RunReport(f.Config(), out / "r");
+  RunReport(f.Config(), out / "r", {});
   const auto t1 = Csv(out / "r/tables/table1.csv");
   ASSERT_EQ(t1.size(), 2u);
   EXPECT_EQ(t1[0].at("mesh"), "ocean");

@@ -26,7 +26,7 @@ TEST(Validation, FullyAssociativeL1EqualsTheLineModelAndCountsAddUp) {
   cfg.orderings = {"ori", "bfs"};
   cfg.iterations = 2;
   // L1: 2 KiB fully associative (32 lines, 32 ways); L2/L3 set-associative.
-  cfg.levels = {{"L1", 2048, 32}, {"L2", 16384, 4}, {"L3", 65536, 8}};
+  cfg.cache.levels = {{"L1", 2048, 32}, {"L2", 16384, 4}, {"L3", 65536, 8}};
   cfg.counter_events = {"NO_SUCH_EVENT"};
   const std::vector<OrderingValidation> r = RunValidation(m, cfg);
   ASSERT_EQ(r.size(), 2u);
@@ -68,7 +68,7 @@ TEST(Validation, InfiniteCapacityIsExplained) {
   cfg.iterations = 1;
   // A huge L2: only cold misses, exactly the line stream's cold accesses, which miss at any
   // capacity: no finite line capacity explains them.
-  cfg.levels = {{"L1", 1024, 4}, {"L2", 64 << 20, 16}};
+  cfg.cache.levels = {{"L1", 1024, 4}, {"L2", 64 << 20, 16}};
   cfg.counter_events = {};
   std::vector<OrderingValidation> r = RunValidation(m, cfg);
   ASSERT_EQ(r[0].levels[1].simulated.misses, r[0].levels[1].simulated.cold);

@@ -1,8 +1,10 @@
 #!/usr/bin/env python3
 """Checks that a `meshreuse report` folder is well-formed (CI runs it on reproduce.sh --quick):
-run.json parses and names the build; every table has CSV (rectangular, with a header), Markdown
-(a header rule, one line per CSV row) and LaTeX (booktabs, one line per CSV row); every figure
-named by the README exists as a valid PNG and PDF; every link in the README resolves.
+run.json parses and names the build; every table the manifest lists has CSV (rectangular, with a
+header), Markdown (a header rule, one line per CSV row) and LaTeX (booktabs, one line per CSV row);
+every data file it lists exists; every figure it lists exists as a valid PNG and PDF and is shown
+in the README; every link in the README resolves. What a report holds comes from its
+manifest.json (written from reports/report_list.h): this checker keeps no list of its own.
 
   check_report.py DIR [FIGURE ...]   (FIGUREs: figure names that must be present)
 """
@@ -11,10 +13,6 @@ import json
 import os
 import re
 import sys
-
-TABLES = ["table1", "table2", "table3", "misses", "miss_reduction"]
-TIMED = ["time", "speedup", "scaling", "scaling_mean", "reorder_cost"]
-
 
 def fail(msg):
     raise SystemExit(f"check_report: {msg}")
@@ -64,15 +62,27 @@ def main(d, *figures):
     for k in ("git_revision", "git_dirty", "compiler", "build_type", "flags"):
         if k not in run["build"]:
             fail(f"run.json: build has no {k}")
-    names = TABLES + (TIMED if run["configuration"].get("timing") else [])
+    manifest = json.load(open(os.path.join(d, "manifest.json")))
+    names = [t["name"] for t in manifest["tables"]]
+    if not names:
+        fail("manifest.json lists no table")
     for n in names:
         check_table(d, n)
+    for f in manifest["data"]:
+        if not os.path.isfile(os.path.join(d, f["file"])):
+            fail(f"manifest.json lists {f['file']}, which does not exist")
     readme = open(os.path.join(d, "README.md")).read()
     for link in re.findall(r"\]\(([^)]+)\)", readme):
         if not link.startswith("http") and not os.path.exists(os.path.join(d, link)):
             fail(f"README.md links {link}, which does not exist")
-    shown = re.findall(r"!\[([^\]]+)\]\(figures/([^)]+)\.png\)", readme)
-    for name in set(figures) | {n for n, _ in shown}:
+    shown = {n for n, _ in re.findall(r"!\[([^\]]+)\]\(figures/([^)]+)\.png\)", readme)}
+    listed = {f["name"] for f in manifest["figures"]}
+    if shown != listed:
+        fail(f"README shows figures {sorted(shown)}, the manifest lists {sorted(listed)}")
+    missing = set(figures) - listed
+    if missing:
+        fail(f"figures {sorted(missing)} expected, not in the manifest")
+    for name in listed:
         check_png(os.path.join(d, "figures", name + ".png"))
         check_pdf(os.path.join(d, "figures", name + ".pdf"))
     print(f"check_report: {d}: {len(names)} tables x 3 formats, {len(shown)} figures x 2, "

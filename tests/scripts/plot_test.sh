@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The plotting scripts on the fixture CSVs of tests/data/report (a report of two 1,500-vertex
-# meshes): every figure as a valid PNG and PDF, the scale figure when the label says so, and a
-# clear error (not a traceback, not an empty plot) for a missing file or a profile with no rows.
+# meshes, its manifest.json naming what to draw): every figure as a valid PNG and PDF, the scale
+# figure when the manifest names it, each figure script from the command line, and a clear error
+# (not a traceback, not an empty plot) for a missing file or a profile with no rows.
 # Exit 77 (skipped) when Debian's matplotlib is not installed.
 # Usage: plot_test.sh FIXTURE_DIR
 set -euo pipefail
@@ -13,15 +14,27 @@ tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 cp -r "$fixture" "$tmp/r"
 $py "$root/scripts/plot_report.py" "$tmp/r"
-for f in figure1 profile histograms miss-rates time speedup speedup-mean gain; do
+for f in figure1 profile histograms miss-rates time speedup speedup-mean gain meshes smoothing \
+  orderings; do
   head -c 8 "$tmp/r/figures/$f.png" | od -An -c | grep -q 'P   N   G' || { echo "$f.png: not a PNG"; exit 1; }
   head -c 5 "$tmp/r/figures/$f.pdf" | grep -q '%PDF-' || { echo "$f.pdf: not a PDF"; exit 1; }
 done
 [[ ! -e $tmp/r/figures/scale.png ]] || { echo "scale figure drawn without --scale"; exit 1; }
-# The scale figure: the same data labelled as a scale run.
-sed -i 's/"label": "[^"]*"/"label": "scale"/' "$tmp/r/run.json"
+# The scale figure: the manifest of a scale run names it.
+$py - "$tmp/r/manifest.json" <<'PY'
+import json, sys
+m = json.load(open(sys.argv[1]))
+m["figures"].append({"name": "scale", "paper": "-", "title": "scale", "script": "plot_scale.py",
+                     "variant": "", "inputs": ["tables/table1.csv", "tables/time.csv",
+                                               "data/misses.csv"]})
+json.dump(m, open(sys.argv[1], "w"))
+PY
 $py "$root/scripts/plot_report.py" "$tmp/r" | grep -q scale
 head -c 5 "$tmp/r/figures/scale.pdf" | grep -q '%PDF-'
+# The one histogram and profile schemas: analyze's own files plot with the same scripts.
+$py "$root/scripts/plot_histograms.py" "$fixture/data/histogram.csv" "$tmp/h"
+$py "$root/scripts/plot_profile.py" "$fixture/data/profile.csv" "$tmp/p" "a title"
+for f in h p; do head -c 5 "$tmp/$f.pdf" | grep -q '%PDF-'; done
 # Bad input: one line naming the file, exit non-zero.
 if $py "$root/scripts/plot_profile.py" "$tmp/none.csv" "$tmp/x" 2>"$tmp/err"; then exit 1; fi
 grep -q "none.csv: no such file" "$tmp/err"

@@ -10,11 +10,14 @@
 #include <filesystem>
 #include <fstream>
 
-#include "analysis/trace_analysis.h"
+#include "analysis/reuse_analysis.h"
 #include "core/error.h"
 #include "core/smoother.h"
 #include "core/synthetic.h"
 #include "tests/test_util.h"
+#include "tracer/access_stream.h"
+#include "tracer/foreign_trace.h"
+#include "tracer/sink.h"
 #include "tracer/trace_reader.h"
 #include "tracer/trace_writer.h"
 
@@ -259,10 +262,10 @@ TEST(StaticOwner, MatchesOpenMPStaticSchedule) {
       team = omp_get_num_threads();
       if (team != threads) GTEST_SKIP() << "OpenMP gave " << team << " threads, not " << threads;
       for (int64_t k = 0; k < n; ++k) {
-        ASSERT_EQ(smoother_detail::StaticOwner(k, n, threads), owner[k])
+        ASSERT_EQ(StaticOwner(k, n, threads), owner[k])
             << "k " << k << " n " << n << " threads " << threads;
         int64_t b, e;  // the range form the sweep loops use
-        smoother_detail::StaticRange(n, threads, owner[k], &b, &e);
+        StaticRange(n, threads, owner[k], &b, &e);
         ASSERT_TRUE(b <= k && k < e) << "k " << k << " n " << n << " threads " << threads;
       }
     }
@@ -275,8 +278,6 @@ class TraceFile : public ::testing::Test {
   RecordingSink Write(const std::string& path, int sweeps) {
     Mesh m = testing::TwoInterior();
     TraceHeader h;
-    h.threads = 2;
-    h.vertices = 8;
     h.mesh = "two_interior";
     h.ordering = "ori";
     TraceWriter w(path, h, sweeps);
@@ -284,7 +285,7 @@ class TraceFile : public ::testing::Test {
     o.max_iters = sweeps;
     o.tol = -1;
     o.threads = 2;
-    Smooth(m, o, w);
+    StreamMesh(m, o, "two_interior", "ori", w);  // threads and vertices from the stream
     w.Close();
     Mesh m2 = testing::TwoInterior();
     RecordingSink r;
@@ -363,24 +364,30 @@ TEST_F(TraceFile, Rejections) {
 
 TEST_F(TraceFile, AnalysisFromFileEqualsStreaming) {
   Write(Path("t"), 2);
-  TraceAnalysisOptions o;
-  o.threads = 2;
-  o.dense_elements = 8;
-  TraceAnalysis from_file(o), streamed(o);
-  TraceReader r(Path("t"));
-  std::vector<TraceRecord> batch;
-  while (r.Next(&batch))
-    for (const TraceRecord& rec : batch) {
-      if (rec.kind < kElementKinds) from_file.AddElement(rec.thread, rec.vertex);
-      from_file.AddAccess(rec.thread, rec.address, rec.size);
-    }
+  ReuseAnalysis from_file({}), streamed({});
+  StreamTraceFile(Path("t"), from_file);
   Mesh m = testing::TwoInterior();
   SmoothOptions so;
   so.max_iters = 2;
   so.tol = -1;
   so.threads = 2;
-  AnalysisSink sink{&streamed};
-  Smooth(m, so, sink);
+  StreamMesh(m, so, "two_interior", "ori", streamed);
+  testing::RecordingConsumer rec;
+  StreamTraceFile(Path("t"), rec);  // the stream the file delivers, record for record
+  Mesh m2 = testing::TwoInterior();
+  testing::RecordingConsumer live;
+  StreamMesh(m2, so, "two_interior", "ori", live);
+  ASSERT_EQ(rec.all.size(), live.all.size());
+  for (size_t i = 0; i < rec.all.size(); ++i) {
+    const Access &a = rec.all[i], &b = live.all[i];
+    EXPECT_TRUE(a.address == b.address && a.element == b.element && a.size == b.size &&
+                a.thread == b.thread && a.kind == b.kind && a.array == b.array &&
+                a.write == b.write)
+        << "access " << i;
+  }
+  EXPECT_EQ(rec.sweep_starts, live.sweep_starts);
+  EXPECT_EQ(rec.info.sweep_records, live.info.sweep_records);
+  EXPECT_EQ(rec.info.sweep_elements, live.info.sweep_elements);
   for (int t = 0; t < 2; ++t) {
     EXPECT_EQ(from_file.element(t)->hist.counts(), streamed.element(t)->hist.counts());
     EXPECT_EQ(from_file.line(t)->hist.counts(), streamed.line(t)->hist.counts());
@@ -472,15 +479,19 @@ TEST_F(TraceFile, ManySweepsCostNoMoreThanTheirRecords) {
 }
 
 TEST(ExternalTrace, TextAndBinary) {
-  const fs::path dir = fs::temp_directory_path();
-  const std::string text = (dir / ("meshreuse-ext-" + std::to_string(::getpid()))).string();
+  testing::TempDir dir;
+  const std::string text = dir / "ext";
+  auto read = [](const std::string& path, const char* fmt) {
+    std::vector<uint64_t> got;
+    ReadForeignTrace(path, ParseTraceFormat(fmt),
+                     [&](uint64_t v, uint32_t, bool, bool) { got.push_back(v); });
+    return got;
+  };
   std::ofstream(text) << "# a comment\n1\n0x10\n  2  \n\n0X1f # trailing\n";
-  std::vector<uint64_t> got;
-  ReadExternalTrace(text, ExternalFormat::kText, [&](uint64_t v, uint32_t) { got.push_back(v); });
-  EXPECT_EQ(got, (std::vector<uint64_t>{1, 16, 2, 31}));
+  EXPECT_EQ(read(text, "text"), (std::vector<uint64_t>{1, 16, 2, 31}));
   std::ofstream(text) << "1\n2\nzz\n";
   try {
-    ReadExternalTrace(text, ExternalFormat::kText, [](uint64_t, uint32_t) {});
+    read(text, "text");
     ADD_FAILURE();
   } catch (const InputError& e) {
     EXPECT_EQ(e.line(), 3);
@@ -488,13 +499,9 @@ TEST(ExternalTrace, TextAndBinary) {
   }
   const uint32_t u32[3] = {5, 0, 4000000000u};
   std::ofstream(text, std::ios::binary).write(reinterpret_cast<const char*>(u32), sizeof u32);
-  got.clear();
-  ReadExternalTrace(text, ExternalFormat::kU32, [&](uint64_t v, uint32_t) { got.push_back(v); });
-  EXPECT_EQ(got, (std::vector<uint64_t>{5, 0, 4000000000u}));
-  EXPECT_EQ(ExternalTraceLength(text, ExternalFormat::kU32), 3u);
-  EXPECT_THROW(ReadExternalTrace(text, ExternalFormat::kU64, [](uint64_t, uint32_t) {}),
-               InputError);  // 12 bytes
-  fs::remove(text);
+  EXPECT_EQ(read(text, "u32"), (std::vector<uint64_t>{5, 0, 4000000000u}));
+  EXPECT_EQ(ForeignTraceLength(text, ParseTraceFormat("u32")), 3u);
+  EXPECT_THROW(read(text, "u64"), InputError);  // 12 bytes
 }
 
 }  // namespace

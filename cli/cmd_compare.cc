@@ -1,0 +1,124 @@
+// meshreuse compare: the smoother timed under several orderings and thread counts, rounds
+// interleaved (reports/compare.h).
+#include <cmath>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "analysis/papi_counters.h"
+#include "cli/common.h"
+#include "core/error.h"
+#include "core/orderings/registry.h"
+#include "core/output_file.h"
+#include "reports/compare.h"
+
+namespace meshreuse::cli {
+
+int CompareCommand(const Args& args) {
+  po::options_description desc("options");
+  std::string orderings = "ori,bfs,rdr,random", threads = "1", out_dir, mode = "gauss-seidel",
+              quality = "per-move", triangle_order, counters, seed = "1", repeat = "5",
+              clock = "wall";
+  CompareConfig cfg;
+  desc.add_options()("mesh", po::value(&cfg.meshes)->required()->multitoken(), "mesh file(s)")(
+      "orderings", po::value(&orderings)->default_value(orderings),
+      "comma-separated orderings (LABEL=SPEC names a row)")(
+      "threads,t", po::value(&threads)->default_value("1"), "comma-separated thread counts")(
+      "repeat", po::value(&repeat)->default_value("5"),
+      "timed rounds (at least 3), or auto[:CAP]: rounds until every speedup is known within "
+      "+-2% (at most CAP, default 15)")("seed", po::value(&seed)->default_value("1"),
+                                        "seed of seeded orderings")(
+      "clock", po::value(&clock)->default_value(clock),
+      "speedups and gains on wall time (for scaling, on a quiet machine) or cpu: the thread "
+      "CPU time of the sweeps, summed over threads (on a shared machine)")(
+      "tol", po::value(&cfg.smooth.tol)->default_value(5e-6, "5e-6"), "stop rule, as for smooth")(
+      "max-iters", po::value(&cfg.smooth.max_iters)->default_value(100),
+      "at most this many sweeps")("quality", po::value(&quality)->default_value("per-move"),
+                                  "per-move (the paper's Algorithm 1) or per-sweep (lean)")(
+      "mode", po::value(&mode)->default_value("gauss-seidel"), "gauss-seidel or jacobi")(
+      "out", po::value(&out_dir),
+      "write compare.{csv,md,json}, summary.{csv,md} and run.json here")(
+      "counters", po::value(&counters)->implicit_value("default"),
+      "hardware counters (PAPI) around every run's sweeps, as for smooth; median over rounds")(
+      "quiet,q", "no progress on stderr");
+  AddFormatOptions(desc);
+  AddTriangleOrderOption(desc, &triangle_order);
+  po::positional_options_description pos;
+  pos.add("mesh", -1);
+  po::variables_map vm;
+  if (!ParseOptions(
+          args, "compare MESH... [--orderings ori,bfs,rdr,random] [--threads 1,2] [--repeat 5]",
+          "For each mesh x ordering x thread count: an untimed warm-up round, then --repeat "
+          "rounds that each compute the ordering, apply it and smooth to convergence from the "
+          "same start (rounds interleave the orderings, so machine noise hits all alike). "
+          "Every time is reported as min, median, max and a 95% interval of the median "
+          "(seeded bootstrap over the rounds), in wall and thread CPU time; the paper's Speedup "
+          "T_ori(1)/T_ord(p) and Gain (T_bfs(p)-T_ord(p))/T_bfs(p) come from per-sweep medians, "
+          "each with its interval, and a comparison whose interval holds 1 is 'not "
+          "distinguishable'. A busy machine (load above the cores, CPU/wall below 0.9, rounds "
+          "varying by more than 5%) is said on stderr and in run.json.",
+          desc, pos, vm))
+    return 0;
+  cfg.orderings = SplitList(orderings);
+  if (cfg.orderings.empty()) throw UsageError("no ordering given");
+  for (const std::string& o : cfg.orderings) CheckOrderingSpec(o);
+  cfg.threads = ParseThreadList(threads);
+  ParseRepeat(repeat, &cfg.repeat, &cfg.repeat_auto, &cfg.repeat_cap);
+  cfg.seed = ParseCount(seed, "--seed", 0, UINT64_MAX >> 1);
+  cfg.clock = ParseClock(clock);
+  const OutputFormat fmt = FormatOption(vm);
+  if (std::isnan(cfg.smooth.tol)) throw UsageError("--tol must be a number");
+  if (cfg.smooth.max_iters < 1) throw UsageError("--max-iters must be at least 1");
+  cfg.smooth.mode = ParseUpdateMode(mode);
+  cfg.smooth.quality = ParseQualityMode(quality);
+  cfg.triangle_order = ParseTriangleOrder(triangle_order);
+  if (!out_dir.empty()) PrepareOutDir(out_dir);
+  if (!counters.empty() && counters != "none") {
+    cfg.counter_events = counters == "default" ? DefaultCounterEvents() : SplitList(counters);
+    const CounterNote note = ProbeCounters(cfg.counter_events);
+    if (!note.note.empty())
+      std::fprintf(stderr, "meshreuse: note: counters: %s%s\n", note.note.c_str(),
+                   note.available ? "" : "; no counter is recorded");
+  }
+  const Progress progress(vm.count("quiet") > 0);
+  const Log log = MakeLog(progress);
+  const CompareResult result = RunCompare(cfg, log.progress, log.warn);
+  const std::vector<CompareRow>& rows = result.rows;
+  for (const std::string& why : result.noise.Reasons())  // said once, before the tables
+    std::fprintf(stderr, "meshreuse: warning: timings taken on a busy machine: %s\n", why.c_str());
+  if (!result.noise.Reasons().empty() && cfg.clock == TimeClock::kWall)
+    std::fprintf(stderr,
+                 "meshreuse: note: --clock cpu ranks the orderings by the CPU time their sweeps "
+                 "cost, which other work on the machine disturbs less than wall time\n");
+  const Table t = CompareTable(rows), summary = CompareSummaryTable(rows, cfg.seed, cfg.clock);
+  if (fmt == OutputFormat::kJson) {
+    std::printf("%s\n", Json({{"seed", cfg.seed},
+                              {"noise", result.noise.ToJson()},
+                              {"rows", CompareJson(rows)},
+                              {"summary", summary.JsonValue()}})
+                            .dump(1)
+                            .c_str());
+  } else if (fmt == OutputFormat::kCsv) {
+    Print(t, fmt);
+  } else {
+    Print(CompareTextTable(rows), OutputFormat::kText);
+    std::printf(
+        "(seed %llu; medians over the rounds after a warm-up, [95%% interval of the median]; "
+        "speedup = T_ori(1)/T, gain = (T_bfs-T)/T_bfs on per-sweep medians (%s clock); an "
+        "interval holding 1 is not distinguishable; every spread: --csv, --json, --out)"
+        "\n\nmean over %zu mesh(es):\n",
+        static_cast<unsigned long long>(cfg.seed), ClockName(cfg.clock), cfg.meshes.size());
+    Print(CompareSummaryTextTable(summary), OutputFormat::kText);
+  }
+  if (!out_dir.empty()) {
+    WriteTableFiles(out_dir, "compare", t, {"csv", "md"});
+    WriteTableFiles(out_dir, "summary", summary, {"csv", "md"});
+    WriteTextFile(out_dir + "/compare.json", Json({{"rows", CompareJson(rows)}}).dump(1) + "\n");
+    WriteRunJson(out_dir, "meshreuse compare", CompareConfigJson(cfg),
+                 {{"noise", result.noise.ToJson()}, {"results", CompareJson(rows)}});
+    progress.Say("wrote " + out_dir + "/{compare,summary}.{csv,md}, compare.json, run.json");
+  }
+  return 0;
+}
+
+}  // namespace meshreuse::cli

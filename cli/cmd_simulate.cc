@@ -1,0 +1,124 @@
+// meshreuse simulate: the set-associative cache simulator on meshes, trace files or other tools'
+// traces (reports/simulate.h).
+#include <cstdio>
+#include <string>
+
+#include "cli/common.h"
+#include "core/error.h"
+#include "reports/simulate.h"
+#include "tracer/trace_formats.h"
+
+namespace meshreuse::cli {
+
+int SimulateCommand(const Args& args) {
+  po::options_description desc("options");
+  SimulateConfig cfg;
+  std::string orderings = "ori", cache = "westmere-ex", mode = "gauss-seidel", triangle_order,
+              seed = "1", line_bytes = "64", out_dir, placement = "compact", interleave = "1";
+  desc.add_options()("input", po::value(&cfg.inputs)->required()->multitoken(),
+                     "mesh(es) (the smoother streams into the simulator), a trace file from "
+                     "`meshreuse trace`, or another tool's trace with --format ('-': stdin)")(
+      "orderings", po::value(&orderings)->default_value("ori"),
+      "for meshes: comma-separated orderings")("seed", po::value(&seed)->default_value("1"),
+                                               "seed of seeded orderings")(
+      "iterations,k", po::value(&cfg.iterations)->default_value(1),
+      "for meshes: sweeps to simulate")("threads,t", po::value(&cfg.threads)->default_value(1),
+                                        "for meshes: streams (static schedule)")(
+      "mode", po::value(&mode)->default_value("gauss-seidel"),
+      "for meshes: gauss-seidel or jacobi")(
+      "format", po::value(&cfg.format),
+      ("other tools' traces (values are byte addresses; any may be zstd-compressed):\n" +
+       TraceFormatHelp())
+          .c_str())("instructions",
+                    "lackey: simulate instruction fetches (I lines) too: through a level named I1 "
+                    "(cachegrind's instruction cache) and the data levels below the first, "
+                    "or the data path when there is no I1")(
+      "cache", po::value(&cache)->default_value("westmere-ex"),
+      "westmere-ex (L1=32K/8,L2=256K/8,L3=24M/24) or NAME=SIZE/WAYS[/lru|fifo|random],... "
+      "(cachegrind's: I1=32K/8,D1=32K/8,LL=8M/16)")("line-bytes",
+                                                    po::value(&line_bytes)->default_value("64"),
+                                                    "cache line size (a power of two)")(
+      "per-sweep", "one row per sweep as well (meshes and trace files)")(
+      "machine", po::value(&cfg.machine),
+      "westmere-ex or a machine file: the many-core simulator (sockets, private and shared "
+      "levels, inclusion, coherence, NUMA; --threads up to its cores) instead of --cache")(
+      "placement", po::value(&placement)->default_value(placement),
+      "with --machine: compact (fill socket 0 first, OpenMP proc_bind(close)) or scatter "
+      "(thread t on socket t % sockets, proc_bind(spread))")(
+      "interleave", po::value(&interleave)->default_value(interleave),
+      "with --machine: how the threads' streams meet: serial (whole shares in turn), access "
+      "(a visit each per turn, accesses dealt one at a time) or N vertex visits per turn")(
+      "prefetch", po::value(&cfg.prefetch),
+      "with --machine: levels with a next-line prefetcher, e.g. L1,L2 (none: off)")(
+      "warm", "with --machine: rows of the last sweep only (caches warm from those before)")(
+      "out", po::value(&out_dir), "write simulate.{csv,json} and run.json here")(
+      "quiet,q", "no progress on stderr");
+  AddFormatOptions(desc);
+  AddTriangleOrderOption(desc, &triangle_order);
+  po::positional_options_description pos;
+  pos.add("input", -1);
+  po::variables_map vm;
+  if (!ParseOptions(args, "simulate INPUT... [--orderings ori,bfs,rdr] [--cache L1=32K/8,...]",
+                    "Set-associative simulation (valgrind's model: LRU by default, write-allocate, "
+                    "an access straddling two lines counts once and misses if either misses, each "
+                    "level sees the misses of the one above) of every load and store: hits, "
+                    "misses, cold misses and the excess over them, read, write and instruction "
+                    "fetch misses, per level and thread stream.",
+                    desc, pos, vm))
+    return 0;
+  const OutputFormat fmt = FormatOption(vm);
+  cfg.orderings = SplitList(orderings);
+  cfg.seed = ParseCount(seed, "--seed", 0, UINT64_MAX >> 1);
+  cfg.line_bytes = static_cast<uint32_t>(ParseCount(line_bytes, "--line-bytes", 1, 1 << 20));
+  cfg.mode = ParseUpdateMode(mode);
+  cfg.triangle_order = ParseTriangleOrder(triangle_order);
+  cfg.cache = ParseCacheSpec(cache);
+  cfg.instructions = vm.count("instructions") > 0;
+  cfg.placement = ParsePlacement(placement);
+  cfg.interleave = ParseInterleave(interleave);
+  if (!cfg.machine.empty() && !vm["cache"].defaulted())
+    throw UsageError("--cache and --machine exclude each other (a machine names its caches)");
+  if (cfg.machine.empty())
+    for (const char* o : {"placement", "interleave"})
+      if (!vm[o].defaulted()) throw UsageError(std::string("--") + o + " needs --machine");
+  if (cfg.machine.empty() && (!cfg.prefetch.empty() || vm.count("warm")))
+    throw UsageError("--prefetch and --warm need --machine");
+  CheckSimulateConfig(cfg);
+  if (!out_dir.empty()) PrepareOutDir(out_dir);
+  const Progress progress(vm.count("quiet") > 0);
+  if (!cfg.machine.empty()) {
+    const auto runs = RunMachineSimulate(cfg, MakeLog(progress));
+    const Table t = MachineTable(runs, vm.count("warm") > 0);
+    Print(t, fmt);
+    if (fmt == OutputFormat::kText && !runs.empty()) {
+      const Machine& m = runs[0]->machine();
+      std::printf(
+          "(simulated on %s: %d socket(s) x %d cores, %s placement, interleave %s; per thread: "
+          "accesses per level, memory local/remote (NUMA %s), and on 'total' the cost model's "
+          "cycles)\n",
+          m.name.c_str(), m.sockets, m.cores_per_socket, PlacementName(cfg.placement),
+          InterleaveName(cfg.interleave).c_str(),
+          m.numa == Numa::kFirstTouch ? "first-touch: pages on socket 0" : "interleaved");
+    }
+    if (!out_dir.empty()) {
+      WriteTableFiles(out_dir, "simulate", t, {"csv", "json"});
+      WriteRunJson(out_dir, "meshreuse simulate", SimulateConfigJson(cfg));
+    }
+    return 0;
+  }
+  const auto runs = RunSimulate(cfg, MakeLog(progress));
+  const Table t = SimulateTable(runs, vm.count("per-sweep") > 0);
+  Print(t, fmt);
+  if (fmt == OutputFormat::kText)
+    std::printf(
+        "(simulated: set-associative, write-allocate, %u B lines; each thread stream "
+        "has private caches)\n",
+        cfg.line_bytes);
+  if (!out_dir.empty()) {
+    WriteTableFiles(out_dir, "simulate", t, {"csv", "json"});
+    WriteRunJson(out_dir, "meshreuse simulate", SimulateConfigJson(cfg));
+  }
+  return 0;
+}
+
+}  // namespace meshreuse::cli

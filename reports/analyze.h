@@ -1,0 +1,77 @@
+// The runner behind `meshreuse analyze`: exact LRU reuse distances (or a SHARDS estimate) of
+// meshes streamed through the traced smoother (one run per mesh x ordering), meshreuse trace files
+// and other tools' traces, each through tracer/access_stream.h into a ReuseAnalysis. Then the
+// tables: one row per input x ordering x thread stream x granularity with accesses, cold, distinct
+// ids, the exact sum and mean, quantiles, modelled misses per cache level (fully associative LRU),
+// the equation-2 cost where latencies are known, and the inverse model's capacities; and the
+// histograms, profiles and miss-ratio curves in the analysis' own schemas.
+#pragma once
+
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "analysis/cache_model.h"
+#include "analysis/reuse_analysis.h"
+#include "core/permutation.h"
+#include "core/smoother.h"
+#include "core/table.h"
+#include "reports/log.h"
+#include "reports/run_info.h"
+
+namespace meshreuse {
+
+struct AnalyzeConfig {
+  std::vector<std::string> inputs;  // meshes, meshreuse traces, or other tools' traces ("-": stdin)
+  std::string format;               // "": meshes and meshreuse traces; else a TraceFormat name
+  std::vector<std::string> orderings = {"ori"};  // for meshes
+  uint64_t seed = 1;                             // orderings and the sampling hash
+  int iterations = 1;                            // for meshes: sweeps
+  // For meshes: the smoother's threads (one stream each); for trace files: the analyzer's
+  // threads per stream (exact chunk-and-merge).
+  int threads = 1;
+  UpdateMode mode = UpdateMode::kGaussSeidel;
+  TriangleOrder triangle_order = TriangleOrder::kSorted;
+  // Default: both for meshes and meshreuse traces; line for address traces, element for ids.
+  std::optional<Granularity> granularity;
+  std::vector<double> quantiles = {0.5, 0.75, 0.9, 1.0};  // fractions
+  CacheSpec cache = ParseCacheSpec("westmere-ex");
+  uint32_t element_bytes = 66, line_bytes = 64;
+  std::vector<CacheLevel> inverse;  // measured misses per level (bytes holds the count)
+  bool sample = false;              // SHARDS instead of (or with sample_error, beside) exact
+  bool sample_error = false;
+  ShardsOptions shards;
+  bool instructions = false;  // lackey: instruction fetches count too
+  bool profile = true;        // compute the profiles (the CLI asks only when it writes them)
+  // One mesh x one ordering: write the laid-out mesh (before the sweeps) as VTK with, per vertex,
+  // its rank in the ordering, its original id and the reuse distances of its element touches
+  // over the analysed sweeps (mean, max, cold touches): the ordering and its locality in ParaView.
+  std::string vtk;
+};
+
+struct AnalyzeResult {
+  std::vector<std::unique_ptr<ReuseAnalysis>> runs;  // one per input (x ordering for meshes)
+  Granularity granularity = Granularity::kBoth;
+  std::string granularity_note;  // the default chosen for a foreign trace, to say under the table
+};
+
+// "50,75,90,100" -> {0.5, 0.75, 0.9, 1}: each a percentage in 0..100 (UsageError saying which one
+// is not, and why).
+std::vector<double> ParseQuantiles(const std::string& list);
+
+// Checks what can be checked before any work (UsageError): formats, orderings, sizes.
+void CheckAnalyzeConfig(const AnalyzeConfig& cfg);
+AnalyzeResult RunAnalyze(const AnalyzeConfig& cfg, const Log& log);
+
+// The summary table; `human` rounds the mean to one decimal (the aligned view), otherwise every
+// number is exact or at full precision.
+Table AnalyzeTable(const AnalyzeResult& r, const AnalyzeConfig& cfg, bool human);
+Table HistogramTable(const AnalyzeResult& r);  // ReuseAnalysis::HistogramColumns()
+Table ProfileTable(const AnalyzeResult& r);    // ReuseAnalysis::ProfileColumns()
+Table MrcTable(const AnalyzeResult& r);        // ReuseAnalysis::MrcColumns()
+// The lines printed under the aligned table: units, the model, the seed, the default chosen.
+std::vector<std::string> AnalyzeNotes(const AnalyzeResult& r, const AnalyzeConfig& cfg);
+Json AnalyzeConfigJson(const AnalyzeConfig& cfg, const AnalyzeResult& r);
+
+}  // namespace meshreuse

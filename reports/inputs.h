@@ -1,0 +1,24 @@
+// Meshes as the runners take them: read once with their warnings passed on, and laid out in an
+// ordering (any spec of core/orderings/registry.h) with the triangle policy of permutation.h.
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include "core/mesh.h"
+#include "core/permutation.h"
+#include "reports/log.h"
+
+namespace meshreuse {
+
+// Reads a mesh (any format of core/mesh_io.h); the reader's warnings go to log.Warn, prefixed
+// with the path.
+Mesh LoadMesh(const std::string& path, const Log& log);
+// The mesh at `path` laid out in `ordering` (ori included) with the triangle policy; ori with
+// TriangleOrder::kFile is the file as it is.
+Mesh LayOut(const std::string& path, const std::string& ordering, uint64_t seed,
+            TriangleOrder triangles, const Log& log);
+// "out/meshes/paper/carabiner.node" -> "carabiner": how tables name a mesh.
+std::string MeshShortName(const std::string& path);
+
+}  // namespace meshreuse

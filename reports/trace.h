@@ -1,0 +1,34 @@
+// The runner behind `meshreuse trace`: a mesh laid out in an ordering, K sweeps streamed through
+// the traced smoother into a TraceWriter (tracer/trace_writer.h), zstd-compressed when asked.
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include "core/permutation.h"
+#include "core/smoother.h"
+#include "reports/log.h"
+
+namespace meshreuse {
+
+struct TraceConfig {
+  std::string mesh, ordering = "ori", output;
+  uint64_t seed = 1;
+  int iterations = 1, threads = 1;
+  UpdateMode mode = UpdateMode::kGaussSeidel;
+  TriangleOrder triangle_order = TriangleOrder::kSorted;
+  uint32_t element_bytes = 66;
+  bool compress = false;
+};
+
+struct TraceRunResult {
+  uint64_t records = 0, elements = 0;
+  int32_t vertices = 0;
+  double seconds = 0;
+  uint64_t compressed_bytes = 0;  // with compress
+};
+
+void CheckTraceConfig(const TraceConfig& cfg);  // UsageError
+TraceRunResult RunTrace(const TraceConfig& cfg, const Log& log);
+
+}  // namespace meshreuse

@@ -1,0 +1,240 @@
+// The ecosystem's trace formats (tracer/trace_formats.h) read as documented: lackey (data only by
+// default, loads and stores kept apart, a modify is a load and a store, sizes kept so a straddle
+// touches two lines; a file without data records refused), oracleGeneral (the id at byte 4 of
+// 24), PARDA's binary (= u64), every fixed-width row of the table round-tripped, and zstd
+// compression of any of them and of our own traces (read back byte for byte).
+#include "tracer/foreign_trace.h"
+
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <fstream>
+#include <tuple>
+
+#include "analysis/reuse_analysis.h"
+#include "core/error.h"
+#include "core/smoother.h"
+#include "tests/test_util.h"
+#include "tracer/access_stream.h"
+#include "tracer/input_stream.h"
+#include "tracer/trace_reader.h"
+#include "tracer/trace_writer.h"
+
+namespace meshreuse {
+namespace {
+
+using Access = std::tuple<uint64_t, uint32_t, bool>;  // value, size, store
+
+std::vector<Access> Read(const std::string& path, const std::string& f, bool instructions = false) {
+  std::vector<Access> out;
+  ReadForeignTrace(
+      path, ParseTraceFormat(f),
+      [&](uint64_t v, uint32_t s, bool w, bool) { out.emplace_back(v, s, w); }, instructions);
+  return out;
+}
+
+void Write(const std::string& path, const std::string& bytes) {
+  std::ofstream(path, std::ios::binary) << bytes;
+}
+
+TEST(TraceFormats, Lackey) {
+  testing::TempDir dir;
+  Write(dir / "t.lackey",
+        "==4242== Lackey, an example Valgrind tool\n"
+        "--4242-- a valgrind note\n"
+        "I  0040a1b0,3\n"
+        " L 7ff0001c8,8\n"
+        " S 1000,4\n"
+        " M 203e,4\n"  // a modify that straddles lines 0x80 and 0x81 (64-byte lines)
+        "\n");
+  EXPECT_EQ(
+      Read(dir / "t.lackey", "lackey"),
+      (std::vector<Access>{
+          {0x7ff0001c8, 8, false}, {0x1000, 4, true}, {0x203e, 4, false}, {0x203e, 4, true}}));
+  EXPECT_EQ(Read(dir / "t.lackey", "lackey", true).front(), Access(0x40a1b0, 3, false));
+  // Through the analyzer: the straddling modify touches lines 0x80 and 0x81 twice each.
+  ReuseOptions o;
+  o.granularity = Granularity::kLine;
+  ReuseAnalysis a(o);
+  StreamForeignTrace(dir / "t.lackey", ParseTraceFormat("lackey"), false, a);
+  EXPECT_EQ(a.line(0)->hist.accesses(), 2u + 4u);
+  EXPECT_EQ(a.line(0)->sd.distinct(), 4u);
+  EXPECT_EQ(a.line(0)->hist.counts()[1], 2u);  // 0x80 after 0x81, 0x81 after 0x80
+}
+
+TEST(TraceFormats, OracleGeneralAndParda) {
+  testing::TempDir dir;
+  std::string oracle;
+  for (uint64_t id : {7ull, 9ull, 7ull}) {
+    char rec[24] = {};
+    const uint32_t clock = 1, size = 4096;
+    const int64_t next = -1;
+    std::memcpy(rec, &clock, 4);
+    std::memcpy(rec + 4, &id, 8);
+    std::memcpy(rec + 12, &size, 4);
+    std::memcpy(rec + 16, &next, 8);
+    oracle.append(rec, 24);
+  }
+  Write(dir / "t.oracle", oracle);
+  EXPECT_EQ(Read(dir / "t.oracle", "oracle"),
+            (std::vector<Access>{{7, 1, false}, {9, 1, false}, {7, 1, false}}));
+  EXPECT_EQ(ForeignTraceLength(dir / "t.oracle", ParseTraceFormat("oracle")), 3u);
+  std::string parda(16, '\0');
+  const uint64_t p[2] = {0x7fff0010, 0x7fff0018};
+  std::memcpy(parda.data(), p, 16);
+  Write(dir / "t.parda", parda);
+  EXPECT_EQ(Read(dir / "t.parda", "parda"),
+            (std::vector<Access>{{0x7fff0010, 1, false}, {0x7fff0018, 1, false}}));
+  EXPECT_EQ(&ParseTraceFormat("oracleGeneral"), FindTraceFormat("oracle"));
+  EXPECT_THROW(ParseTraceFormat("csv"), UsageError);
+}
+
+TEST(TraceFormats, LackeyWithoutDataRecordsIsRefused) {
+  testing::TempDir dir;
+  // Lackey without --trace-mem=yes writes only its summary; with it but no data, only I lines.
+  Write(dir / "summary.lackey", "==1== Lackey, an example Valgrind tool\n==1== Counted 3 calls\n");
+  Write(dir / "ifetch.lackey", "I  0040a1b0,3\nI  0040a1b3,2\n");
+  for (const char* f : {"summary.lackey", "ifetch.lackey"}) {
+    try {
+      Read(dir / f, "lackey");
+      ADD_FAILURE() << f << " was accepted";
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find("--trace-mem=yes"), std::string::npos) << e.what();
+    }
+  }
+  EXPECT_EQ(Read(dir / "ifetch.lackey", "lackey", true).size(), 2u);  // I lines asked for
+}
+
+// Every fixed-width row of the format table: records written at the row's layout read back as
+// the values, in order, with the record count known from the size; a partial record refused.
+TEST(TraceFormats, EveryFixedWidthFormatRoundTrips) {
+  testing::TempDir dir;
+  for (const TraceFormat& f : TraceFormats()) {
+    if (f.syntax != TraceSyntax::kFixedRecords) continue;
+    const std::vector<uint64_t> values = {5, 0x1234, 5, 77};
+    const uint64_t mask =
+        f.value_bytes == 8 ? ~uint64_t{0} : (uint64_t{1} << (8 * f.value_bytes)) - 1;
+    std::string bytes;
+    for (uint64_t v : values) {
+      std::string rec(f.record_bytes, '\xAB');  // filler around the value
+      std::memcpy(rec.data() + f.value_offset, &v, f.value_bytes);
+      bytes += rec;
+    }
+    const std::string path = dir / (std::string("t.") + f.name);
+    Write(path, bytes);
+    std::vector<Access> want;
+    for (uint64_t v : values) want.emplace_back(v & mask, 1, false);
+    EXPECT_EQ(Read(path, f.name), want) << f.name;
+    EXPECT_EQ(ForeignTraceLength(path, f), values.size()) << f.name;
+    Write(path, bytes + "x");
+    EXPECT_THROW(Read(path, f.name), InputError) << f.name;
+    EXPECT_EQ(TraceFormatByCode(f.code), &f);
+  }
+}
+
+TEST(TraceFormats, ZstdIsReadTransparently) {
+  testing::TempDir dir;
+  std::string text;
+  for (int i = 0; i < 300000; ++i) text += std::to_string(i % 777) + "\n";
+  Write(dir / "t.txt", text);
+  CompressFile(dir / "t.txt", dir / "t.txt.zst");
+  EXPECT_LT(std::filesystem::file_size(dir / "t.txt.zst"), text.size() / 10);
+  {
+    InputStream in(dir / "t.txt.zst");
+    EXPECT_TRUE(in.compressed());
+    EXPECT_EQ(in.size(), static_cast<int64_t>(text.size()));  // from the frame header
+    std::string back(text.size() + 10, '\0');
+    size_t got = 0, n;
+    while ((n = in.Read(back.data() + got, 4097)) > 0) got += n;
+    back.resize(got);
+    EXPECT_EQ(back, text);
+  }
+  EXPECT_EQ(Read(dir / "t.txt.zst", "text"), Read(dir / "t.txt", "text"));
+  // Binary formats count their records from the decompressed size.
+  std::string u64(8 * 1000, '\0');
+  for (uint64_t i = 0; i < 1000; ++i) std::memcpy(u64.data() + 8 * i, &i, 8);
+  Write(dir / "t.u64", u64);
+  CompressFile(dir / "t.u64", dir / "t.u64.zst");
+  EXPECT_EQ(ForeignTraceLength(dir / "t.u64.zst", ParseTraceFormat("u64")), 1000u);
+  EXPECT_EQ(Read(dir / "t.u64.zst", "u64"), Read(dir / "t.u64", "u64"));
+}
+
+// A zstd frame written by hand (RFC 8878): one raw block; its content size recorded in one byte
+// (single segment) or not at all (a window descriptor instead), as pzstd's frames do.
+std::string RawFrame(const std::string& data, bool record_size) {
+  std::string f = "\x28\xB5\x2F\xFD";
+  if (record_size) {
+    f += '\x20', f += static_cast<char>(data.size());  // single segment, 1-byte content size
+  } else {
+    f += '\x00', f += '\x00';  // no content size; window descriptor
+  }
+  const uint32_t word = 1u | static_cast<uint32_t>(data.size()) << 3;  // last block, raw
+  f += static_cast<char>(word & 0xFF), f += static_cast<char>((word >> 8) & 0xFF);
+  f += static_cast<char>(word >> 16);
+  return f + data;
+}
+
+std::string SkippableFrame(const std::string& payload) {
+  std::string f = "\x50\x2A\x4D\x18";
+  for (int i = 0; i < 4; ++i) f += static_cast<char>((payload.size() >> (8 * i)) & 0xFF);
+  return f + payload;
+}
+
+// As `zstd -d` reads them: every frame in turn, skippable ones (pzstd begins with one) skipped;
+// the content size is known only when every frame records its own.
+TEST(TraceFormats, SeveralAndSkippableZstdFrames) {
+  testing::TempDir dir;
+  Write(dir / "a.txt", "1\n2\n3\n");
+  CompressFile(dir / "a.txt", dir / "a.zst");
+  std::ifstream az(dir / "a.zst", std::ios::binary);
+  const std::string a((std::istreambuf_iterator<char>(az)), std::istreambuf_iterator<char>());
+  const std::string plain =
+      "1\n2\n3\n"
+      "4\n5\n"
+      "6\n";
+  Write(dir / "sized.zst", SkippableFrame("pzstd") + a + RawFrame("4\n5\n", true) +
+                               SkippableFrame("") + RawFrame("6\n", true));
+  Write(dir / "unsized.zst",
+        SkippableFrame("x") + a + RawFrame("4\n5\n", false) + RawFrame("6\n", true));
+  Write(dir / "plain.txt", plain);
+  for (const char* f : {"sized.zst", "unsized.zst"}) {
+    InputStream in(dir / f);
+    EXPECT_TRUE(in.compressed()) << f;
+    EXPECT_EQ(in.size(), std::string(f) == "sized.zst" ? static_cast<int64_t>(plain.size()) : -1);
+    std::string back(100, '\0');
+    back.resize(in.Read(back.data(), back.size()));
+    EXPECT_EQ(back, plain) << f;
+    EXPECT_EQ(Read(dir / f, "text"), Read(dir / "plain.txt", "text")) << f;
+  }
+  // A frame cut short: an error naming the file, not a short read.
+  Write(dir / "cut.zst", a + RawFrame("4\n5\n", true).substr(0, 9));
+  EXPECT_THROW(Read(dir / "cut.zst", "text"), InputError);
+}
+
+TEST(TraceFormats, CompressedTraceFileReadsLikeThePlainOne) {
+  testing::TempDir dir;
+  Mesh m = testing::TwoInterior();
+  {
+    TraceWriter w(dir / "t.trace", TraceHeader(), 3);
+    SmoothOptions o;
+    o.max_iters = 3;
+    o.tol = -1;
+    StreamMesh(m, o, "two_interior", "ori", w);
+    w.Close();
+  }
+  CompressFile(dir / "t.trace", dir / "t.trace.zst");
+  EXPECT_TRUE(TraceReader::LooksLikeTrace(dir / "t.trace.zst"));
+  TraceReader a(dir / "t.trace"), b(dir / "t.trace.zst");
+  EXPECT_EQ(a.header().records, b.header().records);
+  EXPECT_EQ(a.header().sweep_elements, b.header().sweep_elements);
+  std::vector<TraceRecord> x, y;
+  while (a.Next(&x, 7)) {
+    ASSERT_TRUE(b.Next(&y, 7));
+    ASSERT_EQ(x.size(), y.size());
+    EXPECT_EQ(std::memcmp(x.data(), y.data(), x.size() * sizeof(TraceRecord)), 0);
+  }
+  EXPECT_FALSE(b.Next(&y, 7));
+}
+
+}  // namespace
+}  // namespace meshreuse

@@ -1,0 +1,212 @@
+// The three sources of access streams; see access_stream.h.
+#include "tracer/access_stream.h"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstring>
+
+#include "core/error.h"
+#include "core/input_file.h"
+#include "core/schedule.h"
+#include "tracer/foreign_trace.h"
+#include "tracer/trace_reader.h"
+
+namespace meshreuse {
+
+namespace {
+
+// A batch small enough to stay in L1 between the smoother writing it and the consumer's loop.
+constexpr size_t kBatch = 512;
+
+// The smoother's sink: canonical addresses, packed into batches for the consumer. With
+// kAccessGrain (several threads) each turn's accesses wait in per-thread queues until EndTurn
+// deals them out one at a time, thread after thread (smoother.h ForStatic).
+struct BatchSink {
+  static constexpr bool kEnabled = true;
+  AccessConsumer& to;
+  meshreuse::Access* buf;  // kBatch entries
+  size_t n = 0;
+  AddressCanonicalizer canon;
+  int interleave = kSerialShares;
+  std::vector<std::vector<meshreuse::Access>> queued;  // kAccessGrain: per thread, this turn's
+  void Bind(const ArrayLayout& l) { canon = AddressCanonicalizer(l); }
+  void Flush() {
+    EndTurn();
+    if (n) to.Consume(buf, n);
+    n = 0;
+  }
+  void EndTurn() {
+    size_t longest = 0;
+    for (const auto& q : queued) longest = std::max(longest, q.size());
+    for (size_t i = 0; i < longest; ++i)
+      for (auto& q : queued)
+        if (i < q.size()) Emit(q[i]);
+    for (auto& q : queued) q.clear();
+  }
+  void Emit(const meshreuse::Access& a) {
+    buf[n] = a;
+    if (++n == kBatch) {
+      to.Consume(buf, n);
+      n = 0;
+    }
+  }
+  void BeginSweep(int s) {
+    Flush();
+    to.BeginSweep(s);
+  }
+  void Access(int thread, const MemRef& r) {
+    if (!queued.empty()) {
+      meshreuse::Access a;
+      Fill(&a, thread, r);
+      queued[thread].push_back(a);
+      return;
+    }
+    Fill(buf + n, thread, r);
+    if (++n == kBatch) Flush();
+  }
+  void Fill(meshreuse::Access* out, int thread, const MemRef& r) {
+    meshreuse::Access& a = *out;
+    a.address = canon(thread, r);
+    // kNone's vertex is -1: as uint64 sign-extended, exactly Access::kNoElement.
+    a.element = static_cast<uint64_t>(static_cast<int64_t>(r.vertex));
+    a.size = r.size;
+    a.thread = static_cast<uint8_t>(thread);
+    a.kind = static_cast<uint8_t>(r.element);
+    a.array = static_cast<uint8_t>(r.array);
+    a.write = r.write;
+  }
+};
+static_assert(static_cast<uint64_t>(int64_t{-1}) == meshreuse::Access::kNoElement,
+              "a vertex of -1 (no element) must map to kNoElement");
+
+}  // namespace
+
+StreamInfo MeshStreamInfo(const Mesh& mesh, const SmoothOptions& sweeps) {
+  StreamInfo info;
+  info.threads = std::max(1, sweeps.threads);
+  info.vertices = mesh.NumVertices();
+  info.canonical = true;
+  const std::vector<uint64_t> refs = RefsPerSweep(mesh, info.threads, sweeps.mode);
+  info.sweep_records.assign(sweeps.max_iters, refs);
+  for (uint64_t n : refs) info.records += n * static_cast<uint64_t>(sweeps.max_iters);
+  // Element touches per sweep are known in closed form for Gauss-Seidel (AccessesPerSweep).
+  if (sweeps.mode == UpdateMode::kGaussSeidel)
+    info.sweep_elements.assign(sweeps.max_iters, AccessesPerSweep(mesh, info.threads));
+  return info;
+}
+
+SmoothResult StreamMesh(Mesh& mesh, const SmoothOptions& sweeps, const std::string& label,
+                        const std::string& ordering, AccessConsumer& to) {
+  StreamInfo info = MeshStreamInfo(mesh, sweeps);
+  info.input = label;
+  info.ordering = ordering;
+  to.Begin(info);
+  std::vector<Access> buf(kBatch);
+  BatchSink sink{to, buf.data(), 0, {}, sweeps.interleave, {}};
+  if (sweeps.interleave == kAccessGrain && info.threads > 1) sink.queued.resize(info.threads);
+  SmoothResult r = Smooth(mesh, sweeps, sink);
+  sink.Flush();
+  to.End();
+  return r;
+}
+
+void StreamTraceFile(const std::string& path, AccessConsumer& to, const ProgressFn& progress) {
+  TraceReader r(path);
+  const TraceHeader& h = r.header();
+  StreamInfo info;
+  info.input = path;
+  info.ordering = h.ordering;
+  info.threads = static_cast<int>(h.threads);
+  // Direct arrays for ids below the vertex count, never more than the records: a header's count
+  // cannot make memory exceed what the file holds.
+  // A stream of unknown size has not proved its record count yet: a smaller direct array then.
+  info.vertices = static_cast<int64_t>(
+      std::min<uint64_t>({h.vertices, h.records, r.sized() ? ~uint64_t{0} : uint64_t{1} << 20}));
+  info.element_bytes = h.element_bytes;
+  info.canonical = true;
+  info.records = h.records;
+  info.sweep_records = h.sweep_records;
+  info.sweep_elements = h.sweep_elements;
+  to.Begin(info);
+  std::vector<TraceRecord> batch;
+  std::vector<Access> out;
+  out.reserve(kBatch);
+  uint64_t seen = 0;
+  size_t next_sweep = 0;
+  while (r.Next(&batch, kBatch)) {
+    out.clear();
+    for (const TraceRecord& rec : batch) {
+      while (next_sweep < h.iteration_starts.size() && h.iteration_starts[next_sweep] == seen) {
+        if (!out.empty()) to.Consume(out.data(), out.size());
+        out.clear();
+        to.BeginSweep(static_cast<int>(++next_sweep));
+      }
+      out.push_back({rec.address,
+                     rec.kind < kElementKinds ? uint64_t{rec.vertex} : Access::kNoElement, rec.size,
+                     rec.thread, rec.kind, static_cast<uint8_t>(rec.array & ~kStoreBit),
+                     (rec.array & kStoreBit) != 0});
+      ++seen;
+    }
+    if (!out.empty()) to.Consume(out.data(), out.size());
+    if (progress && h.records) progress(static_cast<double>(seen) / h.records);
+  }
+  to.End();
+}
+
+void StreamForeignTrace(const std::string& path, const TraceFormat& format, bool instructions,
+                        AccessConsumer& to, const ProgressFn& progress) {
+  StreamInfo info;
+  info.input = path;
+  info.threads = 1;
+  info.records = ForeignTraceLength(path, format);
+  if (info.records) info.sweep_records = info.sweep_elements = {{info.records}};
+  to.Begin(info);
+  std::vector<Access> out;
+  out.reserve(kBatch);
+  uint64_t seen = 0;
+  ReadForeignTrace(
+      path, format,
+      [&](uint64_t v, uint32_t size, bool write, bool fetch) {
+        out.push_back({v, v, size, 0,
+                       static_cast<uint8_t>(fetch ? AccessKind::kFetch : AccessKind::kNone),
+                       Access::kForeignArray, write});
+        if (out.size() == kBatch) {
+          to.Consume(out.data(), out.size());
+          out.clear();
+          seen += kBatch;
+          if (progress && (seen & 0xFFFFF) == 0)
+            progress(info.records ? static_cast<double>(seen) / info.records : -1.0);
+        }
+      },
+      instructions);
+  if (!out.empty()) to.Consume(out.data(), out.size());
+  to.End();
+}
+
+InputKind ClassifyInput(const std::string& path) {
+  auto ends = [&](const std::string& x) {
+    return path.size() >= x.size() && path.compare(path.size() - x.size(), x.size(), x) == 0;
+  };
+  if (path != "-" && (ends(".node") || ends(".ele") || ends(".msh") ||
+                      ::access((path + ".node").c_str(), F_OK) == 0))
+    return InputKind::kMesh;
+  // Anything else given by name is read as a meshreuse trace, whose reader says "not a meshreuse
+  // trace ... use --format" when the magic is wrong. Standard input is looked at: our trace's
+  // magic makes it one (the bytes are given back), anything else is a text trace.
+  if (path != "-") return InputKind::kTrace;
+  std::string& back = StdinPushback();
+  char magic[8];
+  size_t got = 0;
+  while (back.size() + got < sizeof magic) {
+    const size_t n = std::fread(magic + got, 1, sizeof magic - back.size() - got, stdin);
+    if (n == 0) break;
+    got += n;
+  }
+  back.append(magic, got);
+  return back.size() == sizeof magic && std::memcmp(back.data(), kTraceMagic, 8) == 0
+             ? InputKind::kTrace
+             : InputKind::kText;
+}
+
+}  // namespace meshreuse

@@ -1,0 +1,102 @@
+// The one way an input reaches an analysis. Three sources -- a mesh streamed through the traced
+// smoother (no file), a meshreuse trace file, another tool's trace in one of the formats of
+// trace_formats.h -- deliver the same thing to the same interface: a StreamInfo up front (threads,
+// sweeps and their lengths where known), then the accesses in order, in batches, with BeginSweep
+// between sweeps. The reuse analysis, the cache simulator and the trace writer are consumers
+// (analysis/reuse_analysis.h, analysis/cache_sim.h, tracer/trace_writer.h), so each command is
+// "pick a source, pick consumers" and no command dispatches on the input kind itself.
+// Sources check what they deliver: a trace record naming a thread beyond its header's, a foreign
+// value the analyzer reserves, are InputErrors naming the file and the record.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "core/mesh.h"
+#include "core/smoother.h"
+#include "tracer/trace_formats.h"
+
+namespace meshreuse {
+
+// One access, whatever the input.
+struct Access {
+  static constexpr uint64_t kNoElement = std::numeric_limits<uint64_t>::max();
+  uint64_t address;  // byte address (canonical for the smoother's streams, core/access.h)
+  uint64_t element;  // the element touched: a vertex id, a foreign trace's value; or kNoElement
+  uint32_t size;     // bytes (0 counts as 1)
+  uint8_t thread;    // the stream
+  uint8_t kind;      // AccessKind (kNone for accesses that touch no vertex record, and foreign)
+  uint8_t array;     // Array; kForeignArray for other tools' traces
+  bool write;
+  static constexpr uint8_t kForeignArray = 0xff;
+};
+
+struct StreamInfo {
+  std::string input;     // the mesh's or file's path, as given
+  std::string ordering;  // the mesh's layout (a trace header's); "" for other tools' traces
+  int threads = 1;       // streams, 1..kMaxThreads
+  int64_t vertices = 0;  // element ids below this are dense (0: unknown)
+  uint32_t element_bytes = 66;
+  bool canonical = false;  // addresses are the smoother's canonical ones (line ids start near 0)
+  uint64_t records = 0;    // accesses, 0: unknown
+  // Per sweep, per thread: accesses, and the element touches among them. Empty: unknown (then
+  // there is no profile). Other tools' traces of known length are one sweep.
+  std::vector<std::vector<uint64_t>> sweep_records, sweep_elements;
+  int sweeps() const { return static_cast<int>(sweep_records.size()); }
+};
+
+class AccessConsumer {
+ public:
+  virtual ~AccessConsumer() = default;
+  virtual void Begin(const StreamInfo& info) = 0;
+  virtual void BeginSweep(int /*sweep, 1-based*/) {}
+  virtual void Consume(const Access* a, size_t n) = 0;  // the next n accesses, in order
+  virtual void End() {}
+};
+
+// Sends everything to several consumers (the analysis and the simulator from one pass).
+class FanOut : public AccessConsumer {
+ public:
+  explicit FanOut(std::vector<AccessConsumer*> to) : to_(std::move(to)) {}
+  void Begin(const StreamInfo& i) override {
+    for (AccessConsumer* c : to_) c->Begin(i);
+  }
+  void BeginSweep(int s) override {
+    for (AccessConsumer* c : to_) c->BeginSweep(s);
+  }
+  void Consume(const Access* a, size_t n) override {
+    for (AccessConsumer* c : to_) c->Consume(a, n);
+  }
+  void End() override {
+    for (AccessConsumer* c : to_) c->End();
+  }
+
+ private:
+  std::vector<AccessConsumer*> to_;
+};
+
+using ProgressFn = std::function<void(double done_fraction)>;
+
+// `sweeps` traced sweeps of `mesh` (laid out already; it is smoothed in place), each thread's
+// stream as the static schedule gives it (core/smoother.h). `label`, `ordering`: for StreamInfo.
+// Returns the smoother's result (each sweep's time is the traced sweep's, consumers included).
+SmoothResult StreamMesh(Mesh& mesh, const SmoothOptions& sweeps, const std::string& label,
+                        const std::string& ordering, AccessConsumer& to);
+// The info StreamMesh will announce, without running it (for memory checks before the work).
+StreamInfo MeshStreamInfo(const Mesh& mesh, const SmoothOptions& sweeps);
+// A meshreuse trace file (plain or zstd).
+void StreamTraceFile(const std::string& path, AccessConsumer& to, const ProgressFn& progress = {});
+// Another tool's trace: one stream; each value an access of its size (1 but for lackey); element
+// ids are the values. Lackey's loads and stores keep their direction.
+void StreamForeignTrace(const std::string& path, const TraceFormat& format, bool instructions,
+                        AccessConsumer& to, const ProgressFn& progress = {});
+
+// What a path given without --format is: a mesh (by its name: .node, .ele, .msh, or a prefix P
+// with P.node), standard input ("-": a text trace of ids), or else a meshreuse trace.
+enum class InputKind { kMesh, kTrace, kText };
+InputKind ClassifyInput(const std::string& path);
+
+}  // namespace meshreuse
