@@ -7,8 +7,8 @@
 #include <stdexcept>
 #include <string>
 
-#include "core/error.h"
 #include "core/access.h"
+#include "core/error.h"
 #include "core/schedule.h"
 
 namespace meshreuse {
@@ -193,9 +193,11 @@ MulticoreSimulation::Owner& MulticoreSimulation::SocketOwner(int socket) {
   return *sockets_[socket];
 }
 
-MulticoreSimulation::LineInfo& MulticoreSimulation::Info(uint64_t line) {
-  if (line - info_base_ < kDenseLines) return dense_.get()[line - info_base_];
-  if (4 * (sparse_used_ + 1) > 3 * sparse_.size()) {
+// Room for `more` new sparse records without growing: Access takes references to records and
+// then looks more up (a straddling access's second line, prefetched lines: at most 4 new), so the
+// table grows before, never while a reference is held.
+void MulticoreSimulation::ReserveSparse(uint64_t more) {
+  if (4 * (sparse_used_ + more) > 3 * sparse_.size()) {
     std::vector<SparseEntry> old(2 * sparse_.size());
     old.swap(sparse_);
     const uint64_t m = sparse_.size() - 1;
@@ -206,6 +208,10 @@ MulticoreSimulation::LineInfo& MulticoreSimulation::Info(uint64_t line) {
         sparse_[i] = e;
       }
   }
+}
+
+MulticoreSimulation::LineInfo& MulticoreSimulation::Info(uint64_t line) {
+  if (line - info_base_ < kDenseLines) return dense_.get()[line - info_base_];
   const uint64_t m = sparse_.size() - 1;
   for (uint64_t i = Mix(line) & m;; i = (i + 1) & m) {
     if (sparse_[i].line == line) return sparse_[i].info;
@@ -268,6 +274,7 @@ void MulticoreSimulation::Access(int thread, uint64_t address, uint32_t size, bo
   ThreadStats& st = stats_[thread];
   const uint64_t first = address >> shift_;
   const uint64_t last = (address + (size ? size - 1 : 0)) >> shift_;
+  ReserveSparse(2 * (last - first + 1));
   // Per line of the access (two when it straddles), its record, fetched at its first miss.
   LineInfo* info[2] = {nullptr, nullptr};
   bool missed_private = false, missed_shared = false;
@@ -313,18 +320,28 @@ void MulticoreSimulation::Access(int thread, uint64_t address, uint32_t size, bo
         if (ml.inclusive && cache.victim() != ~uint64_t{0}) BackInvalidate(socket, cache.victim());
       }
       if (ml.prefetch) owner->prefetched[i - base].Erase(l);
-      if (ml.prefetch && !cache.Contains(l + 1)) {  // next line, into this level only
-        cache.Access(l + 1);
+      if (ml.prefetch && !cache.Contains(l + 1)) {
+        // The next line, into this level and every level below that lacks it (the request goes
+        // down the hierarchy like a miss, so an inclusive level holds what is above it); not a
+        // demand access anywhere, counted once, here.
         owner->prefetched[i - base].Insert(l + 1);
         ++s.prefetches;
-        LineInfo& n = Info(l + 1);  // held here now: coherence must find it; not taken away
-        if (!shared) {
-          n.cores |= cbit;
-          n.removed_cores &= ~cbit;
-        } else {
-          n.sockets |= sbit;
-          n.removed_sockets = static_cast<uint8_t>(n.removed_sockets & ~sbit);
-          if (ml.inclusive && cache.victim() != ~uint64_t{0}) BackInvalidate(socket, cache.victim());
+        LineInfo& n = Info(l + 1);  // held now: coherence must find it; not taken away
+        for (size_t j = i; j < m_.levels.size(); ++j) {
+          const bool sj = j >= private_levels_;
+          Owner& oj = sj ? SocketOwner(socket) : CoreOwner(core);
+          SetAssociativeCache& cj = oj.caches[sj ? j - private_levels_ : j];
+          if (cj.Contains(l + 1)) continue;
+          cj.Access(l + 1);
+          if (!sj) {
+            n.cores |= cbit;
+            n.removed_cores &= ~cbit;
+          } else {
+            n.sockets |= sbit;
+            n.removed_sockets = static_cast<uint8_t>(n.removed_sockets & ~sbit);
+            if (m_.levels[j].inclusive && cj.victim() != ~uint64_t{0})
+              BackInvalidate(socket, cj.victim());
+          }
         }
       }
     }
@@ -362,27 +379,27 @@ ThreadStats MulticoreSimulation::SweepStats(int thread, size_t s) const {
 }
 
 std::vector<std::string> MulticoreSimulation::Columns() {
-  return {"input",    "ordering",  "machine",       "placement", "threads",     "thread",
-          "core",     "socket",    "sweep",         "level",     "accesses",    "hits",
-          "misses",   "cold",      "coherence",     "inclusion_victims",        "prefetches",
-          "prefetch_hits",         "read_misses",   "write_misses",             "cycles_low",
-          "cycles_high"};
+  return {"input",      "ordering",      "machine",     "placement",
+          "threads",    "thread",        "core",        "socket",
+          "sweep",      "level",         "accesses",    "hits",
+          "misses",     "cold",          "coherence",   "inclusion_victims",
+          "prefetches", "prefetch_hits", "read_misses", "write_misses",
+          "cycles_low", "cycles_high"};
 }
 
 void MulticoreSimulation::AppendRows(Table* t, bool last_sweep_only) const {
   const bool last = last_sweep_only && !marks_.empty();
   for (int th = 0; th < threads(); ++th) {
     const ThreadStats s = last ? SweepStats(th, marks_.size() - 1) : stats_[th];
-    const std::vector<std::string> key = {
-        info_.input,
-        info_.ordering,
-        m_.name,
-        PlacementName(placement_),
-        std::to_string(threads()),
-        std::to_string(th),
-        std::to_string(core_of_[th]),
-        std::to_string(core_of_[th] / m_.cores_per_socket),
-        last ? std::to_string(marks_.size()) : "all"};
+    const std::vector<std::string> key = {info_.input,
+                                          info_.ordering,
+                                          m_.name,
+                                          PlacementName(placement_),
+                                          std::to_string(threads()),
+                                          std::to_string(th),
+                                          std::to_string(core_of_[th]),
+                                          std::to_string(core_of_[th] / m_.cores_per_socket),
+                                          last ? std::to_string(marks_.size()) : "all"};
     auto row = [&](const std::string& level, std::vector<std::string> cells) {
       std::vector<std::string> r = key;
       r.push_back(level);
@@ -398,7 +415,8 @@ void MulticoreSimulation::AppendRows(Table* t, bool last_sweep_only) const {
            std::to_string(l.prefetch_hits), std::to_string(l.read_misses),
            std::to_string(l.write_misses), "", ""});
     }
-    row("memory_local", {std::to_string(s.memory_local), "", "", "", "", "", "", "", "", "", "", ""});
+    row("memory_local",
+        {std::to_string(s.memory_local), "", "", "", "", "", "", "", "", "", "", ""});
     row("memory_remote",
         {std::to_string(s.memory_remote), "", "", "", "", "", "", "", "", "", "", ""});
     row("total", {std::to_string(s.levels.empty() ? 0 : s.levels[0].accesses), "", "", "", "", "",

@@ -11,8 +11,10 @@
 //     next miss of a core or socket on a line so removed is a coherence miss (counted apart,
 //     within the misses). Which cores may hold a line is kept in a directory;
 //   - a next-line prefetcher at a level: a demand miss of line L there brings L+1 into that level
-//     (not below, not counted as an access); a later demand hit on a prefetched line that no demand
-//     had touched is a prefetch hit, a miss the prefetcher hid;
+//     and into every level below it that lacks it (as a request down the hierarchy would; an
+//     inclusive level keeps holding what is above it), not counted as an access anywhere; a later
+//     demand hit on a prefetched line that no demand had touched is a prefetch hit, a miss the
+//     prefetcher hid;
 //   - cold misses are first touches by the level's owner (a core for a private level, a socket for
 //     a shared one), so a machine of private levels gives today's per-stream numbers exactly.
 // The interleaving of the streams is the traced run's (SmoothOptions::interleave): accesses are
@@ -95,7 +97,8 @@ class MulticoreSimulation : public AccessConsumer {
     uint64_t cores = 0, seen_cores = 0, removed_cores = 0;
     uint8_t sockets = 0, seen_sockets = 0, removed_sockets = 0;
   };
-  LineInfo& Info(uint64_t line);
+  LineInfo& Info(uint64_t line);  // never grows the table: ReserveSparse first
+  void ReserveSparse(uint64_t more);
   void BackInvalidate(int socket, uint64_t line);
   void InvalidateOthers(int core, LineInfo& e, uint64_t line);
   int HomeSocket(uint64_t line) const;
@@ -105,11 +108,11 @@ class MulticoreSimulation : public AccessConsumer {
   StreamInfo info_;
   int shift_;
   size_t private_levels_;
-  std::vector<int> core_of_;         // per thread
-  std::vector<int> thread_of_core_;  // -1: idle core
-  std::vector<ThreadStats> stats_;   // per thread
+  std::vector<int> core_of_;                             // per thread
+  std::vector<int> thread_of_core_;                      // -1: idle core
+  std::vector<ThreadStats> stats_;                       // per thread
   std::vector<std::unique_ptr<Owner>> cores_, sockets_;  // made at first use
-  bool coherent_ = false;  // coherence on and more than one thread
+  bool coherent_ = false;                                // coherence on and more than one thread
   // Line records: a direct array for the 2^22 lines from the stream's base (the canonical arrays
   // of a mesh of a few million vertices; calloc'ed, so pages cost memory only once touched), a
   // hash table beyond.

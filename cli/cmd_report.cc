@@ -18,7 +18,8 @@ int ReportCommand(const Args& args) {
   po::options_description desc("options");
   std::string orderings = "ori,bfs,rdr", threads, out_dir, triangle_order, cache = "westmere-ex",
               counters = "PAPI_L1_DCM,PAPI_L2_DCM,PAPI_L3_TCM", fig1_orderings = "random,ori,bfs",
-              seed = "1", repeat = "3", clock = "wall";
+              seed = "1", repeat = "3", clock = "wall", machine = "westmere-ex",
+              machine_threads = "1,2,4,8,16,24,32", prefetch = "L1,L2";
   ReportConfig cfg;
   desc.add_options()("mesh", po::value(&cfg.meshes)->required()->multitoken(), "mesh file(s)")(
       "orderings", po::value(&orderings)->default_value(orderings),
@@ -46,6 +47,15 @@ int ReportCommand(const Args& args) {
                        "its time bins (columns)")(
       "profile-mesh", po::value(&cfg.profile_mesh)->default_value(cfg.profile_mesh),
       "mesh (short name) of the profile figure; none: no figure")(
+      "machine", po::value(&machine)->default_value(machine),
+      "the many-core part: westmere-ex (the paper's 4 x 8 cores) or a machine file (README, "
+      "\"Many cores\"); none: no many-core part")(
+      "machine-threads", po::value(&machine_threads)->default_value(machine_threads),
+      "thread counts simulated on the machine (compact and scatter placement)")(
+      "machine-sweeps", po::value(&cfg.machine_sweeps)->default_value(cfg.machine_sweeps),
+      "traced sweeps per simulation (the last, warm, is counted)")(
+      "prefetch", po::value(&prefetch)->default_value(prefetch),
+      "levels with a next-line prefetcher in the one-thread prefetch table; none: no table")(
       "no-timing", "skip the timed runs (tables 1-3, misses and figure data only)")(
       "label", po::value(&cfg.label), "a name for the run (README title, run.json)")(
       "out", po::value(&out_dir)->required(), "the result folder (created; must be empty)")(
@@ -76,6 +86,9 @@ int ReportCommand(const Args& args) {
   cfg.cache = ParseCacheSpec(cache);
   cfg.counter_events = counters == "none" ? std::vector<std::string>{} : SplitList(counters);
   cfg.timing = vm.count("no-timing") == 0;
+  cfg.machine = machine == "none" ? "" : machine;
+  cfg.machine_threads = ParseThreadList(machine_threads);
+  cfg.prefetch_levels = prefetch == "none" ? "" : prefetch;
   cfg.triangle_order = ParseTriangleOrder(triangle_order);
   cfg.command_line = FullCommandLine();
   for (const std::string& m : cfg.meshes)

@@ -57,8 +57,7 @@ bool Contains(const std::vector<std::string>& v, const std::string& x) {
 // sweeps, into the analyzer and the simulator 70-130; a run to convergence takes about 65 sweeps.
 class Steps {
  public:
-  static constexpr double kAnalysis = 15, kSimulation = 100, kSweepsToConverge = 65,
-                          kMachine = 60;
+  static constexpr double kAnalysis = 15, kSimulation = 100, kSweepsToConverge = 65, kMachine = 60;
   Steps(const Log& log, const ReportConfig& cfg, const std::vector<ReportMesh>& meshes)
       : log_(log), t0_(Clock::now()) {
     double p_sum = 0;
@@ -189,8 +188,8 @@ MachineRun Collect(const MulticoreSimulation& sim, const std::string& mesh,
 
 // The many-core part for one mesh: every ordering at every thread count, both placements fed
 // from one stream; at one thread also with the prefetcher.
-void MeasureMachine(const ReportConfig& cfg, const ReportMesh& mr, const Mesh& base,
-                    ReportData* d, Steps& steps) {
+void MeasureMachine(const ReportConfig& cfg, const ReportMesh& mr, const Mesh& base, ReportData* d,
+                    Steps& steps) {
   Machine machine = ParseMachine(cfg.machine);
   Machine prefetching = machine;
   SetPrefetch(&prefetching, cfg.prefetch_levels);
@@ -541,6 +540,7 @@ void CheckReportConfig(const ReportConfig& cfg) {
     SetPrefetch(&m, cfg.prefetch_levels);
     if (cfg.machine_threads.empty()) throw UsageError("--machine-threads: no thread count");
     for (int p : cfg.machine_threads) PlaceThreads(m, p, Placement::kScatter);
+    SetPrefetch(&m, cfg.prefetch_levels);
     if (cfg.machine_sweeps < 2 || cfg.machine_sweeps > 16)
       throw UsageError("machine sweeps must be 2..16 (the last one is counted, warm)");
   }

@@ -42,6 +42,19 @@ MESHREUSE_REPORT_TABLE(ReportReorderCost, "reorder_cost", "text, \"Discussion on
                        "Reordering cost",
                        "Cost of reordering in ORI sweeps (one thread): computing the ordering and "
                        "applying it")
+MESHREUSE_REPORT_TABLE(ReportMachineMisses, "machine_misses", "Figure 11 (data)",
+                       "Many cores: misses per level on the simulated machine",
+                       "Simulated misses of the warm sweep per level on the many-core machine "
+                       "($\\times 10^3$, mean over the meshes), by placement and thread count")
+MESHREUSE_REPORT_TABLE(ReportPredictedSpeedup, "predicted_speedup",
+                       "Figures 10, 12, 13; text, \"Parallel execution\"",
+                       "Many cores: Speedup(p) and Gain(p) predicted",
+                       "Speedup(p) and Gain(p) predicted by the many-core simulator's cost model "
+                       "(mean over the meshes), beside the measured speedup and the paper's claims")
+MESHREUSE_REPORT_TABLE(ReportPrefetch, "prefetch", "Table 3 (measured)",
+                       "A next-line prefetcher against the paper's measured misses",
+                       "One-thread misses ($\\times 10^3$) without and with a next-line prefetcher, "
+                       "beside the paper's PAPI measurements")
 MESHREUSE_REPORT_DATA(ReportHistogramData, "histogram.csv")
 MESHREUSE_REPORT_DATA(ReportProfileData, "profile.csv")
 MESHREUSE_REPORT_DATA(ReportCapacitiesData, "capacities.csv")
@@ -52,6 +65,7 @@ MESHREUSE_REPORT_DATA(ReportCompareJson, "compare.json")
 MESHREUSE_REPORT_DATA(ReportMeshDrawing, "meshes.csv")
 MESHREUSE_REPORT_DATA(ReportSmoothingWindow, "smoothing.csv")
 MESHREUSE_REPORT_DATA(ReportOrderPositions, "order_positions.csv")
+MESHREUSE_REPORT_DATA(ReportMachineData, "machine.csv")
 MESHREUSE_REPORT_FIGURE("figure1", "Figure 1", "plot_figure1.py",
                         "data/figure1.csv data/figure1_summary.csv", "",
                         "reuse distance of every access of the first sweep on {figure1_mesh} "
@@ -83,6 +97,17 @@ MESHREUSE_REPORT_FIGURE("smoothing", "-", "plot_smoothing.py", "data/smoothing.c
 MESHREUSE_REPORT_FIGURE("orderings", "-", "plot_orderings.py", "data/order_positions.csv", "",
                         "each ordering as a picture: {figure1_mesh}'s vertices coloured by their "
                         "position in the ordering")
+MESHREUSE_REPORT_FIGURE("figure11", "Figure 11", "plot_machine.py:figure11", "data/machine.csv", "",
+                        "accesses served by L2, L3 and memory against the cores on the simulated "
+                        "machine (ORI, BFS, RDR; compact solid, scatter dashed)")
+MESHREUSE_REPORT_FIGURE("machine-misses", "-", "plot_machine.py:misses",
+                        "tables/machine_misses.csv", "",
+                        "simulated misses per level against the cores, mean over the meshes, both "
+                        "placements")
+MESHREUSE_REPORT_FIGURE("predicted-speedup", "Figure 12", "plot_machine.py:speedup",
+                        "tables/predicted_speedup.csv", "",
+                        "Speedup(p) predicted on the simulated machine (both placements, latency "
+                        "range shaded) beside the measured speedups and the paper's claim")
 MESHREUSE_REPORT_FIGURE("scale", "-", "plot_scale.py",
                         "tables/table1.csv tables/time.csv data/misses.csv", "scale",
                         "time per vertex per sweep and simulated misses per access vs size")

@@ -3,15 +3,18 @@
 # command. Installs what is missing, builds Release, meshes the nine shipped shapes with Triangle
 # to the paper's vertex counts (cached under out/meshes/), runs `meshreuse report` (Table 1, 2, 3,
 # misses and their reductions, execution times, speedups, Speedup(p)/Gain(p), reordering cost; on
-# 1..nproc threads) and scripts/plot_report.py (every figure, PNG and PDF), then prints the
+# 1..nproc threads; and the many-core part: the paper's 4 x 8-core Westmere-EX simulated at 1-32
+# threads, compact and scatter, Figure 11 and Speedup(p) predicted) and scripts/plot_report.py (every figure, PNG and PDF), then prints the
 # results README's path: results/<date>/README.md (ours | paper | difference, every figure).
 #
 # Usage: scripts/reproduce.sh [--quick | --scale] [--orderings ori,bfs,rdr,file:my.perm,...]
 #          [--threads 1,2] [--repeat 3|auto] [--vertices N] [--shapes a,b,...] [--out DIR] [--quiet]
-#   --quick   the same pipeline on 20,000-vertex meshes, three rounds (seconds; CI runs it): too
-#             small for the paper's columns, which the default run on the paper's sizes fills
+#   --quick   the same pipeline on 20,000-vertex meshes, three rounds, the machine simulated at
+#             1, 4 and 32 threads (a minute; CI runs it): too small for the paper's columns,
+#             which the default run on the paper's sizes fills
 #   --scale   one shape (ocean) at 10^4, 10^5, 10^6 and 10^7 vertices, one thread (~15 min): time per vertex
-#             per sweep and simulated misses per access against size (figure "scale")
+#             per sweep and simulated misses per access against size (figure "scale"); no
+#             many-core part
 #   --orderings  registered names (meshreuse orderings) or file:PATH (a permutation file, one
 #             old vertex id per line in new order; {mesh} in PATH stands for each mesh's name,
 #             e.g. file:perms/{mesh}.perm; LABEL=file:PATH names its rows); ori is always run
@@ -120,11 +123,12 @@ case $mode in
     for s in "${names[@]}"; do files+=("$(mesh "$s" "$vertices" "out/meshes/${vertices:-paper}")"); done ;;
   quick)
     IFS=, read -r -a names <<<"$shapes"
-    for s in "${names[@]}"; do files+=("$(mesh "$s" "${vertices:-20000}" "out/meshes/${vertices:-20000}")"); done ;;
+    for s in "${names[@]}"; do files+=("$(mesh "$s" "${vertices:-20000}" "out/meshes/${vertices:-20000}")"); done
+    args+=(--machine-threads 1,4,32) ;;
   scale)
     for v in 10000 100000 1000000 10000000; do files+=("$(mesh ocean "$v" out/meshes/scale "ocean-$v")"); done
     [[ -n $threads ]] || args+=(--threads 1)
-    args+=(--figure1-mesh none --profile-mesh none) ;;
+    args+=(--figure1-mesh none --profile-mesh none --machine none) ;;
 esac
 
 say "running meshreuse report on ${#files[@]} meshes ($mode): orderings $orderings -> $out"

@@ -44,7 +44,8 @@ echo "== the report on small meshes: scripts/reproduce.sh --quick, every file ch
 rm -rf build/quick-report
 bash scripts/reproduce.sh --quick --quiet --out build/quick-report >/dev/null
 /usr/bin/python3 tests/scripts/check_report.py build/quick-report figure1 profile histograms \
-  miss-rates time speedup speedup-mean gain meshes smoothing orderings
+  miss-rates time speedup speedup-mean gain meshes smoothing orderings figure11 machine-misses \
+  predicted-speedup
 if ((quick == 0)); then
   build build/asan -DCMAKE_BUILD_TYPE=Debug -DMESHREUSE_SANITIZE=ON
   ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \

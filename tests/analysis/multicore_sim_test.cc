@@ -98,14 +98,14 @@ TEST(Multicore, AWriteInvalidatesAnotherSocketsSharedLevel) {
   MulticoreSimulation sim(Make(2, 1, {Level("L1", 64, 1, false), Level("L2", 4096, 4, true)}),
                           Placement::kCompact);
   sim.Resize(2);
-  sim.Access(0, 0, 8, false);  // socket 0 holds line 0 in L1 and L2
+  sim.Access(0, 0, 8, false);   // socket 0 holds line 0 in L1 and L2
   sim.Access(0, 64, 8, false);  // line 1 pushes line 0 out of core 0's one-line L1
   sim.Access(1, 0, 8, true);    // core 1 (socket 1) writes line 0: socket 0's L2 copy goes
   sim.Access(0, 0, 8, false);   // core 0: misses L1 and its socket's L2 (coherence), memory
   EXPECT_EQ(sim.Stats(0).levels[1].coherence, 1u);
   EXPECT_EQ(sim.Stats(0).levels[1].misses, 3u);
   EXPECT_EQ(sim.Stats(0).levels[0].coherence, 0u);  // L1 had lost it to capacity, not coherence
-  EXPECT_EQ(sim.Stats(1).memory_remote, 1u);  // first touch: the pages live on socket 0
+  EXPECT_EQ(sim.Stats(1).memory_remote, 1u);        // first touch: the pages live on socket 0
 }
 
 TEST(Multicore, AnInclusiveEvictionRemovesAPrivateLine) {
@@ -123,6 +123,23 @@ TEST(Multicore, AnInclusiveEvictionRemovesAPrivateLine) {
     EXPECT_EQ(sim.Stats(0).levels[0].inclusion_victims, inclusive ? 2u : 0u);
     EXPECT_EQ(sim.Stats(0).levels[0].misses, inclusive ? 3u : 2u);
   }
+}
+
+TEST(Multicore, APrefetchedLineIsBroughtIntoTheLevelsBelowToo) {
+  // L1: 2 lines (1 set x 2 ways) with the prefetcher; L2 shared, inclusive, large.
+  MulticoreSimulation sim(
+      Make(1, 1, {Level("L1", 128, 2, false, false, true), Level("L2", 64 * 64, 4, true, true)}),
+      Placement::kCompact);
+  sim.Resize(1);
+  for (uint64_t line : {0, 2, 4}) sim.Access(0, line * 64, 8, false);  // each brings line + 1
+  sim.Access(0, 64, 8, false);  // line 1: long gone from L1, but in L2 since its prefetch
+  const ThreadStats& s = sim.Stats(0);
+  EXPECT_EQ(s.levels[0].misses, 4u);
+  EXPECT_EQ(s.levels[0].prefetches, 4u);  // 1, 3, 5, then 2 again (evicted from L1 by then)
+  EXPECT_EQ(s.levels[1].accesses, 4u);
+  EXPECT_EQ(s.levels[1].misses, 3u);  // lines 0, 2, 4; line 1 hits
+  EXPECT_EQ(s.levels[1].prefetches, 0u);
+  EXPECT_EQ(s.memory_local, 3u);
 }
 
 TEST(Multicore, ANextLinePrefetchHidesAMiss) {
@@ -271,8 +288,8 @@ struct Naive {
       Owner o;
       for (size_t i = from; i < to; ++i) {
         const uint64_t sets = m.levels[i].cache.bytes / m.line_bytes / m.levels[i].cache.ways;
-        o.caches.push_back({sets, m.levels[i].cache.ways,
-                            std::vector<std::list<uint64_t>>(sets), {}});
+        o.caches.push_back(
+            {sets, m.levels[i].cache.ways, std::vector<std::list<uint64_t>>(sets), {}});
       }
       return o;
     };
@@ -314,12 +331,18 @@ struct Naive {
         c.prefetched.erase(l);
         if (shared && m.levels[i].inclusive && victim) Evicted(socket, *victim);
         if (m.levels[i].prefetch && !c.Has(l + 1)) {
-          std::optional<uint64_t> v2;
-          c.Touch(l + 1, &v2);
           c.prefetched.insert(l + 1);
-          o.removed.erase(l + 1);  // back in the owner: no longer taken by coherence
           ++s.prefetches;
-          if (shared && m.levels[i].inclusive && v2) Evicted(socket, *v2);
+          for (size_t j = i; j < m.levels.size(); ++j) {  // this level and those below lacking it
+            const bool sj = j >= np;
+            Owner& oj = sj ? sockets[socket] : cores[core];
+            Cache& cj = oj.caches[sj ? j - np : j];
+            if (cj.Has(l + 1)) continue;
+            std::optional<uint64_t> v2;
+            cj.Touch(l + 1, &v2);
+            oj.removed.erase(l + 1);  // back in the owner: no longer taken by coherence
+            if (sj && m.levels[j].inclusive && v2) Evicted(socket, *v2);
+          }
         }
       }
       if (hit) {
@@ -336,7 +359,8 @@ struct Naive {
       if (reached_shared) sockets[socket].removed.erase(l);
     }
     if (all_missed) {
-      const int home = m.numa == Numa::kFirstTouch ? 0 : static_cast<int>((first * 64 >> 12) % m.sockets);
+      const int home =
+          m.numa == Numa::kFirstTouch ? 0 : static_cast<int>((first * 64 >> 12) % m.sockets);
       ++(home == socket ? stats[t].memory_local : stats[t].memory_remote);
     }
     if (write && m.coherence)
@@ -394,45 +418,50 @@ std::vector<Machine> SmallMachines() {
   return out;
 }
 
+// far: every 4 KiB page of the stream 2^34 bytes from the next, so the line records live in the
+// simulator's hash table (beyond its dense range) and it grows while accesses straddle and
+// prefetch.
 TEST(Multicore, MatchesANaiveReferenceOnRandomStreams) {
   std::mt19937_64 rng(11);
-  for (const Machine& m : SmallMachines())
-    for (Placement pl : {Placement::kCompact, Placement::kScatter}) {
-      const int p = 1 + static_cast<int>(rng() % 4);
-      MulticoreSimulation sim(m, pl);
-      sim.Resize(p);
-      Naive ref(m, p, pl);
-      std::vector<uint64_t> at(p, 0);
-      for (int i = 0; i < 30000; ++i) {
-        const int t = static_cast<int>(rng() % p);
-        // Each thread walks its own region with jumps, and sometimes the shared one.
-        at[t] = rng() % 5 == 0 ? (rng() % 8192) * 8 : at[t] + 8 * (rng() % 9);
-        const uint64_t a = rng() % 3 == 0 ? (rng() % 512) * 8 : at[t] + (uint64_t(t) << 16);
-        const uint32_t size = std::array<uint32_t, 4>{8, 8, 16, 4}[rng() % 4];
-        const bool write = rng() % 4 == 0;
-        sim.Access(t, a, size, write);
-        ref.Access(t, a, size, write);
+  for (const bool far : {false, true})
+    for (const Machine& m : SmallMachines())
+      for (Placement pl : {Placement::kCompact, Placement::kScatter}) {
+        const int p = 1 + static_cast<int>(rng() % 4);
+        MulticoreSimulation sim(m, pl);
+        sim.Resize(p);
+        Naive ref(m, p, pl);
+        std::vector<uint64_t> at(p, 0);
+        for (int i = 0; i < 30000; ++i) {
+          const int t = static_cast<int>(rng() % p);
+          // Each thread walks its own region with jumps, and sometimes the shared one.
+          at[t] = rng() % 5 == 0 ? (rng() % 8192) * 8 : at[t] + 8 * (rng() % 9);
+          uint64_t a = rng() % 3 == 0 ? (rng() % 512) * 8 : at[t] + (uint64_t(t) << 16);
+          if (far) a = (a & 4095) | ((a >> 12) << 34);
+          const uint32_t size = std::array<uint32_t, 4>{8, 8, 16, 4}[rng() % 4];
+          const bool write = rng() % 4 == 0;
+          sim.Access(t, a, size, write);
+          ref.Access(t, a, size, write);
+        }
+        ThreadStats total;
+        for (int t = 0; t < p; ++t) {
+          ExpectSame(sim.Stats(t), ref.stats[t],
+                     std::string(PlacementName(pl)) + " thread " + std::to_string(t));
+          total += sim.Stats(t);
+        }
+        // The rules under test did act: coherence with several threads, inclusion, the prefetcher.
+        uint64_t coherence = 0, victims = 0, hidden = 0;
+        for (const CoreLevelStats& l : total.levels)
+          coherence += l.coherence, victims += l.inclusion_victims, hidden += l.prefetch_hits;
+        if (p > 1 && m.coherence) {
+          EXPECT_GT(coherence, 0u);
+        }
+        if (m.levels[2].inclusive) {
+          EXPECT_GT(victims, 0u);
+        }
+        if (m.levels[0].prefetch) {
+          EXPECT_GT(hidden, 0u);
+        }
       }
-      ThreadStats total;
-      for (int t = 0; t < p; ++t) {
-        ExpectSame(sim.Stats(t), ref.stats[t],
-                   std::string(PlacementName(pl)) + " thread " + std::to_string(t));
-        total += sim.Stats(t);
-      }
-      // The rules under test did act: coherence with several threads, inclusion, the prefetcher.
-      uint64_t coherence = 0, victims = 0, hidden = 0;
-      for (const CoreLevelStats& l : total.levels)
-        coherence += l.coherence, victims += l.inclusion_victims, hidden += l.prefetch_hits;
-      if (p > 1 && m.coherence) {
-        EXPECT_GT(coherence, 0u);
-      }
-      if (m.levels[2].inclusive) {
-        EXPECT_GT(victims, 0u);
-      }
-      if (m.levels[0].prefetch) {
-        EXPECT_GT(hidden, 0u);
-      }
-    }
 }
 
 // The mesh's streams, recorded once per (p, interleaving), through both.

@@ -14,6 +14,7 @@
 #include "analysis/reference.h"
 #include "core/orderings/registry.h"
 #include "reports/run_info.h"
+#include "reports/simulate.h"
 #include "tests/test_util.h"
 
 namespace meshreuse {
@@ -156,7 +157,8 @@ TEST(Report, Table2MatchesTheTextbookStackDistance) {
   std::vector<std::string> tables, figures;
   for (const Json& t : manifest["tables"]) tables.push_back(t["name"]);
   EXPECT_EQ(tables,
-            (std::vector<std::string>{"table1", "table2", "table3", "misses", "miss_reduction"}));
+            (std::vector<std::string>{"table1", "table2", "table3", "misses", "miss_reduction",
+                                      "machine_misses", "predicted_speedup", "prefetch"}));
   for (const Json& d : manifest["data"])
     EXPECT_TRUE(std::filesystem::exists(out / ("r/" + d["file"].get<std::string>()))) << d;
   for (const Json& fig : manifest["figures"]) {
@@ -165,7 +167,8 @@ TEST(Report, Table2MatchesTheTextbookStackDistance) {
       EXPECT_TRUE(std::filesystem::exists(out / ("r/" + in.get<std::string>()))) << fig;
   }
   EXPECT_EQ(figures, (std::vector<std::string>{"figure1", "profile", "histograms", "miss-rates",
-                                               "meshes", "smoothing", "orderings"}));
+                                               "meshes", "smoothing", "orderings", "figure11",
+                                               "machine-misses", "predicted-speedup"}));
 }
 
 TEST(Report, SameConfigurationSameNonTimingFilesByteForByte) {
@@ -196,6 +199,92 @@ TEST(Report, PapersValuesOnlyBesideAMeshOfThePapersSize) {
   EXPECT_EQ(t1[0].at("interior"), std::to_string(m.interior.size()));
 }
 
+// The many-core part: each machine.csv row is the simulator's warm sweep of that run, summed over
+// the threads (checked against `simulate --machine` run here), one thread is one run for both
+// placements, and the predicted speedups and gains are the means of the cycle ratios recomputed
+// from machine.csv.
+TEST(Report, ManyCorePartIsTheSimulatorsWarmSweepAndItsRatios) {
+  Fixture f;
+  testing::TempDir out;
+  ReportConfig c = f.Config();
+  c.machine_threads = {1, 2, 4};
+  RunReport(c, out / "r", {});
+  const auto rows = Csv(out / "r/data/machine.csv");
+  auto find = [&](const std::string& mesh, const std::string& ord, const std::string& placement,
+                  int p, const std::string& level, const std::string& prefetch = "off") {
+    for (const auto& r : rows)
+      if (r.at("mesh") == mesh && r.at("ordering") == ord && r.at("placement") == placement &&
+          r.at("threads") == std::to_string(p) && r.at("level") == level &&
+          r.at("prefetch") == prefetch)
+        return r;
+    ADD_FAILURE() << mesh << " " << ord << " " << placement << " " << p << " " << level;
+    return std::map<std::string, std::string>{};
+  };
+  for (const auto& r : rows) {
+    EXPECT_FALSE(r.at("threads") == "1" && r.at("placement") == "scatter");
+    EXPECT_TRUE(r.at("prefetch") == "off" || r.at("threads") == "1");
+  }
+  // Against the simulator run directly: carabiner, bfs, 4 threads scattered.
+  SimulateConfig sc;
+  sc.inputs = {f.meshes[1]};
+  sc.orderings = {"bfs"};
+  sc.iterations = c.machine_sweeps;
+  sc.threads = 4;
+  sc.machine = "westmere-ex";
+  sc.placement = Placement::kScatter;
+  sc.interleave = 1;
+  const auto sims = RunMachineSimulate(sc, Log{});
+  ASSERT_EQ(sims.size(), 1u);
+  const MulticoreSimulation& sim = *sims[0];
+  ThreadStats sum;
+  double slowest = 0;
+  for (int t = 0; t < sim.threads(); ++t) {
+    const ThreadStats s = sim.SweepStats(t, sim.sweeps() - 1);
+    sum += s;
+    slowest = std::max(slowest, s.CyclesHigh(sim.machine()));
+  }
+  for (size_t i = 0; i < sum.levels.size(); ++i) {
+    const auto r = find("carabiner", "bfs", "scatter", 4, sim.machine().levels[i].cache.name);
+    EXPECT_EQ(r.at("accesses"), std::to_string(sum.levels[i].accesses));
+    EXPECT_EQ(r.at("misses"), std::to_string(sum.levels[i].misses));
+    EXPECT_EQ(r.at("served"), std::to_string(sum.levels[i].accesses - sum.levels[i].misses));
+    EXPECT_EQ(r.at("coherence"), std::to_string(sum.levels[i].coherence));
+    EXPECT_NEAR(std::stod(r.at("cycles_high")), slowest, 1e-6 * slowest);
+  }
+  EXPECT_EQ(find("carabiner", "bfs", "scatter", 4, "memory_remote").at("accesses"),
+            std::to_string(sum.memory_remote));
+  EXPECT_GT(sum.memory_remote + sum.memory_local, 0u);  // the mesh was streamed cold
+  EXPECT_GT(std::stoull(find("carabiner", "bfs", "compact", 1, "L1", "on").at("prefetches")), 0u);
+  // Predicted speedups and gains: means over the meshes of cycle ratios, from machine.csv.
+  auto cycles = [&](const std::string& mesh, const std::string& ord, const std::string& pl, int p,
+                    const char* end) {
+    return std::stod(find(mesh, ord, p == 1 ? "compact" : pl, p, "L1").at(end));
+  };
+  int checked = 0;
+  for (const auto& r : Csv(out / "r/tables/predicted_speedup.csv")) {
+    const std::string ord = r.at("ordering"), pl = r.at("placement");
+    const int p = std::stoi(r.at("threads"));
+    for (const char* end : {"cycles_low", "cycles_high"}) {
+      const std::string suffix = std::string(end) == "cycles_low" ? "_low" : "_high";
+      double speedup = 0, gain = 0;
+      for (const char* mesh : {"ocean", "carabiner"}) {
+        const double cost = cycles(mesh, ord, pl, p, end);
+        speedup += cycles(mesh, "ori", pl, 1, end) / cost / 2;
+        gain += 100 * (1 - cost / cycles(mesh, "bfs", pl, p, end)) / 2;
+      }
+      EXPECT_NEAR(std::stod(r.at("speedup" + suffix)), speedup, 0.006) << ord << pl << p;
+      if (ord != "bfs") {
+        EXPECT_NEAR(std::stod(r.at("gain_vs_bfs_pct" + suffix)), gain, 0.06) << ord << pl << p;
+      }
+      ++checked;
+    }
+    if (ord == "ori" && p == 1) {
+      EXPECT_EQ(r.at("speedup_low"), "1.00");
+    }
+  }
+  EXPECT_EQ(checked, 3 * 2 * 3 * 2);
+}
+
 TEST(Report, RejectsABadConfigurationBeforeAnyWork) {
   Fixture f;
   ReportConfig c = f.Config();
@@ -206,6 +295,15 @@ TEST(Report, RejectsABadConfigurationBeforeAnyWork) {
   EXPECT_THROW(CheckReportConfig(c), std::invalid_argument);
   c = f.Config();
   c.threads = {0};
+  EXPECT_THROW(CheckReportConfig(c), std::invalid_argument);
+  c = f.Config();
+  c.machine_threads = {33};  // beyond westmere-ex's 32 cores
+  EXPECT_THROW(CheckReportConfig(c), std::invalid_argument);
+  c = f.Config();
+  c.prefetch_levels = "L9";
+  EXPECT_THROW(CheckReportConfig(c), std::invalid_argument);
+  c = f.Config();
+  c.machine_sweeps = 1;  // no warm sweep
   EXPECT_THROW(CheckReportConfig(c), std::invalid_argument);
 }
 
