@@ -539,8 +539,10 @@ void CheckReportConfig(const ReportConfig& cfg) {
     Machine m = ParseMachine(cfg.machine);
     SetPrefetch(&m, cfg.prefetch_levels);
     if (cfg.machine_threads.empty()) throw UsageError("--machine-threads: no thread count");
-    for (int p : cfg.machine_threads) PlaceThreads(m, p, Placement::kScatter);
-    SetPrefetch(&m, cfg.prefetch_levels);
+    for (int p : cfg.machine_threads)
+      if (p < 1 || p > m.cores())
+        throw UsageError("--machine-threads " + std::to_string(p) + ": the machine " + m.name +
+                         " has " + std::to_string(m.cores()) + " cores");
     if (cfg.machine_sweeps < 2 || cfg.machine_sweeps > 16)
       throw UsageError("machine sweeps must be 2..16 (the last one is counted, warm)");
   }

@@ -357,6 +357,26 @@ check "report out not empty" 2 "$bin" report "$data/two_interior.node" --out "$t
 contains "report out not empty" "is not empty"
 check "report bad ordering" 2 "$bin" report "$data/two_interior.node" --out "$tmp/rep" --orderings ori,frob --quiet
 [[ ! -e $tmp/rep/run.json ]] && pass=$((pass + 1)) || { fail=$((fail + 1)); echo "FAIL report bad ordering wrote files"; }
+# The many-core simulator and the report's many-core options (issue 21).
+check "simulate machine" 0 "$bin" simulate "$data/two_interior.node" --machine westmere-ex --threads 4 --placement scatter --warm --csv --quiet
+contains "simulate machine" "memory_remote"
+check "simulate machine cores" 2 "$bin" simulate "$data/two_interior.node" --machine westmere-ex --threads 33 --quiet
+contains "simulate machine cores" "has 32 cores"
+check "simulate machine unknown" 2 "$bin" simulate "$data/two_interior.node" --machine nosuch --quiet
+contains "simulate machine unknown" "neither westmere-ex nor a machine file"
+printf 'name x\nsockets 2\ncores 2\nline 64\nmemory 1 2\nprivate L1=32K/8@4\nfrob 3\n' >"$tmp/bad.machine"
+check "simulate machine file" 2 "$bin" simulate "$data/two_interior.node" --machine "$tmp/bad.machine" --quiet
+contains "simulate machine file" "bad.machine:7: unknown key 'frob'"
+check "simulate placement alone" 2 "$bin" simulate "$data/two_interior.node" --placement scatter --quiet
+contains "simulate placement alone" "--placement needs --machine"
+check "simulate machine and cache" 2 "$bin" simulate "$data/two_interior.node" --machine westmere-ex --cache L1=1K/2 --quiet
+check "report machine threads" 2 "$bin" report "$data/two_interior.node" --out "$tmp/rep" --machine-threads 1,64 --quiet
+contains "report machine threads" "--machine-threads 64: the machine westmere-ex has 32 cores"
+check "report prefetch" 2 "$bin" report "$data/two_interior.node" --out "$tmp/rep" --prefetch L9 --quiet
+contains "report prefetch" "no level 'L9'"
+[[ ! -e $tmp/rep ]] && pass=$((pass + 1)) || { fail=$((fail + 1)); echo "FAIL report with a bad machine option made its folder"; }
+check "report no machine" 0 "$bin" report "$data/two_interior.node" --out "$tmp/rep-nomachine" --machine none --no-timing --figure1-mesh none --profile-mesh none --quiet
+[[ ! -e $tmp/rep-nomachine/tables/machine_misses.csv && ! -e $tmp/rep-nomachine/data/machine.csv ]] && pass=$((pass + 1)) || { fail=$((fail + 1)); echo "FAIL report --machine none wrote the many-core part"; }
 # A trace without sweeps has no profile: said, no empty file.
 check "profile without sweeps" 0 bash -c "printf '1\n2\n1\n' | '$bin' analyze - --format text --out '$tmp/nosweep' --quiet"
 contains "profile without sweeps" "no profile written: the input has no sweeps"
