@@ -3,9 +3,12 @@
 // manifest and the results README follow from the same table.
 #include "reports/report.h"
 
+#include <omp.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <exception>
 #include <filesystem>
 #include <limits>
 #include <set>
@@ -187,35 +190,54 @@ MachineRun Collect(const MulticoreSimulation& sim, const std::string& mesh,
 }
 
 // The many-core part for one mesh: every ordering at every thread count, both placements fed
-// from one stream; at one thread also with the prefetcher.
+// from one stream; at one thread also with the prefetcher. The thread counts of an ordering run
+// side by side on the host's cores (each its own stream and simulators, results kept in job
+// order, so nothing depends on the schedule); one ordering's layout in memory at a time.
 void MeasureMachine(const ReportConfig& cfg, const ReportMesh& mr, const Mesh& base, ReportData* d,
                     Steps& steps) {
   Machine machine = ParseMachine(cfg.machine);
   Machine prefetching = machine;
   SetPrefetch(&prefetching, cfg.prefetch_levels);
+  const int jobs = static_cast<int>(cfg.machine_threads.size());
   for (size_t k = 0; k < cfg.orderings.size(); ++k) {
     const Permutation p = ComputeOrdering(ForMesh(cfg.orderings[k], mr.name), base, cfg.seed);
     const Mesh laid = ApplyPermutation(base, p, cfg.triangle_order);
-    for (int threads : cfg.machine_threads) {
-      steps.Say("many-core simulation: " + mr.name + " " + d->orderings[k] + ", " +
-                std::to_string(threads) + " thread(s) on " + machine.name);
-      SmoothOptions o = Sweeps(cfg.machine_sweeps);
-      o.threads = threads;
-      o.interleave = 1;
-      MulticoreSimulation compact(machine, Placement::kCompact),
-          scatter(machine, Placement::kScatter), pre(prefetching, Placement::kCompact);
-      std::vector<AccessConsumer*> to = {&compact};
-      if (threads > 1) to.push_back(&scatter);
-      if (threads == 1 && !cfg.prefetch_levels.empty()) to.push_back(&pre);
-      FanOut all(to);
-      Mesh m = laid.Clone();
-      StreamMesh(m, o, mr.name, d->orderings[k], all);
-      d->machine.push_back(Collect(compact, mr.name, d->orderings[k], false));
-      if (threads > 1) d->machine.push_back(Collect(scatter, mr.name, d->orderings[k], false));
-      if (threads == 1 && !cfg.prefetch_levels.empty())
-        d->machine.push_back(Collect(pre, mr.name, d->orderings[k], true));
-      steps.Done(mr.weight * Steps::kMachine * cfg.machine_sweeps * static_cast<double>(to.size()));
+    const std::string& label = d->orderings[k];
+    std::vector<std::vector<MachineRun>> runs(jobs);
+    std::exception_ptr failed;
+#pragma omp parallel for schedule(dynamic, 1) num_threads(std::min(jobs, omp_get_max_threads()))
+    for (int j = 0; j < jobs; ++j) {
+      try {
+        const int threads = cfg.machine_threads[j];
+#pragma omp critical(meshreuse_report_steps)
+        steps.Say("many-core simulation: " + mr.name + " " + label + ", " +
+                  std::to_string(threads) + " thread(s) on " + machine.name);
+        SmoothOptions o = Sweeps(cfg.machine_sweeps);
+        o.threads = threads;
+        o.interleave = 1;
+        MulticoreSimulation compact(machine, Placement::kCompact),
+            scatter(machine, Placement::kScatter), pre(prefetching, Placement::kCompact);
+        std::vector<AccessConsumer*> to = {&compact};
+        if (threads > 1) to.push_back(&scatter);
+        if (threads == 1 && !cfg.prefetch_levels.empty()) to.push_back(&pre);
+        FanOut all(to);
+        Mesh m = laid.Clone();
+        StreamMesh(m, o, mr.name, label, all);
+        runs[j].push_back(Collect(compact, mr.name, label, false));
+        if (threads > 1) runs[j].push_back(Collect(scatter, mr.name, label, false));
+        if (threads == 1 && !cfg.prefetch_levels.empty())
+          runs[j].push_back(Collect(pre, mr.name, label, true));
+#pragma omp critical(meshreuse_report_steps)
+        steps.Done(mr.weight * Steps::kMachine * cfg.machine_sweeps *
+                   static_cast<double>(to.size()));
+      } catch (...) {
+#pragma omp critical(meshreuse_report_failed)
+        if (!failed) failed = std::current_exception();
+      }
     }
+    if (failed) std::rethrow_exception(failed);
+    for (std::vector<MachineRun>& r : runs)
+      for (MachineRun& x : r) d->machine.push_back(std::move(x));
   }
 }
 
