@@ -5,6 +5,7 @@
 
 #include "cli/common.h"
 #include "core/error.h"
+#include "core/mesh_io.h"
 #include "core/shapes.h"
 #include "core/table.h"
 #include "core/triangle_runner.h"
@@ -49,6 +50,7 @@ int MeshGenerate(const Args& args) {
     throw UsageError(
         "--min-angle must be between 0 and 34 degrees (Triangle may not terminate above)");
   if (out.empty()) out = "out/" + (info ? shape : std::string("mesh"));
+  MeshOutputFiles(out);  // refuses a prefix that names no file
   const Progress progress(vm.count("quiet") > 0);
   TriangulateOptions opt;
   opt.target_vertices = vertices;

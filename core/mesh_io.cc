@@ -91,6 +91,9 @@ std::vector<std::string> MeshOutputFiles(const std::string& target) {
   if (EndsWith(target, ".vtk")) return {target};
   const std::string prefix =
       EndsWith(target, ".node") ? target.substr(0, target.size() - 5) : target;
+  // "" or "dir/" would write the hidden files ".node" and ".ele": a prefix must name a file.
+  if (prefix.empty() || prefix.back() == '/')
+    throw UsageError("-o '" + target + "': the prefix names no file (e.g. out/mesh)");
   return {prefix + ".node", prefix + ".ele"};
 }
 

@@ -262,12 +262,12 @@ TriangulateResult TriangulatePoly(const std::string& poly_path, const std::strin
         std::exp((std::log(static_cast<double>(goal)) - std::log(static_cast<double>(v))) / slope);
   }
   if (!(best_err <= opt.accept))
-    throw std::runtime_error("could not mesh " + poly_path + " to " +
-                             std::to_string(opt.target_vertices) + " vertices within " +
-                             std::to_string(static_cast<int>(opt.accept * 100)) + "% in " +
-                             std::to_string(r.runs) + " Triangle runs (closest: " +
-                             (best.vertices ? std::to_string(best.vertices) : std::string("none")) +
-                             "); the outline may need more vertices than that");
+    throw UsageError("--vertices " + std::to_string(opt.target_vertices) + ": could not mesh " +
+                     poly_path + " to that many vertices within " +
+                     std::to_string(static_cast<int>(opt.accept * 100)) + "% in " +
+                     std::to_string(r.runs) + " Triangle runs (closest: " +
+                     (best.vertices ? std::to_string(best.vertices) : std::string("none")) +
+                     "); its outline needs more vertices than that");
   best.runs = r.runs;
   best.node_file = prefix + ".node";
   best.ele_file = prefix + ".ele";

@@ -85,6 +85,9 @@ if command -v triangle >/dev/null; then
   check "generate" 0 "$bin" mesh generate --shape stress --vertices 3000 -o "$tmp/gen/stress" --quiet
   contains "generate" "target 3,000"
   check "generated mesh reads" 0 "$bin" mesh info "$tmp/gen/stress.node" --quiet
+  # A count the outline cannot reach is the user's to change (exit 2, naming --vertices), not a bug.
+  check "generate too few vertices" 2 "$bin" mesh generate --shape ocean --vertices 100 -o "$tmp/gen/few" --quiet
+  contains "generate too few vertices" "--vertices 100: could not mesh"
 else
   echo "note: 'triangle' not installed; skipped the generate checks"
 fi
@@ -377,6 +380,15 @@ contains "report prefetch" "no level 'L9'"
 [[ ! -e $tmp/rep ]] && pass=$((pass + 1)) || { fail=$((fail + 1)); echo "FAIL report with a bad machine option made its folder"; }
 check "report no machine" 0 "$bin" report "$data/two_interior.node" --out "$tmp/rep-nomachine" --machine none --no-timing --figure1-mesh none --profile-mesh none --quiet
 [[ ! -e $tmp/rep-nomachine/tables/machine_misses.csv && ! -e $tmp/rep-nomachine/data/machine.csv ]] && pass=$((pass + 1)) || { fail=$((fail + 1)); echo "FAIL report --machine none wrote the many-core part"; }
+# An output prefix that names no file would write the hidden ".node", ".ele" (and ".perm").
+for o in "" "$tmp/dir-prefix/" ".node"; do
+  check "reorder prefix '$o'" 2 "$bin" reorder "$data/two_interior.node" --ordering bfs -o "$o" --quiet
+  contains "reorder prefix '$o'" "the prefix names no file"
+  check "convert prefix '$o'" 2 "$bin" mesh convert "$data/two_interior.node" -o "$o" --quiet
+done
+check "generate prefix" 2 "$bin" mesh generate --shape lake -o "$tmp/dir-prefix/" --quiet
+contains "generate prefix" "the prefix names no file"
+[[ ! -e .node && ! -e .ele && ! -e .perm && ! -e $tmp/dir-prefix ]] && pass=$((pass + 1)) || { fail=$((fail + 1)); echo "FAIL a prefix naming no file wrote something"; }
 # A trace without sweeps has no profile: said, no empty file.
 check "profile without sweeps" 0 bash -c "printf '1\n2\n1\n' | '$bin' analyze - --format text --out '$tmp/nosweep' --quiet"
 contains "profile without sweeps" "no profile written: the input has no sweeps"

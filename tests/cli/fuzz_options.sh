@@ -21,7 +21,7 @@ fi
 mkfifo "$tmp/fifo"
 ln -s two_interior.node "$tmp/link_to_input.node"
 ln -s loop_b "$tmp/loop_a" && ln -s loop_a "$tmp/loop_b"
-mkdir "$tmp/dir"
+mkdir "$tmp/dir" "$tmp/cwd"
 
 values=(-1 0 1 2 3 7 65536 65537 100001 1e400 -1e400 nan inf -inf 1.5 0x10 " 7" "7 " ""
   18446744073709551616 9223372036854775807 -9223372036854775808 x auto auto:0 auto:2 auto:x
@@ -55,7 +55,7 @@ for ((i = 0; i < cases; i++)); do
   # A FIFO output needs a reader, or the writer waits for one.
   (timeout 70 cat "$tmp/fifo" >/dev/null 2>&1 &)
   rm -rf "$tmp/out.x" "$tmp/sub.out" "$tmp/out.x".* "$tmp/sub.out".*
-  timeout 60 $timer "$bin" "${cmd[@]}" --quiet >"$tmp/stdout" 2>"$tmp/stderr"
+  (cd "$tmp/cwd" && timeout 60 $timer "$bin" "${cmd[@]}" --quiet >"$tmp/stdout" 2>"$tmp/stderr")
   rc=$?
   # Unblock a reader left waiting on the FIFO.
   (exec 3<>"$tmp/fifo") 2>/dev/null
@@ -75,6 +75,11 @@ for ((i = 0; i < cases; i++)); do
   if [[ $(cat "$tmp/two_interior.node" "$tmp/two_interior.ele" | md5sum) != "$before" ]]; then
     echo "FAIL the input changed: $what"; fail=$((fail + 1))
     cp "$data/two_interior.node" "$data/two_interior.ele" "$tmp/"
+  fi
+  # Nothing lands where the command ran unless asked (an empty prefix once wrote ".node" there).
+  if [[ -n $(ls -A "$tmp/cwd") ]]; then
+    echo "FAIL wrote into its working folder ($(ls -A "$tmp/cwd" | tr '\n' ' ')): $what"
+    fail=$((fail + 1)); rm -rf "$tmp/cwd" && mkdir "$tmp/cwd"
   fi
   if ls "$tmp" | grep -q '\.tmp\.'; then
     echo "FAIL a temporary was left: $what"; fail=$((fail + 1)); rm -f "$tmp"/*.tmp.*
