@@ -149,8 +149,11 @@ def legend_below(fig, axes):
                 handles.append(h)
                 labels.append(l)
     if handles:
-        fig.legend(handles, labels, loc="lower center", ncol=min(len(labels), 6),
-                   bbox_to_anchor=(0.5, -0.02), frameon=False)
-        fig.tight_layout(rect=(0, 0.06, 1, 1))
+        ncol = min(len(labels), 6)
+        rows = -(-len(labels) // ncol)
+        fig.legend(handles, labels, loc="lower center", ncol=ncol, bbox_to_anchor=(0.5, -0.02),
+                   frameon=False)
+        # Room for the legend's rows (about 0.3 inch each) under the panels' axis labels.
+        fig.tight_layout(rect=(0, min(0.4, 0.3 * rows / fig.get_size_inches()[1]), 1, 1))
     else:
         fig.tight_layout()

@@ -90,7 +90,8 @@ ReportPart ReportPredictedSpeedup(const ReportData& d) {
       "Predicted by the many-core simulator on `" + d.cfg.machine +
       "`: C(p) is the cost model's cycles of the slowest thread in the warm sweep (every access "
       "pays L1's latency, a miss the next level's; low and high: the two ends of the machine's "
-      "latency ranges), Speedup(p) = C_ori(1) / C_ord(p) and self = C_ord(1) / C_ord(p), means "
+      "latency ranges, for westmere-ex the paper's from Molka et al., PACT 2009), Speedup(p) = "
+      "C_ori(1) / C_ord(p) and self = C_ord(1) / C_ord(p), means "
       "over the meshes. The model counts memory stalls only: no instruction costs, no bandwidth "
       "limit, no overlap of misses, so it predicts what the caches contribute, not the time. "
       "measured_speedup: this machine's timed mean (compact rows, thread counts it ran). The "
