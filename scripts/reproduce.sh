@@ -4,17 +4,18 @@
 # to the paper's vertex counts (cached under out/meshes/), runs `meshreuse report` (Table 1, 2, 3,
 # misses and their reductions, execution times, speedups, Speedup(p)/Gain(p), reordering cost; on
 # 1..nproc threads; and the many-core part: the paper's 4 x 8-core Westmere-EX simulated at 1-32
-# threads, compact and scatter, Figure 11 and Speedup(p) predicted) and scripts/plot_report.py (every figure, PNG and PDF), then prints the
-# results README's path: results/<date>/README.md (ours | paper | difference, every figure).
+# threads, compact and scatter, Figure 11 and Speedup(p) predicted) and scripts/plot_report.py
+# (every figure, PNG and PDF), then prints the results README's path: results/<date>/README.md
+# (ours | paper | difference, every figure).
 #
 # Usage: scripts/reproduce.sh [--quick | --scale] [--orderings ori,bfs,rdr,file:my.perm,...]
 #          [--threads 1,2] [--repeat 3|auto] [--vertices N] [--shapes a,b,...] [--out DIR] [--quiet]
 #   --quick   the same pipeline on 20,000-vertex meshes, three rounds, the machine simulated at
 #             1, 4 and 32 threads (a minute; CI runs it): too small for the paper's columns,
 #             which the default run on the paper's sizes fills
-#   --scale   one shape (ocean) at 10^4, 10^5, 10^6 and 10^7 vertices, one thread (~15 min): time per vertex
-#             per sweep and simulated misses per access against size (figure "scale"); no
-#             many-core part
+#   --scale   one shape (ocean) at 10^4, 10^5, 10^6 and 10^7 vertices, one thread (~15 min): time
+#             per vertex per sweep and simulated misses per access against size (figure
+#             "scale"); no many-core part
 #   --orderings  registered names (meshreuse orderings) or file:PATH (a permutation file, one
 #             old vertex id per line in new order; {mesh} in PATH stands for each mesh's name,
 #             e.g. file:perms/{mesh}.perm; LABEL=file:PATH names its rows); ori is always run
@@ -25,7 +26,7 @@ cd "$(dirname "$0")/.."
 
 mode=full vertices="" quiet="" orderings="ori,bfs,rdr" threads="" repeat=3 out=""
 shapes="carabiner,crake,dialog,lake,riverflow,ocean,stress,valve,wrench"
-usage() { sed -n '2,17p' "$0" | sed 's/^# \{0,1\}//'; }
+usage() { sed -n '2,22p' "$0" | sed 's/^# \{0,1\}//'; }
 die() { echo "reproduce.sh: $*" >&2; exit 2; }
 need() { [[ $# -ge 2 && -n $2 && $2 != --* ]] || die "$1 needs a value (see --help)"; }
 while (($#)); do
