@@ -15,6 +15,7 @@
 #include "core/orderings/registry.h"
 #include "core/schedule.h"
 #include "reports/inputs.h"
+#include "reports/run_info.h"
 #include "tracer/access_stream.h"
 #include "tracer/trace_formats.h"
 
@@ -342,9 +343,7 @@ Json AnalyzeConfigJson(const AnalyzeConfig& cfg, const AnalyzeResult& r) {
   j["format"] = cfg.format;
   j["orderings"] = cfg.orderings;
   j["seed"] = cfg.seed;
-  Json seeds = Json::object();
-  for (const auto& [label, s] : SeededOrderings(cfg.orderings, cfg.seed)) seeds[label] = s;
-  j["ordering_seeds"] = seeds;
+  j["ordering_seeds"] = OrderingSeedsJson(cfg.orderings, cfg.seed);
   j["iterations"] = cfg.iterations;
   j["threads"] = cfg.threads;
   j["mode"] = UpdateModeName(cfg.mode);

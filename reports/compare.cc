@@ -13,6 +13,7 @@
 #include "core/mesh_io.h"
 #include "core/orderings/registry.h"
 #include "core/permutation.h"
+#include "reports/run_info.h"
 #include "reports/speedup.h"
 
 namespace meshreuse {
@@ -443,9 +444,7 @@ Json CompareConfigJson(const CompareConfig& cfg) {
   Json j;
   j["meshes"] = cfg.meshes;
   j["orderings"] = cfg.orderings;
-  Json seeds = Json::object();
-  for (const auto& [label, s] : SeededOrderings(cfg.orderings, cfg.seed)) seeds[label] = s;
-  j["ordering_seeds"] = seeds;
+  j["ordering_seeds"] = OrderingSeedsJson(cfg.orderings, cfg.seed);
   j["threads"] = cfg.threads;
   j["repeat"] = cfg.repeat_auto ? Json("auto") : Json(cfg.repeat);
   j["repeat_cap"] = cfg.repeat_cap;

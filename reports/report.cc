@@ -393,9 +393,7 @@ Json ConfigurationJson(const ReportConfig& cfg) {
   j["label"] = cfg.label;
   j["meshes"] = cfg.meshes;
   j["orderings"] = cfg.orderings;
-  Json seeds = Json::object();
-  for (const auto& [label, s] : SeededOrderings(cfg.orderings, cfg.seed)) seeds[label] = s;
-  j["ordering_seeds"] = seeds;
+  j["ordering_seeds"] = OrderingSeedsJson(cfg.orderings, cfg.seed);
   j["threads"] = cfg.threads;
   j["repeat"] = cfg.repeat_auto ? Json("auto") : Json(cfg.repeat);
   j["repeat_cap"] = cfg.repeat_cap;

@@ -10,6 +10,7 @@
 #include <thread>
 
 #include "build_info.h"  // generated at build time: MESHREUSE_GIT_REV, MESHREUSE_GIT_DIRTY
+#include "core/orderings/registry.h"
 
 namespace meshreuse {
 
@@ -99,5 +100,11 @@ Json RunJson(const std::string& tool, const std::vector<std::string>& command_li
 }
 
 std::string RunJsonText(const Json& run) { return run.dump(2) + "\n"; }
+
+Json OrderingSeedsJson(const std::vector<std::string>& specs, uint64_t seed) {
+  Json seeds = Json::object();
+  for (const auto& [label, s] : SeededOrderings(specs, seed)) seeds[label] = s;
+  return seeds;
+}
 
 }  // namespace meshreuse

@@ -22,6 +22,8 @@ std::string GitRevision();
 std::string VersionString();
 // {"version", "git_revision", "git_dirty", "compiler", "compiler_version", "build_type", "flags"}
 Json BuildJson();
+// {label: seed} of the seeded orderings among `specs` (run.json's "ordering_seeds").
+Json OrderingSeedsJson(const std::vector<std::string>& specs, uint64_t seed);
 std::string UtcTimestamp();  // 2026-11-22T10:00:00Z
 
 // The whole run.json: {"tool", "command", "git_revision", "build", "time_utc", "machine",

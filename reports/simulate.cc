@@ -7,6 +7,7 @@
 #include "core/orderings/registry.h"
 #include "core/schedule.h"
 #include "reports/inputs.h"
+#include "reports/run_info.h"
 #include "tracer/access_stream.h"
 
 namespace meshreuse {
@@ -43,7 +44,7 @@ int ParseInterleave(const std::string& s) {
 }
 
 std::string InterleaveName(int interleave) {
-  return interleave == kSerialShares ? "serial"
+  return interleave == kSerialShares  ? "serial"
          : interleave == kAccessGrain ? "access"
                                       : std::to_string(interleave);
 }
@@ -142,9 +143,7 @@ Json SimulateConfigJson(const SimulateConfig& cfg) {
   j["format"] = cfg.format;
   j["orderings"] = cfg.orderings;
   j["seed"] = cfg.seed;
-  Json seeds = Json::object();
-  for (const auto& [label, s] : SeededOrderings(cfg.orderings, cfg.seed)) seeds[label] = s;
-  j["ordering_seeds"] = seeds;
+  j["ordering_seeds"] = OrderingSeedsJson(cfg.orderings, cfg.seed);
   j["iterations"] = cfg.iterations;
   j["threads"] = cfg.threads;
   j["mode"] = UpdateModeName(cfg.mode);

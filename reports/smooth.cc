@@ -12,6 +12,7 @@
 #include "core/schedule.h"
 #include "reports/compare.h"
 #include "reports/inputs.h"
+#include "reports/run_info.h"
 
 namespace meshreuse {
 
@@ -141,9 +142,7 @@ Json SmoothConfigJson(const SmoothConfig& cfg, const CounterNote& counters) {
   j["meshes"] = cfg.meshes;
   j["ordering"] = cfg.ordering;
   j["seed"] = cfg.seed;
-  Json seeds = Json::object();
-  for (const auto& [label, s] : SeededOrderings({cfg.ordering}, cfg.seed)) seeds[label] = s;
-  j["ordering_seeds"] = seeds;
+  j["ordering_seeds"] = OrderingSeedsJson({cfg.ordering}, cfg.seed);
   j["triangle_order"] = TriangleOrderName(cfg.triangle_order);
   j["counters"] = cfg.counter_events.empty() ? Json(nullptr)
                                              : Json{{"events", cfg.counter_events},

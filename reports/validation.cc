@@ -16,6 +16,7 @@
 #include "core/schedule.h"
 #include "reports/inputs.h"
 #include "reports/paper.h"
+#include "reports/run_info.h"
 
 namespace meshreuse {
 
@@ -239,9 +240,7 @@ Json ValidationConfigJson(const ValidationConfig& cfg, const std::string& mesh) 
   j["mesh"] = mesh;
   j["orderings"] = cfg.orderings;
   j["seed"] = cfg.seed;
-  Json seeds = Json::object();
-  for (const auto& [label, s] : SeededOrderings(cfg.orderings, cfg.seed)) seeds[label] = s;
-  j["ordering_seeds"] = seeds;
+  j["ordering_seeds"] = OrderingSeedsJson(cfg.orderings, cfg.seed);
   j["iterations"] = cfg.iterations;
   j["threads"] = cfg.threads;
   j["mode"] = UpdateModeName(cfg.mode);
