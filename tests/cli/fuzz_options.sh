@@ -7,7 +7,7 @@
 # never change the input. Usage: fuzz_options.sh MESHREUSE DATA [CASES] [SEED]
 # (scripts/fuzz.sh runs it for as long as the harnesses; ctest runs 300 cases, seed 1).
 set -u
-bin=$1 data=$2 cases=${3:-300} seed=${4:-1}
+bin=$(realpath "$1") data=$(realpath "$2") cases=${3:-300} seed=${4:-1}  # absolute: cases run elsewhere
 RANDOM=$seed
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
