@@ -11,10 +11,10 @@
 //     first touches are accessed in order;
 //   - the stack after the chunk is the stack before with the chunk's ids moved to the top in the
 //     order of their last access: replaying the chunk's own stack bottom-up on top does that.
-// Merge realises both on one StackDistance holding the running stack, in O((first touches +
-// distinct ids of the chunk) log) time, serially, chunk after chunk: that serial part bounds the
-// scaling (see README, "The analyzer in parallel"). Since a stack is a list of ids, the same
-// summaries can be sent between machines (message passing) unchanged.
+// MergeChunk realises both on one StackDistance holding the running stack, chunk after chunk: the
+// reference. The analyzers use the streamed merge of streamed_chain.h, which computes the same
+// without replaying chunks one after another. Since a summary is lists of ids, it can be written
+// to a file or sent between machines unchanged (reports/chunk_summary.h).
 #pragma once
 
 #include <cstddef>
@@ -58,10 +58,11 @@ void MergeChunk(StackDistance* stack, const ChunkSummary& s, Add&& add) {
   stack->TouchAll(s.stack.data(), s.stack.size());
 }
 
-// The stack distance of every access of ids, on `threads` OpenMP threads, continuing from the
-// stack in `running` (a fresh StackDistance for a whole trace); equal to the serial analyzer's
-// access for access. Memory: the output plus each chunk's distinct ids.
+// The stack distance of every access of ids, on `threads` threads (the streamed merge,
+// streamed_chain.h), continuing from the LRU stack in `stack` (bottom-up; empty for a whole trace)
+// and leaving the stack after the last access there; equal to the serial analyzer's access for
+// access. Memory: the output, each chunk's distinct ids and two copies of the stack.
 std::vector<uint64_t> ParallelStackDistances(const std::vector<uint64_t>& ids, int threads,
-                                             uint64_t dense_limit, StackDistance* running);
+                                             uint64_t dense_limit, std::vector<uint64_t>* stack);
 
 }  // namespace meshreuse

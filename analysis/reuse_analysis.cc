@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "analysis/parallel_stack_distance.h"
+#include "analysis/streamed_chain.h"
 #include "core/access.h"
 #include "core/error.h"
 #include "core/schedule.h"
@@ -28,6 +29,8 @@ ReuseAnalysis::ReuseAnalysis(const ReuseOptions& o) : opt_(o) {
     throw std::invalid_argument("the line size must be a power of two");
   if (o.workers < 1 || o.workers > kMaxThreads)
     throw std::invalid_argument("workers must be 1.." + std::to_string(kMaxThreads));
+  if (o.chunk && (o.workers > 1 || !o.exact || o.sample))
+    throw std::invalid_argument("a chunk is analysed exactly, on one thread");
   line_shift_ = __builtin_ctz(o.line_bytes);
   do_elements_ = static_cast<int>(o.granularity) & static_cast<int>(Granularity::kElement);
   do_lines_ = static_cast<int>(o.granularity) & static_cast<int>(Granularity::kLine);
@@ -74,6 +77,10 @@ std::unique_ptr<StreamAnalysis> ReuseAnalysis::NewStream(int t, Granularity g) {
   const int steps = static_cast<int>(
       std::clamp<int64_t>(kMaxProfileSteps / pairs, 1, std::max(opt_.profile_steps, 1)));
   if (any && opt_.profile) s->profile = ReuseProfile(lengths, steps);
+  const std::vector<uint64_t>& offsets = element ? element_offset_ : line_offset_;
+  s->chunk = opt_.chunk;
+  s->offset = static_cast<size_t>(t) < offsets.size() ? offsets[t] : 0;
+  s->profile.SetNext(s->offset);
   return s;
 }
 
@@ -211,42 +218,53 @@ void StreamAnalysis::AddBatch(const uint64_t* ids, size_t n, int threads) {
   if (shards)
     for (size_t i = 0; i < n; ++i) shards->Access(ids[i]);
   if (!exact) return;
+  if (!batched) {
+    if (threads <= 1) {  // sampled above already
+      for (size_t i = 0; i < n; ++i) AddExact(ids[i]);
+      return;
+    }
+    stack = sd.StackBottomUp();  // from here on the stack travels as a list
+    sd = StackDistance();
+    batched = true;
+  }
   // Chunks below a few thousand accesses are not worth a thread.
   const int p = static_cast<int>(std::min<size_t>(std::max(threads, 1), n / 4096 + 1));
-  if (p <= 1) {  // sampled above already
-    for (size_t i = 0; i < n; ++i) AddExact(ids[i]);
-    return;
-  }
   const uint64_t base = hist.accesses();
   auto begin = [&](int c) { return n * c / p; };
-  std::vector<ChunkSummary> chunks(p);
   std::vector<ReuseHistogram> hists(p);
   std::vector<ReuseProfile> profs(p);
   const bool prof = profile.enabled();
-#pragma omp parallel for num_threads(p) schedule(static, 1)
+  StreamedChain(
+      p, &stack,
+      [&](int c) {
+        // The partial histogram and profile are filled on this thread's stack, then moved:
+        // neighbouring elements of one vector would share cache lines between the threads (false
+        // sharing halved each thread's speed).
+        ReuseHistogram h;
+        ReuseProfile pr;
+        if (prof) pr = profile.EmptyCopy();
+        const uint64_t at = base + begin(c);
+        ChunkSummary s = AnalyzeChunk(ids + begin(c), begin(c + 1) - begin(c), dense_limit,
+                                      [&h, &pr, prof, at](size_t i, uint64_t d) {
+                                        h.Add(d);
+                                        if (prof) pr.AddAt(at + i, d);
+                                      });
+        hists[c] = std::move(h);
+        profs[c] = std::move(pr);
+        return s;
+      },
+      [&](int c, const ChunkSummary& s, const std::vector<uint64_t>& first) {
+        ReuseHistogram h = std::move(hists[c]);
+        ReuseProfile pr = std::move(profs[c]);
+        const uint64_t at = base + begin(c);
+        for (size_t k = 0; k < first.size(); ++k) {
+          h.Add(first[k]);
+          if (prof) pr.AddAt(at + s.first_positions[k], first[k]);
+        }
+        hists[c] = std::move(h);
+        profs[c] = std::move(pr);
+      });
   for (int c = 0; c < p; ++c) {
-    // The partial histogram and profile live on this thread's stack while they are filled:
-    // neighbouring elements of one vector would share cache lines between the threads (false
-    // sharing halved each thread's speed).
-    ReuseHistogram h;
-    ReuseProfile pr;
-    if (prof) pr = profile.EmptyCopy();
-    const uint64_t at = base + begin(c);
-    chunks[c] = AnalyzeChunk(ids + begin(c), begin(c + 1) - begin(c), dense_limit,
-                             [&h, &pr, prof, at](size_t i, uint64_t d) {
-                               h.Add(d);
-                               if (prof) pr.AddAt(at + i, d);
-                             });
-    hists[c] = std::move(h);
-    profs[c] = std::move(pr);
-  }
-  for (int c = 0; c < p; ++c) {
-    const uint64_t at = base + begin(c);
-    MergeChunk(&sd, chunks[c], [this, prof, at](size_t i, uint64_t d) {
-      hist.Add(d);
-      if (prof) profile.AddAt(at + i, d);
-    });
-    chunks[c] = ChunkSummary();
     hist.Merge(hists[c]);
     if (prof) profile.Merge(profs[c]);
   }

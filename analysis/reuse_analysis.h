@@ -46,13 +46,30 @@ struct StreamAnalysis {
   }
   uint64_t AddExact(uint64_t id) {  // the access's distance (StackDistance::kCold if cold)
     const uint64_t d = sd.Access(id);
+    if (d == StackDistance::kCold && chunk) {  // decided later, by the merge
+      first_ids.push_back(id);
+      first_positions.push_back(sd.accesses() - 1);
+      if (profile.enabled()) profile.Skip();
+      return d;
+    }
     hist.Add(d);
     if (profile.enabled()) profile.Add(d);
     return d;
   }
-  // The next n accesses at once, on `threads` OpenMP threads (parallel_stack_distance.h): the
-  // same histogram and profile as n calls of Add.
+  // The next n accesses at once, on `threads` threads (the streamed merge, streamed_chain.h): the
+  // same histogram and profile as n calls of Add. From the first batch on, the stream's LRU stack
+  // is kept as a list (`stack`, bottom-up) instead of in `sd`.
   void AddBatch(const uint64_t* ids, size_t n, int threads);
+  std::vector<uint64_t> stack;
+  bool batched = false;
+  // A chunk of a longer trace (ReuseOptions::chunk): its cold accesses are its first touches,
+  // kept here (the id, and the access's place in the chunk's part of the stream) for the merge,
+  // not counted; `offset` is where the chunk starts in the stream (profile positions).
+  bool chunk = false;
+  uint64_t offset = 0;
+  std::vector<uint64_t> first_ids, first_positions;
+  // The stream's distinct ids (exact analysis).
+  uint64_t distinct() const { return batched ? stack.size() : sd.distinct(); }
 };
 
 // The most profile steps of one granularity over all streams (rows of the profile table).
@@ -68,6 +85,9 @@ struct ReuseOptions {
   // buffered (batch_per_worker ids per thread and stream) and analysed a batch at a time.
   int workers = 1;
   size_t batch_per_worker = size_t{1} << 22;
+  // One chunk of a trace, for a summary (reports/chunk_summary.h): first touches kept, not
+  // counted (StreamAnalysis::chunk); exact and serial only.
+  bool chunk = false;
   // Sampling (SHARDS) beside or instead of the exact analysis.
   bool exact = true;
   bool sample = false;
@@ -96,6 +116,17 @@ class ReuseAnalysis : public AccessConsumer {
     Feed(s, lbuf_[thread], first);
     if (last != first) Feed(s, lbuf_[thread], last);
   }
+
+  // For a chunk: where it starts in each thread's element and line streams (profile positions).
+  void SetStreamOffsets(std::vector<uint64_t> element, std::vector<uint64_t> line) {
+    element_offset_ = std::move(element), line_offset_ = std::move(line);
+  }
+  // Assembling an analysis from parts (merged chunk summaries), between Begin and End: a stream's
+  // state, made empty (its profile as Begin's info gives it) on first use; moves added.
+  StreamAnalysis& MakeStream(int t, Granularity g) {
+    return g == Granularity::kElement ? ElementStream(t) : LineStream(t);
+  }
+  void AddMoves(int t, uint64_t n) { moves_[t] += n; }
 
   const StreamInfo& info() const { return info_; }
   const ReuseOptions& options() const { return opt_; }
@@ -157,6 +188,7 @@ class ReuseAnalysis : public AccessConsumer {
   std::vector<std::unique_ptr<StreamAnalysis>> element_, line_;
   std::vector<std::vector<uint64_t>> ebuf_, lbuf_;  // per thread stream (workers > 1)
   std::vector<uint64_t> moves_;
+  std::vector<uint64_t> element_offset_, line_offset_;
 };
 
 }  // namespace meshreuse

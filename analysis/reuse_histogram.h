@@ -25,6 +25,17 @@ class ReuseHistogram {
     ++finite_;
     sum_ += d;
   }
+  void AddCount(uint64_t d, uint64_t n) {  // n accesses at distance d (or cold)
+    if (d == ~uint64_t{0}) {
+      cold_ += n;
+      return;
+    }
+    if (!n) return;
+    if (d >= counts_.size()) Grow(d);
+    counts_[d] += n;
+    finite_ += n;
+    sum_ += static_cast<unsigned __int128>(d) * n;
+  }
   void Merge(const ReuseHistogram& o);
   // Distances are below the number of distinct ids: with that number known (vertex ids), one
   // exact allocation instead of doubling.
@@ -90,9 +101,17 @@ class ReuseProfile {
     AddAtSlow(position, d);
   }
   void SetNext(uint64_t position) { next_ = position; }  // where the next Add() goes
+  void Skip() { ++next_; }                               // the next Add() goes one position further
+  uint64_t next() const { return next_; }
   // The same iterations and steps, every count zero: a partial profile for one chunk.
   ReuseProfile EmptyCopy() const;
   void Merge(const ReuseProfile& o);  // o: an EmptyCopy() of this one, filled
+  // Adds counts to step i (a stored partial profile); false when there is no such step.
+  bool AddToStep(size_t i, uint64_t accesses, uint64_t cold, unsigned __int128 sum) {
+    if (i >= steps_.size()) return false;
+    steps_[i].accesses += accesses, steps_[i].cold += cold, steps_[i].sum += sum;
+    return true;
+  }
   struct Step {
     int iteration;  // 1-based
     int step;       // 0-based

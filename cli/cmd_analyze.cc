@@ -9,6 +9,7 @@
 #include "core/mesh_io.h"
 #include "core/output_file.h"
 #include "reports/analyze.h"
+#include "reports/chunk_summary.h"
 #include "tracer/trace_formats.h"
 
 namespace meshreuse::cli {
@@ -18,7 +19,7 @@ int AnalyzeCommand(const Args& args) {
   AnalyzeConfig cfg;
   std::string orderings = "ori", granularity, quantiles = "50,75,90,100", cache = "westmere-ex",
               mode = "gauss-seidel", hist_csv, prof_csv, mrc_csv, out_dir, measured, triangle_order,
-              seed = "1", sample_size, element_bytes = "66", line_bytes = "64";
+              seed = "1", sample_size, element_bytes = "66", line_bytes = "64", chunk;
   double sample_rate = 0;
   desc.add_options()(
       "input", po::value(&cfg.inputs)->required()->multitoken(),
@@ -68,7 +69,14 @@ int AnalyzeCommand(const Args& args) {
       "write the miss-ratio curves (capacity -> misses, miss ratio; exact, or the estimate when "
       "sampling)")("out", po::value(&out_dir),
                    "write analyze.{csv,json}, histogram.csv, profile.csv, run.json")(
-      "quiet,q", "no progress on stderr");
+      "chunk", po::value(&chunk),
+      "r/P: analyse only chunk r (0-based) of P equal record ranges of one trace file (meshreuse "
+      "trace or fixed-record format, plain) and write its summary (--summary-out); any batch "
+      "system can run the P chunks, then --merge")("summary-out", po::value(&cfg.summary_out),
+                                                   "with --chunk: the summary file to write")(
+      "merge",
+      "the inputs are the summaries of chunks 0..P-1, in order: merge them into exactly the "
+      "serial analysis (every table and output below)")("quiet,q", "no progress on stderr");
   AddFormatOptions(desc);
   AddTriangleOrderOption(desc, &triangle_order);
   po::positional_options_description pos;
@@ -108,8 +116,19 @@ int AnalyzeCommand(const Args& args) {
   cfg.sample_error = vm.count("sample-error") > 0;
   if (cfg.sample_error && !cfg.sample)
     throw UsageError("--sample-error needs --sample-rate or --sample-size");
+  if (!chunk.empty()) cfg.chunk = ParseChunk(chunk);
+  cfg.merge = vm.count("merge") > 0;
   const OutputFormat fmt = FormatOption(vm);
   CheckAnalyzeConfig(cfg);
+  if (cfg.chunk) {
+    if (!hist_csv.empty() || !prof_csv.empty() || !mrc_csv.empty() || !out_dir.empty() ||
+        !cfg.vtk.empty() || fmt != OutputFormat::kText)
+      throw UsageError("--chunk writes its summary only: merge the summaries for the tables");
+    CheckOutputPath(cfg.summary_out, "--summary-out", InputFiles(cfg.inputs));
+    const Progress progress(vm.count("quiet") > 0);
+    RunChunk(cfg, MakeLog(progress));
+    return 0;
+  }
   for (const auto& [path, opt] :
        {std::pair{hist_csv, "--histogram-csv"}, std::pair{prof_csv, "--profile-csv"},
         std::pair{mrc_csv, "--mrc-csv"}})

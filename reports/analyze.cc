@@ -9,11 +9,13 @@
 #include <cstdlib>
 #include <limits>
 #include <memory>
+#include <stdexcept>
 
 #include "core/error.h"
 #include "core/mesh_io.h"
 #include "core/orderings/registry.h"
 #include "core/schedule.h"
+#include "reports/chunk_summary.h"
 #include "reports/inputs.h"
 #include "reports/run_info.h"
 #include "tracer/access_stream.h"
@@ -135,6 +137,15 @@ std::vector<double> ParseQuantiles(const std::string& list) {
 
 void CheckAnalyzeConfig(const AnalyzeConfig& cfg) {
   if (cfg.inputs.empty()) throw UsageError("no input given");
+  if (cfg.chunk && cfg.merge) throw UsageError("--chunk and --merge exclude each other");
+  if (cfg.chunk && cfg.summary_out.empty()) throw UsageError("--chunk needs --summary-out FILE");
+  if (!cfg.chunk && !cfg.summary_out.empty()) throw UsageError("--summary-out needs --chunk r/P");
+  if (cfg.merge && !cfg.format.empty())
+    throw UsageError("--merge reads summaries: the format was given to the chunk runs");
+  if (cfg.merge && (cfg.sample || !cfg.vtk.empty() || cfg.granularity))
+    throw UsageError(
+        "--merge: the analysis was chosen by the chunk runs (no --sample-*, --vtk "
+        "or --granularity here)");
   if (!cfg.format.empty()) ParseTraceFormat(cfg.format);
   if (cfg.orderings.empty()) throw UsageError("no ordering given");
   for (const std::string& o : cfg.orderings) CheckOrderingSpec(o);
@@ -158,6 +169,8 @@ void CheckAnalyzeConfig(const AnalyzeConfig& cfg) {
 
 AnalyzeResult RunAnalyze(const AnalyzeConfig& cfg, const Log& log) {
   CheckAnalyzeConfig(cfg);
+  if (cfg.merge) return MergeSummaries(cfg, log);
+  if (cfg.chunk) throw std::logic_error("RunAnalyze: a chunk run is RunChunk");
   AnalyzeResult r;
   const TraceFormat* fmt = cfg.format.empty() ? nullptr : &ParseTraceFormat(cfg.format);
   if (cfg.granularity) {
@@ -277,7 +290,7 @@ Table AnalyzeTable(const AnalyzeResult& r, const AnalyzeConfig& cfg, bool human)
                     !moves  ? ""
                     : human ? Fixed(static_cast<double>(h.accesses()) / moves, 2)
                             : ExactNumber(static_cast<double>(h.accesses()) / moves),
-                    std::to_string(h.cold()), std::to_string(s->sd.distinct()),
+                    std::to_string(h.cold()), std::to_string(s->distinct()),
                     h.finite() ? ToDecimal(h.sum()) : "", h.finite() ? num(h.mean(), 1) : ""});
         for (double q : qs) row.push_back(h.finite() ? std::to_string(h.Quantile(q)) : "");
         const std::vector<LevelMisses> miss = ModelMisses(h, levels, bytes);

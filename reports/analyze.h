@@ -48,6 +48,11 @@ struct AnalyzeConfig {
   // its rank in the ordering, its original id and the reuse distances of its element touches
   // over the analysed sweeps (mean, max, cold touches): the ordering and its locality in ParaView.
   std::string vtk;
+  // Chunk summaries (reports/chunk_summary.h): analyse chunk (r, P) of the one trace into
+  // summary_out; or, with merge, the inputs are the summaries of chunks 0..P-1, merged.
+  std::optional<std::pair<uint32_t, uint32_t>> chunk;
+  std::string summary_out;
+  bool merge = false;
 };
 
 struct AnalyzeResult {

@@ -111,7 +111,8 @@ SmoothResult StreamMesh(Mesh& mesh, const SmoothOptions& sweeps, const std::stri
   return r;
 }
 
-void StreamTraceFile(const std::string& path, AccessConsumer& to, const ProgressFn& progress) {
+void StreamTraceFile(const std::string& path, AccessConsumer& to, const ProgressFn& progress,
+                     const RecordRange* range) {
   TraceReader r(path);
   const TraceHeader& h = r.header();
   StreamInfo info;
@@ -132,8 +133,15 @@ void StreamTraceFile(const std::string& path, AccessConsumer& to, const Progress
   std::vector<TraceRecord> batch;
   std::vector<Access> out;
   out.reserve(kBatch);
-  uint64_t seen = 0;
+  uint64_t seen = 0, first = 0, end = h.records;
   size_t next_sweep = 0;
+  if (range) {
+    first = range->first, end = std::min(range->end, h.records);
+    r.Range(first, end);
+    seen = first;
+    while (next_sweep < h.iteration_starts.size() && h.iteration_starts[next_sweep] < first)
+      ++next_sweep;
+  }
   while (r.Next(&batch, kBatch)) {
     out.clear();
     for (const TraceRecord& rec : batch) {
@@ -149,13 +157,14 @@ void StreamTraceFile(const std::string& path, AccessConsumer& to, const Progress
       ++seen;
     }
     if (!out.empty()) to.Consume(out.data(), out.size());
-    if (progress && h.records) progress(static_cast<double>(seen) / h.records);
+    if (progress && end > first)
+      progress(static_cast<double>(seen - first) / static_cast<double>(end - first));
   }
   to.End();
 }
 
 void StreamForeignTrace(const std::string& path, const TraceFormat& format, bool instructions,
-                        AccessConsumer& to, const ProgressFn& progress) {
+                        AccessConsumer& to, const ProgressFn& progress, const RecordRange* range) {
   StreamInfo info;
   info.input = path;
   info.threads = 1;
@@ -165,6 +174,8 @@ void StreamForeignTrace(const std::string& path, const TraceFormat& format, bool
   std::vector<Access> out;
   out.reserve(kBatch);
   uint64_t seen = 0;
+  const uint64_t first = range ? range->first : 0, end = range ? range->end : ~uint64_t{0};
+  const uint64_t todo = range ? end - first : info.records;
   ReadForeignTrace(
       path, format,
       [&](uint64_t v, uint32_t size, bool write, bool fetch) {
@@ -176,10 +187,10 @@ void StreamForeignTrace(const std::string& path, const TraceFormat& format, bool
           out.clear();
           seen += kBatch;
           if (progress && (seen & 0xFFFFF) == 0)
-            progress(info.records ? static_cast<double>(seen) / info.records : -1.0);
+            progress(todo ? static_cast<double>(seen) / static_cast<double>(todo) : -1.0);
         }
       },
-      instructions);
+      instructions, first, end);
   if (!out.empty()) to.Consume(out.data(), out.size());
   to.End();
 }

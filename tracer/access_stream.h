@@ -87,12 +87,20 @@ SmoothResult StreamMesh(Mesh& mesh, const SmoothOptions& sweeps, const std::stri
                         const std::string& ordering, AccessConsumer& to);
 // The info StreamMesh will announce, without running it (for memory checks before the work).
 StreamInfo MeshStreamInfo(const Mesh& mesh, const SmoothOptions& sweeps);
-// A meshreuse trace file (plain or zstd).
-void StreamTraceFile(const std::string& path, AccessConsumer& to, const ProgressFn& progress = {});
+// Records [first, end) of a trace file: a chunk (reports/chunk_summary.h). The StreamInfo is still
+// the whole file's (its sweeps place the chunk's accesses in the profile).
+struct RecordRange {
+  uint64_t first = 0, end = ~uint64_t{0};
+};
+// A meshreuse trace file (plain or zstd; a range needs a plain file).
+void StreamTraceFile(const std::string& path, AccessConsumer& to, const ProgressFn& progress = {},
+                     const RecordRange* range = nullptr);
 // Another tool's trace: one stream; each value an access of its size (1 but for lackey); element
-// ids are the values. Lackey's loads and stores keep their direction.
+// ids are the values. Lackey's loads and stores keep their direction. A range: fixed-record
+// formats only.
 void StreamForeignTrace(const std::string& path, const TraceFormat& format, bool instructions,
-                        AccessConsumer& to, const ProgressFn& progress = {});
+                        AccessConsumer& to, const ProgressFn& progress = {},
+                        const RecordRange* range = nullptr);
 
 // What a path given without --format is: a mesh (by its name: .node, .ele, .msh, or a prefix P
 // with P.node), standard input ("-": a text trace of ids), or else a meshreuse trace.

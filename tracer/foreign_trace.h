@@ -73,9 +73,8 @@ void LackeyLine(const std::string& path, int64_t line, const char* b, const char
 // inlined) at offset `at`.
 template <size_t VW, class F>
 void Fixed(const std::string& path, InputStream& in, std::vector<char>& buf, size_t w, size_t at,
-           F& add, ForeignTraceCounts& count) {
+           F& add, ForeignTraceCounts& count, uint64_t offset) {
   const size_t block = buf.size() / w * w;
-  uint64_t offset = 0;
   size_t carry = 0;
   while (true) {
     const size_t got = in.Read(buf.data() + carry, block - carry);
@@ -109,27 +108,40 @@ void Fixed(const std::string& path, InputStream& in, std::vector<char>& buf, siz
 
 }  // namespace foreign_detail
 
+// Fixed-record formats may be read by range: records [first, end) only (a chunk: a plain regular
+// file, InputStream::SeekTo); other formats refuse a range.
 template <class F>
 ForeignTraceCounts ReadForeignTrace(const std::string& path, const TraceFormat& fmt, F&& add,
-                                    bool instructions = false) {
+                                    bool instructions = false, uint64_t first = 0,
+                                    uint64_t end = ~uint64_t{0}) {
   using foreign_detail::kReserved;
   ForeignTraceCounts count;
   InputStream in(path);
   std::vector<char> buf(1 << 20);
+  const bool ranged = first != 0 || end != ~uint64_t{0};
+  if (ranged && fmt.syntax != TraceSyntax::kFixedRecords)
+    throw InputError(path, 0,
+                     std::string("a ") + fmt.name +
+                         " trace cannot be cut into chunks: its records differ in length; chunk a "
+                         "fixed-record copy of it (u64) instead");
   if (fmt.syntax == TraceSyntax::kFixedRecords) {
     const size_t w = fmt.record_bytes, at = fmt.value_offset;
+    if (ranged) {
+      in.SeekTo(first * w);
+      in.SetLimit((end - first) * w);
+    }
     switch (fmt.value_bytes) {
       case 1:
-        foreign_detail::Fixed<1>(path, in, buf, w, at, add, count);
+        foreign_detail::Fixed<1>(path, in, buf, w, at, add, count, first * w);
         break;
       case 2:
-        foreign_detail::Fixed<2>(path, in, buf, w, at, add, count);
+        foreign_detail::Fixed<2>(path, in, buf, w, at, add, count, first * w);
         break;
       case 4:
-        foreign_detail::Fixed<4>(path, in, buf, w, at, add, count);
+        foreign_detail::Fixed<4>(path, in, buf, w, at, add, count, first * w);
         break;
       default:
-        foreign_detail::Fixed<8>(path, in, buf, w, at, add, count);
+        foreign_detail::Fixed<8>(path, in, buf, w, at, add, count, first * w);
     }
     return count;
   }

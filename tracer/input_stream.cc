@@ -127,7 +127,35 @@ size_t InputStream::ReadRaw(void* buf, size_t n) {
   return got;
 }
 
+void InputStream::SeekTo(uint64_t offset) {
+  if (zstd_)
+    throw InputError(path(), 0,
+                     "a zstd-compressed trace cannot be read from the middle (a chunk): "
+                     "decompress it first (zstd -d)");
+  if (file_.size() < 0)
+    throw InputError(path(), 0,
+                     "a chunk needs a regular file: a pipe or standard input cannot seek");
+  if (offset > static_cast<uint64_t>(file_.size()))
+    throw InputError(path(), 0, "byte offset " + std::to_string(offset) + " is past the end");
+  if (offset < peek_.size()) {
+    peek_at_ = offset;
+    if (fseeko(file_.get(), static_cast<off_t>(peek_.size()), SEEK_SET) != 0)
+      throw InputError(path(), 0, std::string("cannot seek: ") + std::strerror(errno));
+    return;
+  }
+  peek_at_ = peek_.size();
+  if (fseeko(file_.get(), static_cast<off_t>(offset), SEEK_SET) != 0)
+    throw InputError(path(), 0, std::string("cannot seek: ") + std::strerror(errno));
+}
+
 size_t InputStream::Read(void* buf, size_t n) {
+  n = static_cast<size_t>(std::min<uint64_t>(n, limit_));
+  const size_t got = ReadAll(buf, n);
+  limit_ -= got;
+  return got;
+}
+
+size_t InputStream::ReadAll(void* buf, size_t n) {
   if (!zstd_) return ReadRaw(buf, n);
   Zstd& z = *zstd_;
   ZSTD_outBuffer ob{buf, n, 0};

@@ -31,13 +31,20 @@ class InputStream {
   // frame headers record (every frame must: `trace --compress` and `zstd FILE` do, pzstd does
   // not); -1 otherwise. Several frames and skippable frames (pzstd) read as `zstd -d` reads them.
   int64_t size() const { return size_; }
+  // Reading by range (a chunk of a trace, reports/chunk_summary.h): continue at byte `offset` of
+  // the content, and read at most `limit` bytes from there. A plain regular file only: a zstd
+  // stream cannot be entered in the middle, a pipe cannot seek (InputError saying so).
+  void SeekTo(uint64_t offset);
+  void SetLimit(uint64_t limit) { limit_ = limit; }
 
  private:
   size_t ReadRaw(void* buf, size_t n);  // the file's bytes, after the peeked ones
+  size_t ReadAll(void* buf, size_t n);  // Read without the limit
   InputFile file_;
   std::vector<char> peek_;  // bytes read to look for the magic, served first
   size_t peek_at_ = 0;
   int64_t size_ = -1;
+  uint64_t limit_ = ~uint64_t{0};  // bytes Read may still return
   struct Zstd;
   std::unique_ptr<Zstd> zstd_;
 };

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cerrno>
 #include <cstring>
+#include <stdexcept>
 
 #include "core/access.h"
 #include "core/error.h"
@@ -189,12 +190,22 @@ TraceReader::TraceReader(std::string path) : path_(std::move(path)) {
                      "corrupt trace header: the sweeps hold " + std::to_string(at) +
                          " records, the header says " + std::to_string(header_.records));
   left_ = header_.records;
+  end_ = header_.records;
+  header_bytes_ = header_bytes;
 }
 
 TraceReader::~TraceReader() = default;
 
+void TraceReader::Range(uint64_t first, uint64_t end) {
+  if (first > end || end > header_.records)
+    throw std::invalid_argument("TraceReader::Range: records out of range");
+  in_->SeekTo(header_bytes_ + first * sizeof(TraceRecord));
+  left_ = header_.records - first;
+  end_ = end;
+}
+
 bool TraceReader::Next(std::vector<TraceRecord>* out, size_t max) {
-  out->resize(std::min<uint64_t>(max, left_));
+  out->resize(std::min<uint64_t>(max, left_ - (header_.records - end_)));
   if (out->empty()) return false;
   if (in_->Read(out->data(), out->size() * sizeof(TraceRecord)) !=
       out->size() * sizeof(TraceRecord))
@@ -217,7 +228,7 @@ bool TraceReader::Next(std::vector<TraceRecord>* out, size_t max) {
       fail(i, "runs into the last byte of the 64-bit address space, which the analyzer reserves");
   }
   left_ -= out->size();
-  if (left_ == 0 && !sized_) {
+  if (left_ == 0 && !sized_ && end_ == header_.records) {
     char extra;
     if (in_->Read(&extra, 1) == 1)
       throw InputError(path_, 0,

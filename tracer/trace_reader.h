@@ -28,6 +28,8 @@ class TraceReader {
   const TraceHeader& header() const { return header_; }
   // Fills `out` with up to `max` next records; returns false when none are left.
   bool Next(std::vector<TraceRecord>* out, size_t max = 1 << 16);
+  // Reads records [first, end) only (a chunk): a plain regular file (InputStream::SeekTo).
+  void Range(uint64_t first, uint64_t end);
 
   // True if the file starts with the trace magic (to tell traces from other inputs).
   static bool LooksLikeTrace(const std::string& path);
@@ -44,6 +46,8 @@ class TraceReader {
   }  // the content's size is known (checked against the header up front)
   TraceHeader header_;
   uint64_t left_ = 0;
+  uint64_t end_ = ~uint64_t{0};  // Next stops at this record (set to the count by the constructor)
+  uint64_t header_bytes_ = 0;
 };
 
 }  // namespace meshreuse

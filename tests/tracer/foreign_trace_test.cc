@@ -58,7 +58,7 @@ TEST(TraceFormats, Lackey) {
   ReuseAnalysis a(o);
   StreamForeignTrace(dir / "t.lackey", ParseTraceFormat("lackey"), false, a);
   EXPECT_EQ(a.line(0)->hist.accesses(), 2u + 4u);
-  EXPECT_EQ(a.line(0)->sd.distinct(), 4u);
+  EXPECT_EQ(a.line(0)->distinct(), 4u);
   EXPECT_EQ(a.line(0)->hist.counts()[1], 2u);  // 0x80 after 0x81, 0x81 after 0x80
 }
 

@@ -1,0 +1,544 @@
+// Chunk summaries, their file format, the chunk run and the merge; see chunk_summary.h.
+#include "reports/chunk_summary.h"
+
+#include <algorithm>
+#include <cerrno>
+#include <cstring>
+#include <limits>
+#include <memory>
+
+#include "analysis/streamed_chain.h"
+#include "core/access.h"
+#include "core/error.h"
+#include "core/input_file.h"
+#include "core/output_file.h"
+#include "tracer/trace_formats.h"
+#include "tracer/trace_reader.h"
+
+namespace meshreuse {
+
+namespace {
+
+constexpr char kMagic[8] = {'M', 'R', 'S', 'U', 'M', 'R', 'Y', '\0'};
+constexpr uint32_t kVersion = 1;
+constexpr size_t kHeaderBytes = 32;
+
+uint64_t Mix(uint64_t x) {  // SplitMix64 finaliser
+  x ^= x >> 30;
+  x *= 0xBF58476D1CE4E5B9ull;
+  x ^= x >> 27;
+  x *= 0x94D049BB133111EBull;
+  return x ^ (x >> 31);
+}
+
+// A 64-bit checksum of bytes, 8 at a time (detects corruption; not cryptographic).
+uint64_t Checksum(const char* p, size_t n) {
+  uint64_t h = 0x9E3779B97F4A7C15ull ^ n;
+  size_t i = 0;
+  for (; i + 8 <= n; i += 8) {
+    uint64_t w;
+    std::memcpy(&w, p + i, 8);
+    h = Mix(h ^ w) + i;
+  }
+  uint64_t w = 0;
+  std::memcpy(&w, p + i, n - i);
+  return Mix(h ^ w ^ (n - i));
+}
+
+class Writer {
+ public:
+  template <class T>
+  void Put(T v) {
+    static_assert(std::is_trivially_copyable<T>::value, "plain values");
+    b_.append(reinterpret_cast<const char*>(&v), sizeof v);
+  }
+  void Str(const std::string& s) {
+    Put<uint64_t>(s.size());
+    b_ += s;
+  }
+  void U64s(const std::vector<uint64_t>& v) {
+    Put<uint64_t>(v.size());
+    b_.append(reinterpret_cast<const char*>(v.data()), v.size() * 8);
+  }
+  std::string& bytes() { return b_; }
+
+ private:
+  std::string b_;
+};
+
+class Reader {
+ public:
+  Reader(const std::string& path, const char* p, size_t n) : path_(path), p_(p), n_(n) {}
+  template <class T>
+  T Get() {
+    Need(sizeof(T), "a value");
+    T v;
+    std::memcpy(&v, p_ + at_, sizeof v);
+    at_ += sizeof v;
+    return v;
+  }
+  uint64_t Count(uint64_t each, const char* what) {  // a count of items of `each` bytes
+    const uint64_t n = Get<uint64_t>();
+    if (each && n > (n_ - at_) / each)
+      Fail(std::string("corrupt: ") + what + " count " + std::to_string(n) +
+           " exceeds the bytes left");
+    return n;
+  }
+  std::string Str() {
+    const uint64_t n = Count(1, "string");
+    std::string s(p_ + at_, n);
+    at_ += n;
+    return s;
+  }
+  std::vector<uint64_t> U64s(const char* what) {
+    const uint64_t n = Count(8, what);
+    std::vector<uint64_t> v(n);
+    std::memcpy(v.data(), p_ + at_, n * 8);
+    at_ += n * 8;
+    return v;
+  }
+  bool done() const { return at_ == n_; }
+  [[noreturn]] void Fail(const std::string& what) const {
+    throw InputError(path_, 0, what + " (payload byte " + std::to_string(at_) + ")");
+  }
+
+ private:
+  void Need(size_t k, const char* what) {
+    if (n_ - at_ < k) Fail(std::string("corrupt: ") + what + " runs past the end");
+  }
+  const std::string& path_;
+  const char* p_;
+  size_t n_, at_ = 0;
+};
+
+void PutInfo(Writer& w, const StreamInfo& i) {
+  w.Str(i.ordering);
+  w.Put<uint32_t>(static_cast<uint32_t>(i.threads));
+  w.Put<int64_t>(i.vertices);
+  w.Put<uint32_t>(i.element_bytes);
+  w.Put<uint32_t>(i.canonical);
+  w.Put<uint64_t>(i.records);
+  w.Put<uint64_t>(i.sweep_records.size());
+  for (const auto& s : i.sweep_records) w.U64s(s);
+  for (const auto& s : i.sweep_elements) w.U64s(s);
+}
+
+StreamInfo GetInfo(Reader& r) {
+  StreamInfo i;
+  i.ordering = r.Str();
+  const uint32_t threads = r.Get<uint32_t>();
+  if (threads < 1 || threads > static_cast<uint32_t>(kMaxThreads))
+    r.Fail("corrupt: " + std::to_string(threads) + " threads");
+  i.threads = static_cast<int>(threads);
+  i.vertices = r.Get<int64_t>();
+  i.element_bytes = r.Get<uint32_t>();
+  i.canonical = r.Get<uint32_t>() != 0;
+  i.records = r.Get<uint64_t>();
+  const uint64_t sweeps = r.Count(16, "sweep");
+  for (uint64_t k = 0; k < sweeps; ++k) i.sweep_records.push_back(r.U64s("sweep table"));
+  for (uint64_t k = 0; k < sweeps; ++k) i.sweep_elements.push_back(r.U64s("sweep table"));
+  for (uint64_t k = 0; k < sweeps; ++k)
+    if (i.sweep_records[k].size() != threads || i.sweep_elements[k].size() != threads)
+      r.Fail("corrupt: a sweep table does not have one entry per thread");
+  return i;
+}
+
+// The input's size and a hash of its first and last 64 KiB: ties summaries to one trace file
+// without reading it all (a copy elsewhere, under another name, is the same trace).
+uint64_t Fingerprint(const std::string& path, uint64_t* bytes) {
+  InputFile f(path);
+  if (f.size() < 0) throw InputError(path, 0, "a chunk needs a regular file (not a pipe)");
+  *bytes = static_cast<uint64_t>(f.size());
+  std::vector<char> b(std::min<uint64_t>(*bytes, 1 << 16));
+  const size_t head = f.Read(b.data(), b.size());
+  uint64_t h = Checksum(b.data(), head);
+  if (*bytes > b.size()) {
+    if (fseeko(f.get(), static_cast<off_t>(*bytes - b.size()), SEEK_SET) != 0)
+      throw InputError(path, 0, "cannot seek");
+    const size_t tail = f.Read(b.data(), b.size());
+    h = Mix(h ^ Checksum(b.data(), tail));
+  }
+  return h;
+}
+
+std::string ChunkName(uint32_t r, uint32_t p) {
+  return std::to_string(r) + "/" + std::to_string(p);
+}
+
+}  // namespace
+
+uint64_t SummaryChecksum(const char* payload, size_t n) { return Checksum(payload, n); }
+
+bool SummaryIdentity::operator==(const SummaryIdentity& o) const {
+  return format == o.format && input_bytes == o.input_bytes && fingerprint == o.fingerprint &&
+         granularity == o.granularity && line_bytes == o.line_bytes &&
+         instructions == o.instructions && chunks == o.chunks;
+}
+
+std::pair<uint32_t, uint32_t> ParseChunk(const std::string& s) {
+  const size_t slash = s.find('/');
+  auto num = [&](const std::string& x) -> uint64_t {
+    if (x.empty() || x.size() > 9 || x.find_first_not_of("0123456789") != std::string::npos)
+      throw UsageError("--chunk '" + s + "': expected r/P with 0 <= r < P (e.g. 3/8)");
+    return std::stoull(x);
+  };
+  if (slash == std::string::npos)
+    throw UsageError("--chunk '" + s + "': expected r/P with 0 <= r < P (e.g. 3/8)");
+  const uint64_t r = num(s.substr(0, slash)), p = num(s.substr(slash + 1));
+  if (p < 1 || p > (1u << 20) || r >= p)
+    throw UsageError("--chunk '" + s + "': expected 0 <= r < P <= 1048576");
+  return {static_cast<uint32_t>(r), static_cast<uint32_t>(p)};
+}
+
+void WriteSummary(const std::string& path, const SummaryFile& s) {
+  Writer w;
+  w.Str(s.id.format);
+  w.Put<uint64_t>(s.id.input_bytes);
+  w.Put<uint64_t>(s.id.fingerprint);
+  w.Put<uint32_t>(s.id.granularity);
+  w.Put<uint32_t>(s.id.line_bytes);
+  w.Put<uint32_t>(s.id.instructions);
+  w.Put<uint32_t>(s.id.chunks);
+  w.Str(s.input);
+  w.Put<uint32_t>(s.chunk);
+  w.Put<uint64_t>(s.first);
+  w.Put<uint64_t>(s.end);
+  w.Put<uint64_t>(s.total);
+  PutInfo(w, s.info);
+  w.U64s(s.moves);
+  w.Put<uint64_t>(s.streams.size());
+  for (const StreamSummary& x : s.streams) {
+    w.Put<uint32_t>(x.thread);
+    w.Put<uint32_t>(static_cast<uint32_t>(x.granularity));
+    w.Put<uint64_t>(x.accesses);
+    w.Put<uint64_t>(x.offset);
+    w.U64s(x.chunk.first_ids);
+    w.U64s(x.chunk.first_positions);
+    w.U64s(x.chunk.stack);
+    w.Put<uint64_t>(x.hist.size());
+    for (const auto& [d, n] : x.hist) w.Put<uint64_t>(d), w.Put<uint64_t>(n);
+    w.Put<uint64_t>(x.profile.size());
+    for (const StreamSummary::Step& st : x.profile) {
+      w.Put<uint64_t>(st.index), w.Put<uint64_t>(st.accesses), w.Put<uint64_t>(st.cold);
+      w.Put<uint64_t>(static_cast<uint64_t>(st.sum));
+      w.Put<uint64_t>(static_cast<uint64_t>(st.sum >> 64));
+    }
+  }
+  const std::string& payload = w.bytes();
+  WriteAtomically(path, [&](std::FILE* f) {
+    char head[kHeaderBytes] = {};
+    std::memcpy(head, kMagic, 8);
+    const uint32_t version = kVersion;
+    const uint64_t bytes = payload.size(), sum = Checksum(payload.data(), payload.size());
+    std::memcpy(head + 8, &version, 4);
+    std::memcpy(head + 16, &bytes, 8);
+    std::memcpy(head + 24, &sum, 8);
+    if (std::fwrite(head, 1, kHeaderBytes, f) != kHeaderBytes ||
+        std::fwrite(payload.data(), 1, payload.size(), f) != payload.size())
+      throw EnvironmentError(path, std::strerror(errno));
+  });
+}
+
+SummaryFile ReadSummary(const std::string& path) {
+  InputFile f(path);
+  char head[kHeaderBytes];
+  const size_t got = f.Read(head, kHeaderBytes);
+  if (got < 8 || std::memcmp(head, kMagic, 8) != 0)
+    throw InputError(path, 0,
+                     "not a chunk summary (no MRSUMRY magic): give the files that "
+                     "`analyze --chunk r/P --summary-out` wrote");
+  if (got < kHeaderBytes) throw InputError(path, 0, "truncated summary: the header is cut short");
+  uint32_t version;
+  uint64_t bytes, sum;
+  std::memcpy(&version, head + 8, 4);
+  std::memcpy(&bytes, head + 16, 8);
+  std::memcpy(&sum, head + 24, 8);
+  if (version != kVersion)
+    throw InputError(path, 0,
+                     "summary version " + std::to_string(version) + " (this build reads " +
+                         std::to_string(kVersion) + ")");
+  if (f.size() >= 0 && bytes != static_cast<uint64_t>(f.size()) - kHeaderBytes)
+    throw InputError(path, 0,
+                     "truncated or extended summary: the header announces " +
+                         std::to_string(bytes) + " payload bytes, the file holds " +
+                         std::to_string(f.size() - static_cast<int64_t>(kHeaderBytes)));
+  if (bytes > (uint64_t{1} << 40)) throw InputError(path, 0, "corrupt: payload size");
+  std::string payload(bytes, '\0');
+  if (f.Read(payload.data(), bytes) != bytes)
+    throw InputError(path, 0, "truncated summary: fewer payload bytes than announced");
+  char extra;
+  if (f.Read(&extra, 1) != 0) throw InputError(path, 0, "bytes after the announced payload");
+  if (Checksum(payload.data(), payload.size()) != sum)
+    throw InputError(path, 0, "corrupt summary: the checksum does not match its contents");
+  Reader r(path, payload.data(), payload.size());
+  SummaryFile s;
+  s.id.format = r.Str();
+  s.id.input_bytes = r.Get<uint64_t>();
+  s.id.fingerprint = r.Get<uint64_t>();
+  s.id.granularity = r.Get<uint32_t>();
+  s.id.line_bytes = r.Get<uint32_t>();
+  s.id.instructions = r.Get<uint32_t>();
+  s.id.chunks = r.Get<uint32_t>();
+  s.input = r.Str();
+  s.chunk = r.Get<uint32_t>();
+  s.first = r.Get<uint64_t>();
+  s.end = r.Get<uint64_t>();
+  s.total = r.Get<uint64_t>();
+  if (s.id.chunks < 1 || s.chunk >= s.id.chunks || s.first > s.end || s.end > s.total)
+    r.Fail("corrupt: chunk " + ChunkName(s.chunk, s.id.chunks));
+  if (s.id.granularity < 1 || s.id.granularity > 3 || s.id.line_bytes == 0 ||
+      (s.id.line_bytes & (s.id.line_bytes - 1)))
+    r.Fail("corrupt: analysis options");
+  s.info = GetInfo(r);
+  s.moves = r.U64s("moves");
+  if (s.moves.size() != static_cast<size_t>(s.info.threads)) r.Fail("corrupt: moves per thread");
+  const uint64_t n = r.Count(32, "stream");
+  for (uint64_t k = 0; k < n; ++k) {
+    StreamSummary x;
+    x.thread = r.Get<uint32_t>();
+    const uint32_t g = r.Get<uint32_t>();
+    if (x.thread >= static_cast<uint32_t>(s.info.threads) || (g != 1 && g != 2))
+      r.Fail("corrupt: a stream's thread or granularity");
+    x.granularity = static_cast<Granularity>(g);
+    x.accesses = r.Get<uint64_t>();
+    x.offset = r.Get<uint64_t>();
+    x.chunk.first_ids = r.U64s("first touch");
+    x.chunk.first_positions = r.U64s("first touch");
+    x.chunk.stack = r.U64s("stack");
+    const size_t f = x.chunk.first_ids.size();
+    if (x.chunk.first_positions.size() != f || x.chunk.stack.size() != f)
+      r.Fail("corrupt: a stream's first touches and stack differ in length");
+    for (size_t i = 0; i < f; ++i)
+      if (x.chunk.first_positions[i] >= x.accesses ||
+          (i && x.chunk.first_positions[i] <= x.chunk.first_positions[i - 1]))
+        r.Fail("corrupt: first-touch places out of order");
+    const uint64_t h = r.Count(16, "histogram");
+    uint64_t counted = f;
+    for (uint64_t i = 0; i < h; ++i) {
+      const uint64_t d = r.Get<uint64_t>(), c = r.Get<uint64_t>();
+      if (d >= x.accesses || c > x.accesses - counted) r.Fail("corrupt: histogram entry");
+      counted += c;
+      x.hist.emplace_back(d, c);
+    }
+    if (counted != x.accesses) r.Fail("corrupt: the histogram does not add up to the accesses");
+    const uint64_t ps = r.Count(40, "profile step");
+    for (uint64_t i = 0; i < ps; ++i) {
+      StreamSummary::Step st;
+      st.index = r.Get<uint64_t>(), st.accesses = r.Get<uint64_t>(), st.cold = r.Get<uint64_t>();
+      const uint64_t lo = r.Get<uint64_t>(), hi = r.Get<uint64_t>();
+      st.sum = (static_cast<unsigned __int128>(hi) << 64) | lo;
+      x.profile.push_back(st);
+    }
+    s.streams.push_back(std::move(x));
+  }
+  if (!r.done()) r.Fail("corrupt: bytes after the last stream");
+  return s;
+}
+
+namespace {
+
+// Where records [0, first) leave each thread's element and line streams: whole sweeps from the
+// header's tables, the sweep the chunk starts in by reading it up to `first`. Lines assume that no
+// access before that sweep straddles two lines (the merge checks).
+void TraceOffsets(const std::string& path, uint64_t first, uint32_t line_bytes,
+                  std::vector<uint64_t>* element, std::vector<uint64_t>* line) {
+  TraceReader r(path);
+  const TraceHeader& h = r.header();
+  element->assign(h.threads, 0);
+  line->assign(h.threads, 0);
+  uint64_t from = 0;
+  for (size_t i = 0; i < h.iteration_starts.size() && h.iteration_starts[i] <= first; ++i) {
+    if (i > 0)
+      for (uint32_t t = 0; t < h.threads; ++t)
+        (*element)[t] += h.sweep_elements[i - 1][t], (*line)[t] += h.sweep_records[i - 1][t];
+    from = h.iteration_starts[i];
+  }
+  if (from == first) return;
+  r.Range(from, first);
+  const int shift = __builtin_ctz(line_bytes);
+  std::vector<TraceRecord> batch;
+  while (r.Next(&batch)) {
+    for (const TraceRecord& rec : batch) {
+      if (rec.kind < kElementKinds) ++(*element)[rec.thread];
+      const uint64_t a = rec.address, b = a + (rec.size ? rec.size - 1 : 0);
+      (*line)[rec.thread] += (a >> shift) == (b >> shift) ? 1 : 2;
+    }
+  }
+}
+
+}  // namespace
+
+void RunChunk(const AnalyzeConfig& cfg, const Log& log) {
+  if (cfg.inputs.size() != 1) throw UsageError("--chunk takes one trace file");
+  const std::string& in = cfg.inputs[0];
+  const TraceFormat* fmt = cfg.format.empty() ? nullptr : &ParseTraceFormat(cfg.format);
+  if (in == "-") throw UsageError("--chunk needs a file: standard input cannot be cut");
+  if (!fmt && ClassifyInput(in) == InputKind::kMesh)
+    throw UsageError("--chunk takes a trace file, not a mesh (write one with `meshreuse trace`)");
+  if (fmt && fmt->syntax != TraceSyntax::kFixedRecords)
+    throw UsageError(std::string("--chunk: a ") + fmt->name +
+                     " trace cannot be cut into chunks (its records differ in length); chunk a "
+                     "fixed-record copy of it (u64) instead");
+  if (cfg.sample) throw UsageError("--chunk computes the exact analysis (no --sample-*)");
+  if (cfg.threads != 1)
+    throw UsageError("--chunk analyses its chunk on one thread: run more chunks instead");
+  const auto [r, p] = *cfg.chunk;
+
+  AnalyzeResult shape;  // the granularity the whole run would use
+  SummaryFile s;
+  s.input = in;
+  s.chunk = r;
+  s.id.chunks = p;
+  s.id.format = fmt ? fmt->name : "";
+  s.id.fingerprint = Fingerprint(in, &s.id.input_bytes);
+  s.id.line_bytes = cfg.line_bytes;
+  s.id.instructions = cfg.instructions;
+  Granularity g = Granularity::kBoth;
+  if (cfg.granularity)
+    g = *cfg.granularity;
+  else if (fmt)
+    g = fmt->addresses ? Granularity::kLine : Granularity::kElement;
+  s.id.granularity = static_cast<uint32_t>(g);
+
+  uint64_t total;
+  std::vector<uint64_t> eoff, loff;
+  if (fmt) {
+    total = ForeignTraceLength(in, *fmt);
+    if (total == 0 && s.id.input_bytes != 0)
+      throw InputError(in, 0, "a compressed trace cannot be cut into chunks: decompress it first");
+  } else {
+    TraceReader tr(in);
+    total = tr.header().records;
+  }
+  using U = unsigned __int128;
+  s.first = static_cast<uint64_t>(U{total} * r / p);
+  s.end = static_cast<uint64_t>(U{total} * (r + 1) / p);
+  s.total = total;
+  if (fmt) {
+    eoff = loff = {s.first};  // one stream, one access per record (fixed records are 1 byte)
+  } else {
+    TraceOffsets(in, s.first, cfg.line_bytes, &eoff, &loff);
+  }
+
+  ReuseOptions o;
+  o.granularity = g;
+  o.line_bytes = cfg.line_bytes;
+  o.profile = true;
+  o.chunk = true;
+  ReuseAnalysis a(o);
+  a.SetStreamOffsets(eoff, loff);
+  const RecordRange range{s.first, s.end};
+  log.Say("analysing chunk " + ChunkName(r, p) + " of " + in + ": records " +
+          std::to_string(s.first) + ".." + std::to_string(s.end) + " of " + std::to_string(total));
+  if (fmt)
+    StreamForeignTrace(in, *fmt, cfg.instructions, a, {}, &range);
+  else
+    StreamTraceFile(in, a, {}, &range);
+  s.info = a.info();
+  s.info.input.clear();
+  for (int t = 0; t < a.threads(); ++t) {
+    s.moves.push_back(a.moves(t));
+    for (Granularity sg : {Granularity::kElement, Granularity::kLine}) {
+      const StreamAnalysis* x = a.stream(t, sg);
+      if (!x) continue;
+      StreamSummary ss;
+      ss.thread = static_cast<uint32_t>(t);
+      ss.granularity = sg;
+      ss.accesses = x->sd.accesses();
+      ss.offset = x->offset;
+      ss.chunk.first_ids = x->first_ids;
+      ss.chunk.first_positions = x->first_positions;
+      ss.chunk.stack = x->sd.StackBottomUp();
+      const std::vector<uint64_t>& c = x->hist.counts();
+      for (size_t d = 0; d < c.size(); ++d)
+        if (c[d]) ss.hist.emplace_back(d, c[d]);
+      const auto& steps = x->profile.steps();
+      for (size_t i = 0; i < steps.size(); ++i)
+        if (steps[i].accesses)
+          ss.profile.push_back({i, steps[i].accesses, steps[i].cold, steps[i].sum});
+      s.streams.push_back(std::move(ss));
+    }
+  }
+  WriteSummary(cfg.summary_out, s);
+  log.Say("wrote " + cfg.summary_out);
+}
+
+AnalyzeResult MergeSummaries(const AnalyzeConfig& cfg, const Log& log) {
+  if (cfg.inputs.empty()) throw UsageError("--merge: no summary given");
+  AnalyzeResult res;
+  std::unique_ptr<ReuseAnalysis> a;
+  SummaryIdentity id;
+  std::string first_path;
+  uint32_t expect = 0;
+  uint64_t next_record = 0;
+  for (const std::string& path : cfg.inputs) {
+    SummaryFile s = ReadSummary(path);
+    if (!a) {
+      id = s.id;
+      first_path = path;
+      res.granularity = static_cast<Granularity>(id.granularity);
+      ReuseOptions o;
+      o.granularity = res.granularity;
+      o.line_bytes = id.line_bytes;
+      o.profile = cfg.profile;
+      a = std::make_unique<ReuseAnalysis>(o);
+      StreamInfo info = s.info;
+      info.input = s.input;
+      a->Begin(info);
+      if (cfg.inputs.size() != id.chunks)
+        throw InputError(path, 0,
+                         "a run of " + std::to_string(id.chunks) + " chunks, and " +
+                             std::to_string(cfg.inputs.size()) +
+                             " summaries given: give every chunk's summary once, in order 0.." +
+                             std::to_string(id.chunks - 1));
+    } else if (!(s.id == id)) {
+      throw InputError(path, 0,
+                       "a summary of another analysis: its trace, options or chunk count differ "
+                       "from those of " +
+                           first_path);
+    }
+    if (s.chunk != expect)
+      throw InputError(path, 0,
+                       "chunk " + ChunkName(s.chunk, id.chunks) + " where chunk " +
+                           ChunkName(expect, id.chunks) +
+                           " was expected: give every summary once, in order 0.." +
+                           std::to_string(id.chunks - 1));
+    if (s.first != next_record)
+      throw InputError(path, 0, "corrupt: its records do not follow the previous chunk's");
+    if (s.info.threads != a->threads())
+      throw InputError(path, 0, "corrupt: a thread count unlike the first summary's");
+    ++expect;
+    next_record = s.end;
+    log.Say("merging chunk " + ChunkName(s.chunk, id.chunks) + " (" + path + ")");
+    for (int t = 0; t < a->threads(); ++t) a->AddMoves(t, s.moves[t]);
+    for (StreamSummary& x : s.streams) {
+      StreamAnalysis& st = a->MakeStream(static_cast<int>(x.thread), x.granularity);
+      st.batched = true;                       // the stack travels as a list
+      const uint64_t at = st.hist.accesses();  // the stream's accesses before this chunk
+      const bool prof = st.profile.enabled();
+      if (prof && x.offset != at)
+        throw InputError(path, 0,
+                         "the profile cannot be merged: the chunk counted its stream " +
+                             std::to_string(x.thread) + " to start at access " +
+                             std::to_string(x.offset) + ", the chunks before it hold " +
+                             std::to_string(at) +
+                             " (accesses straddling two lines before the chunk); merge without "
+                             "profile output");
+      const std::vector<uint64_t> d = ResolveChunk(x.chunk, &st.stack);
+      for (size_t k = 0; k < d.size(); ++k) {
+        st.hist.Add(d[k]);
+        if (prof) st.profile.AddAt(at + x.chunk.first_positions[k], d[k]);
+      }
+      for (const auto& [dist, n] : x.hist) st.hist.AddCount(dist, n);
+      if (prof)
+        for (const StreamSummary::Step& p : x.profile)
+          if (!st.profile.AddToStep(p.index, p.accesses, p.cold, p.sum))
+            throw InputError(path, 0, "corrupt: a profile step beyond the sweeps");
+    }
+  }
+  a->End();
+  res.runs.push_back(std::move(a));
+  return res;
+}
+
+}  // namespace meshreuse

@@ -1,0 +1,99 @@
+// Chunk summary files (reports/chunk_summary.h): a summary written and read back is the same;
+// every single-byte change of the payload, with the checksum made to match, is either read as a
+// valid summary or refused as an InputError naming the file -- never a crash, a huge allocation or
+// another exception (counts are checked against the bytes left before anything is allocated).
+#include "reports/chunk_summary.h"
+
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <fstream>
+#include <iterator>
+
+#include "core/error.h"
+#include "tests/test_util.h"
+
+namespace meshreuse {
+namespace {
+
+SummaryFile Sample() {
+  SummaryFile s;
+  s.id.format = "u64";
+  s.id.input_bytes = 800, s.id.fingerprint = 42, s.id.granularity = 1, s.id.line_bytes = 64;
+  s.id.chunks = 3;
+  s.input = "trace.u64";
+  s.chunk = 1, s.first = 33, s.end = 66, s.total = 100;
+  s.info.threads = 1;
+  s.info.records = 100;
+  s.info.sweep_records = s.info.sweep_elements = {{100}};
+  s.moves = {0};
+  StreamSummary x;
+  x.accesses = 33, x.offset = 33;
+  x.chunk.first_ids = {5, 9, 7};
+  x.chunk.first_positions = {0, 1, 4};
+  x.chunk.stack = {9, 5, 7};
+  x.hist = {{0, 10}, {1, 12}, {2, 8}};
+  x.profile = {{33, 20, 2, 17}, {34, 13, 1, 9}};
+  s.streams.push_back(x);
+  return s;
+}
+
+std::string Slurp(const std::string& path) {
+  std::ifstream f(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(f), {});
+}
+
+TEST(ChunkSummary, RoundTrip) {
+  testing::TempDir dir;
+  const std::string path = dir / "s";
+  const SummaryFile s = Sample();
+  WriteSummary(path, s);
+  const SummaryFile r = ReadSummary(path);
+  EXPECT_TRUE(r.id == s.id);
+  EXPECT_EQ(r.input, s.input);
+  EXPECT_EQ(r.chunk, 1u);
+  EXPECT_EQ(r.first, 33u);
+  EXPECT_EQ(r.end, 66u);
+  ASSERT_EQ(r.streams.size(), 1u);
+  EXPECT_EQ(r.streams[0].chunk.first_ids, s.streams[0].chunk.first_ids);
+  EXPECT_EQ(r.streams[0].chunk.stack, s.streams[0].chunk.stack);
+  EXPECT_EQ(r.streams[0].hist, s.streams[0].hist);
+  ASSERT_EQ(r.streams[0].profile.size(), 2u);
+  EXPECT_TRUE(r.streams[0].profile[1].sum == 9);
+  EXPECT_EQ(r.info.sweep_records, s.info.sweep_records);
+}
+
+TEST(ChunkSummary, EveryByteChangedIsReadOrRefusedCleanly) {
+  testing::TempDir dir;
+  const std::string path = dir / "s";
+  WriteSummary(path, Sample());
+  const std::string good = Slurp(path);
+  ASSERT_GT(good.size(), 32u);
+  int refused = 0, read = 0;
+  for (size_t i = 32; i < good.size(); ++i)
+    for (unsigned char v : {0x00, 0x01, 0x80, 0xff}) {
+      std::string b = good;
+      if (static_cast<unsigned char>(b[i]) == v) continue;
+      b[i] = static_cast<char>(v);
+      const uint64_t sum = SummaryChecksum(b.data() + 32, b.size() - 32);
+      std::memcpy(&b[24], &sum, 8);
+      std::ofstream(path, std::ios::binary | std::ios::trunc) << b;
+      try {
+        ReadSummary(path);
+        ++read;
+      } catch (const InputError& e) {
+        ++refused;
+        EXPECT_NE(std::string(e.what()).find(path), std::string::npos) << e.what();
+      }
+    }
+  EXPECT_GT(refused, 0);
+  EXPECT_GT(read, 0);  // ids, names and counts that stay consistent are valid summaries
+  // The checksum itself: a payload change without it is refused.
+  std::string b = good;
+  b[40] ^= 1;
+  std::ofstream(path, std::ios::binary | std::ios::trunc) << b;
+  EXPECT_THROW(ReadSummary(path), InputError);
+}
+
+}  // namespace
+}  // namespace meshreuse
