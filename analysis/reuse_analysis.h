@@ -81,7 +81,7 @@ struct ReuseOptions {
   bool profile = true;       // a profile per stream, when the input's sweep lengths are known
   int profile_steps = 100;   // per sweep, fewer when the sweeps x streams are many:
   // at most kMaxProfileSteps steps a stream (each step is a row of the profile)
-  // Threads per stream for the analysis itself (chunk-and-merge, exact). Above 1, accesses are
+  // Threads per stream for the analysis itself (chunks and the streamed merge, exact). Above 1, accesses are
   // buffered (batch_per_worker ids per thread and stream) and analysed a batch at a time.
   int workers = 1;
   size_t batch_per_worker = size_t{1} << 22;

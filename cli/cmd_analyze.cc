@@ -32,9 +32,9 @@ int AnalyzeCommand(const Args& args) {
       "for meshes: sweeps to analyse")(
       "threads,t", po::value(&cfg.threads)->default_value(1),
       "for meshes: the smoother's threads (one stream each); for trace files: the analyzer's "
-      "threads per stream (exact chunk-and-merge)")("mode",
-                                                    po::value(&mode)->default_value("gauss-seidel"),
-                                                    "for meshes: gauss-seidel or jacobi")(
+      "threads per stream (exact: chunks and the streamed merge)")(
+      "mode", po::value(&mode)->default_value("gauss-seidel"),
+      "for meshes: gauss-seidel or jacobi")(
       "format", po::value(&cfg.format),
       ("other tools' traces (any may be zstd-compressed):\n" + TraceFormatHelp()).c_str())(
       "instructions", "lackey: count instruction fetches (I lines) too, not only data")(

@@ -29,7 +29,7 @@ struct AnalyzeConfig {
   uint64_t seed = 1;                             // orderings and the sampling hash
   int iterations = 1;                            // for meshes: sweeps
   // For meshes: the smoother's threads (one stream each); for trace files: the analyzer's
-  // threads per stream (exact chunk-and-merge).
+  // threads per stream (exact: chunks and the streamed merge).
   int threads = 1;
   UpdateMode mode = UpdateMode::kGaussSeidel;
   TriangleOrder triangle_order = TriangleOrder::kSorted;

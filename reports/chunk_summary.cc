@@ -41,7 +41,7 @@ uint64_t Checksum(const char* p, size_t n) {
     h = Mix(h ^ w) + i;
   }
   uint64_t w = 0;
-  std::memcpy(&w, p + i, n - i);
+  if (n > i) std::memcpy(&w, p + i, n - i);
   return Mix(h ^ w ^ (n - i));
 }
 
@@ -58,7 +58,7 @@ class Writer {
   }
   void U64s(const std::vector<uint64_t>& v) {
     Put<uint64_t>(v.size());
-    b_.append(reinterpret_cast<const char*>(v.data()), v.size() * 8);
+    if (!v.empty()) b_.append(reinterpret_cast<const char*>(v.data()), v.size() * 8);
   }
   std::string& bytes() { return b_; }
 
@@ -93,7 +93,7 @@ class Reader {
   std::vector<uint64_t> U64s(const char* what) {
     const uint64_t n = Count(8, what);
     std::vector<uint64_t> v(n);
-    std::memcpy(v.data(), p_ + at_, n * 8);
+    if (n) std::memcpy(v.data(), p_ + at_, n * 8);
     at_ += n * 8;
     return v;
   }

@@ -140,7 +140,7 @@ void TextbookFenwick(benchmark::State& state, std::string name) {
   state.SetItemsProcessed(state.iterations() * static_cast<int64_t>(trace.size()));
 }
 
-// The exact parallel analyzer (chunk-and-merge) against the serial one, interleaved: each
+// The exact parallel analyzer (chunks and the streamed merge) against the serial one, interleaved: each
 // iteration analyses the trace serially and on `threads` threads (StreamAnalysis, histogram
 // included, one batch), and the ratio of the summed times is the speedup.
 void ParallelSpeedup(benchmark::State& state, std::string name) {
