@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <stdexcept>
+#include <utility>
 
 #include "analysis/parallel_stack_distance.h"
 #include "analysis/streamed_chain.h"
@@ -39,6 +40,7 @@ ReuseAnalysis::ReuseAnalysis(const ReuseOptions& o) : opt_(o) {
 void ReuseAnalysis::Begin(const StreamInfo& info) {
   if (info.threads < 1 || info.threads > kMaxThreads)
     throw std::invalid_argument("streams must be 1.." + std::to_string(kMaxThreads));
+  Wait();  // a batch of an earlier input still in flight
   info_ = info;
   // Line ids are (address >> log2 line) - base: the canonical arrays start at kCanonicalBase, and
   // starting their lines near id 0 lets the analyzer's direct array cover them (above, every line
@@ -79,6 +81,7 @@ std::unique_ptr<StreamAnalysis> ReuseAnalysis::NewStream(int t, Granularity g) {
   if (any && opt_.profile) s->profile = ReuseProfile(lengths, steps);
   const std::vector<uint64_t>& offsets = element ? element_offset_ : line_offset_;
   s->chunk = opt_.chunk;
+  s->batch_limit = opt_.batch_per_worker * opt_.workers;
   s->offset = static_cast<size_t>(t) < offsets.size() ? offsets[t] : 0;
   s->profile.SetNext(s->offset);
   return s;
@@ -119,18 +122,49 @@ void ReuseAnalysis::Consume(const Access* a, size_t n) {
   }
 }
 
-void ReuseAnalysis::Flush(StreamAnalysis& s, std::vector<uint64_t>& buf) {
-  s.AddBatch(buf.data(), buf.size(), opt_.workers);
+ReuseAnalysis::~ReuseAnalysis() {
+  if (batch_thread_.joinable()) batch_thread_.join();
+}
+
+void ReuseAnalysis::Wait() {
+  if (!batch_thread_.joinable()) return;
+  batch_thread_.join();
+  // The next batch of this stream: enough accesses per distinct id to pay for the chunks.
+  StreamAnalysis& s = *batch_stream_;
+  const size_t per_worker = std::min<size_t>(
+      opt_.max_batch_per_worker,
+      std::max<size_t>(opt_.batch_per_worker, opt_.batch_per_distinct * s.distinct()));
+  s.batch_limit = std::max(s.batch_limit, per_worker * opt_.workers);
+  spare_ = std::move(batch_);
+  batch_ = std::vector<uint64_t>();
+  if (batch_error_) std::rethrow_exception(std::exchange(batch_error_, nullptr));
+}
+
+void ReuseAnalysis::Flush(StreamAnalysis& s, std::vector<uint64_t>& buf, bool last) {
+  Wait();
+  if (!last && buf.size() < s.batch_limit) return;  // the batch in flight raised the limit
+  batch_.swap(buf);
+  batch_stream_ = &s;
+  buf.swap(spare_);  // the other buffer, emptied, with its capacity
   buf.clear();
+  batch_thread_ = std::thread([this, &s] {
+    try {
+      s.AddBatch(batch_.data(), batch_.size(), opt_.workers);
+    } catch (...) {
+      batch_error_ = std::current_exception();
+    }
+  });
 }
 
 void ReuseAnalysis::End() {
   for (int t = 0; t < threads(); ++t) {
-    if (element_[t] && !ebuf_[t].empty()) Flush(*element_[t], ebuf_[t]);
-    if (line_[t] && !lbuf_[t].empty()) Flush(*line_[t], lbuf_[t]);
+    if (element_[t] && !ebuf_[t].empty()) Flush(*element_[t], ebuf_[t], true);
+    if (line_[t] && !lbuf_[t].empty()) Flush(*line_[t], lbuf_[t], true);
+  }
+  Wait();
+  for (int t = 0; t < threads(); ++t)
     for (StreamAnalysis* s : {element_[t].get(), line_[t].get()})
       if (s && s->shards) s->shards->Finish();
-  }
   ended_ = true;
 }
 

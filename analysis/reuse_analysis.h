@@ -11,8 +11,10 @@
 #pragma once
 
 #include <cstdint>
+#include <exception>
 #include <memory>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "analysis/reuse_histogram.h"
@@ -62,6 +64,7 @@ struct StreamAnalysis {
   void AddBatch(const uint64_t* ids, size_t n, int threads);
   std::vector<uint64_t> stack;
   bool batched = false;
+  size_t batch_limit = 0;  // ids buffered before a batch is analysed (ReuseAnalysis, workers > 1)
   // A chunk of a longer trace (ReuseOptions::chunk): its cold accesses are its first touches,
   // kept here (the id, and the access's place in the chunk's part of the stream) for the merge,
   // not counted; `offset` is where the chunk starts in the stream (profile positions).
@@ -81,10 +84,17 @@ struct ReuseOptions {
   bool profile = true;       // a profile per stream, when the input's sweep lengths are known
   int profile_steps = 100;   // per sweep, fewer when the sweeps x streams are many:
   // at most kMaxProfileSteps steps a stream (each step is a row of the profile)
-  // Threads per stream for the analysis itself (chunks and the streamed merge, exact). Above 1, accesses are
-  // buffered (batch_per_worker ids per thread and stream) and analysed a batch at a time.
+  // Threads per stream for the analysis itself (chunks and the streamed merge, exact). Above 1,
+  // accesses are buffered (batch_per_worker ids per thread and stream, or more: see
+  // batch_per_distinct) and analysed a batch at a time.
   int workers = 1;
   size_t batch_per_worker = size_t{1} << 22;
+  // A chunk pays for each distinct id it meets (its first touch, its place in the stack that
+  // flows, its index), so a chunk of far more accesses than the stream has distinct ids gains:
+  // a batch holds at least batch_per_distinct x the stream's distinct ids per worker, up to
+  // max_batch_per_worker (memory: two batches of 8 bytes an id).
+  size_t batch_per_distinct = 8;
+  size_t max_batch_per_worker = size_t{1} << 26;
   // One chunk of a trace, for a summary (reports/chunk_summary.h): first touches kept, not
   // counted (StreamAnalysis::chunk); exact and serial only.
   bool chunk = false;
@@ -97,6 +107,7 @@ struct ReuseOptions {
 class ReuseAnalysis : public AccessConsumer {
  public:
   explicit ReuseAnalysis(const ReuseOptions& o);
+  ~ReuseAnalysis() override;
   // From the stream: its thread count, the dense range of element ids (the vertices), whether line
   // ids start at the canonical base (so the direct array covers them), the profile's sweep lengths.
   void Begin(const StreamInfo& info) override;
@@ -167,9 +178,13 @@ class ReuseAnalysis : public AccessConsumer {
     if (opt_.workers <= 1) return s.Add(id);
     // The buffer grows as ids come (a stream of a few accesses holds a few), up to one batch.
     buf.push_back(id);
-    if (buf.size() >= opt_.batch_per_worker * opt_.workers) Flush(s, buf);
+    if (buf.size() >= s.batch_limit) Flush(s, buf);
   }
-  void Flush(StreamAnalysis& s, std::vector<uint64_t>& buf);
+  // Hands a full buffer to a thread that analyses it (AddBatch) while the caller goes on reading
+  // into the other buffer (double buffering: reading and decoding overlap the analysis).
+  // Not yet when the batch in flight raised this stream's limit (unless `last`).
+  void Flush(StreamAnalysis& s, std::vector<uint64_t>& buf, bool last = false);
+  void Wait();  // the batch in flight analysed (its error rethrown), its buffer spare again
   const StreamAnalysis* Done(const StreamAnalysis* s) const;
   template <class Row>
   void ForEachStream(const Row& row) const;
@@ -187,6 +202,10 @@ class ReuseAnalysis : public AccessConsumer {
   bool do_elements_ = false, do_lines_ = false, ended_ = false;
   std::vector<std::unique_ptr<StreamAnalysis>> element_, line_;
   std::vector<std::vector<uint64_t>> ebuf_, lbuf_;  // per thread stream (workers > 1)
+  std::thread batch_thread_;                        // the batch in flight
+  std::vector<uint64_t> batch_, spare_;
+  StreamAnalysis* batch_stream_ = nullptr;
+  std::exception_ptr batch_error_;
   std::vector<uint64_t> moves_;
   std::vector<uint64_t> element_offset_, line_offset_;
 };

@@ -111,6 +111,7 @@ TEST(ParallelStackDistance, TraceAnalysisWithWorkersEqualsSerial) {
       ReuseOptions o;  // profiles from the stream's sweep lengths
       o.workers = workers;
       o.batch_per_worker = batch;
+      if (batch < 10000) o.batch_per_distinct = 0;  // fixed small batches: many per stream
       auto a = std::make_unique<ReuseAnalysis>(o);
       StreamMesh(m, so, "mesh", "ori", *a);
       EXPECT_TRUE(a->element(0)->profile.enabled());
