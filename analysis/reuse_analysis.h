@@ -71,8 +71,9 @@ struct StreamAnalysis {
   bool chunk = false;
   uint64_t offset = 0;
   std::vector<uint64_t> first_ids, first_positions;
-  // The stream's distinct ids (exact analysis).
-  uint64_t distinct() const { return batched ? stack.size() : sd.distinct(); }
+  // The stream's distinct ids (exact analysis): each id's first access is its one cold access,
+  // however the analysis was done (serial, batched, merged from chunks or ranks).
+  uint64_t distinct() const { return hist.cold(); }
 };
 
 // The most profile steps of one granularity over all streams (rows of the profile table).

@@ -14,7 +14,9 @@
 
 namespace meshreuse::cli {
 
-int AnalyzeCommand(const Args& args) {
+int AnalyzeCommand(const Args& args) { return AnalyzeCommand(args, nullptr); }
+
+int AnalyzeCommand(const Args& args, ChunkTransport* transport) {
   po::options_description desc("options");
   AnalyzeConfig cfg;
   std::string orderings = "ori", granularity, quantiles = "50,75,90,100", cache = "westmere-ex",
@@ -118,6 +120,9 @@ int AnalyzeCommand(const Args& args) {
     throw UsageError("--sample-error needs --sample-rate or --sample-size");
   if (!chunk.empty()) cfg.chunk = ParseChunk(chunk);
   cfg.merge = vm.count("merge") > 0;
+  cfg.transport = transport;
+  // A distributed run: every rank analyses its chunk; rank 0 alone prints and writes.
+  const bool writer = !transport || transport->rank() == 0;
   const OutputFormat fmt = FormatOption(vm);
   CheckAnalyzeConfig(cfg);
   if (cfg.chunk) {
@@ -129,15 +134,18 @@ int AnalyzeCommand(const Args& args) {
     RunChunk(cfg, MakeLog(progress));
     return 0;
   }
-  for (const auto& [path, opt] :
-       {std::pair{hist_csv, "--histogram-csv"}, std::pair{prof_csv, "--profile-csv"},
-        std::pair{mrc_csv, "--mrc-csv"}})
-    if (!path.empty()) CheckOutputPath(path, opt, InputFiles(cfg.inputs));
-  if (!cfg.vtk.empty()) CheckOutputPath(cfg.vtk, "--vtk", InputFiles(cfg.inputs));
-  if (!out_dir.empty()) PrepareOutDir(out_dir);
+  if (writer) {
+    for (const auto& [path, opt] :
+         {std::pair{hist_csv, "--histogram-csv"}, std::pair{prof_csv, "--profile-csv"},
+          std::pair{mrc_csv, "--mrc-csv"}})
+      if (!path.empty()) CheckOutputPath(path, opt, InputFiles(cfg.inputs));
+    if (!cfg.vtk.empty()) CheckOutputPath(cfg.vtk, "--vtk", InputFiles(cfg.inputs));
+    if (!out_dir.empty()) PrepareOutDir(out_dir);
+  }
 
-  const Progress progress(vm.count("quiet") > 0);
+  const Progress progress(vm.count("quiet") > 0 || !writer);
   const AnalyzeResult r = RunAnalyze(cfg, MakeLog(progress));
+  if (!writer) return 0;
   if (fmt == OutputFormat::kText) {
     Print(AnalyzeTable(r, cfg, true), fmt);
     for (const std::string& n : AnalyzeNotes(r, cfg)) std::printf("%s\n", n.c_str());

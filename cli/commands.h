@@ -3,8 +3,13 @@
 // prints; none does any computing of its own. The table in main.cc maps names to these functions.
 #pragma once
 
+#include <functional>
 #include <string>
 #include <vector>
+
+namespace meshreuse {
+class ChunkTransport;
+}
 
 namespace meshreuse::cli {
 
@@ -19,8 +24,16 @@ int ReorderCommand(const Args& args);
 int CompareCommand(const Args& args);
 int TraceCommand(const Args& args);
 int AnalyzeCommand(const Args& args);
+// With a transport: one rank of a distributed analysis (cli/mpi_main.cc); rank 0 prints and writes.
+int AnalyzeCommand(const Args& args, ChunkTransport* transport);
 int SimulateCommand(const Args& args);
 int ValidateCommand(const Args& args);
 int ReportCommand(const Args& args);
+
+// cli/entry.cc: body() with core/error.h's errors reported on stderr as "WHO: error: ..." and
+// mapped to exit codes (2 bad input or options, 3 environment, 1 a bug).
+int RunReportingErrors(const char* name, const std::function<int()>& body,
+                       const std::string& who = "meshreuse");
+void SetFullCommandLine(int argc, char** argv);
 
 }  // namespace meshreuse::cli

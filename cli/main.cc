@@ -1,12 +1,11 @@
 // meshreuse: the command-line front end. One table maps subcommand names to functions; errors are
-// reported here and only here (core/error.h): bad input or options exit 2, a failing environment
-// (disk full, permission denied, a missing program, out of memory) exits 3, a bug exits 1.
+// reported by RunReportingErrors (cli/entry.cc, core/error.h): bad input or options exit 2, a
+// failing environment (disk full, permission denied, a missing program, out of memory) exits 3, a
+// bug exits 1.
 #include <malloc.h>
 
-#include <boost/program_options/errors.hpp>
 #include <cstdio>
 #include <cstring>
-#include <new>
 #include <string>
 #include <vector>
 
@@ -44,8 +43,6 @@ const Command kCommands[] = {
      ReportCommand},
 };
 
-std::vector<std::string> g_argv;
-
 void Usage(std::FILE* out) {
   std::fprintf(out,
                "meshreuse: locality research on unstructured meshes\n\n"
@@ -70,10 +67,8 @@ size_t Matches(const char* name, const std::vector<std::string>& args) {
 
 }  // namespace
 
-const std::vector<std::string>& FullCommandLine() { return g_argv; }
-
 int Main(int argc, char** argv) {
-  g_argv.assign(argv, argv + argc);
+  SetFullCommandLine(argc, argv);
   InstallOutputCleanup();
   const std::vector<std::string> args(argv + 1, argv + argc);
   if (args.empty() || args[0] == "--help" || args[0] == "-h" || args[0] == "help") {
@@ -107,32 +102,8 @@ int Main(int argc, char** argv) {
     Usage(stderr);
     return kExitBadInput;
   }
-  // The error taxonomy of core/error.h, mapped here and only here.
-  try {
-    return cmd->run(Args(args.begin() + used, args.end()));
-  } catch (const InputError& e) {
-    std::fprintf(stderr, "meshreuse: error: %s\n", e.what());
-    return kExitBadInput;
-  } catch (const UsageError& e) {
-    std::fprintf(stderr, "meshreuse %s: %s (see --help)\n", cmd->name, e.what());
-    return kExitBadInput;
-  } catch (const boost::program_options::error& e) {
-    std::fprintf(stderr, "meshreuse %s: %s (see --help)\n", cmd->name, e.what());
-    return kExitBadInput;
-  } catch (const EnvironmentError& e) {
-    std::fprintf(stderr, "meshreuse: error: %s\n", e.what());
-    return kExitEnvironment;
-  } catch (const std::bad_alloc&) {
-    // Readers never size anything from a header before its records arrive, and option products
-    // are checked up front: the input is larger than this machine can hold.
-    std::fprintf(stderr,
-                 "meshreuse: error: out of memory (the input is larger than this machine "
-                 "can hold)\n");
-    return kExitEnvironment;
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "meshreuse: internal error (a bug, please report it): %s\n", e.what());
-    return kExitBug;
-  }
+  return RunReportingErrors(cmd->name,
+                            [&] { return cmd->run(Args(args.begin() + used, args.end())); });
 }
 
 }  // namespace meshreuse::cli

@@ -138,6 +138,8 @@ std::vector<double> ParseQuantiles(const std::string& list) {
 void CheckAnalyzeConfig(const AnalyzeConfig& cfg) {
   if (cfg.inputs.empty()) throw UsageError("no input given");
   if (cfg.chunk && cfg.merge) throw UsageError("--chunk and --merge exclude each other");
+  if (cfg.transport && (cfg.chunk || cfg.merge))
+    throw UsageError("a distributed run cuts the trace by rank: no --chunk or --merge");
   if (cfg.chunk && cfg.summary_out.empty()) throw UsageError("--chunk needs --summary-out FILE");
   if (!cfg.chunk && !cfg.summary_out.empty()) throw UsageError("--summary-out needs --chunk r/P");
   if (cfg.merge && !cfg.format.empty())
@@ -170,6 +172,7 @@ void CheckAnalyzeConfig(const AnalyzeConfig& cfg) {
 AnalyzeResult RunAnalyze(const AnalyzeConfig& cfg, const Log& log) {
   CheckAnalyzeConfig(cfg);
   if (cfg.merge) return MergeSummaries(cfg, log);
+  if (cfg.transport) return RunDistributed(cfg, *cfg.transport, log);
   if (cfg.chunk) throw std::logic_error("RunAnalyze: a chunk run is RunChunk");
   AnalyzeResult r;
   const TraceFormat* fmt = cfg.format.empty() ? nullptr : &ParseTraceFormat(cfg.format);

@@ -22,6 +22,8 @@
 
 namespace meshreuse {
 
+class ChunkTransport;
+
 struct AnalyzeConfig {
   std::vector<std::string> inputs;  // meshes, meshreuse traces, or other tools' traces ("-": stdin)
   std::string format;               // "": meshes and meshreuse traces; else a TraceFormat name
@@ -53,6 +55,9 @@ struct AnalyzeConfig {
   std::optional<std::pair<uint32_t, uint32_t>> chunk;
   std::string summary_out;
   bool merge = false;
+  // A distributed run (one trace, chunk = rank of size ranks; reports/chunk_summary.h): the
+  // message layer, or nullptr.
+  ChunkTransport* transport = nullptr;
 };
 
 struct AnalyzeResult {

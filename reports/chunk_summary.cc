@@ -190,7 +190,7 @@ std::pair<uint32_t, uint32_t> ParseChunk(const std::string& s) {
   return {static_cast<uint32_t>(r), static_cast<uint32_t>(p)};
 }
 
-void WriteSummary(const std::string& path, const SummaryFile& s) {
+std::string EncodeSummary(const SummaryFile& s) {
   Writer w;
   w.Str(s.id.format);
   w.Put<uint64_t>(s.id.input_bytes);
@@ -210,6 +210,7 @@ void WriteSummary(const std::string& path, const SummaryFile& s) {
   for (const StreamSummary& x : s.streams) {
     w.Put<uint32_t>(x.thread);
     w.Put<uint32_t>(static_cast<uint32_t>(x.granularity));
+    w.Put<uint32_t>(x.resolved);
     w.Put<uint64_t>(x.accesses);
     w.Put<uint64_t>(x.offset);
     w.U64s(x.chunk.first_ids);
@@ -225,24 +226,37 @@ void WriteSummary(const std::string& path, const SummaryFile& s) {
     }
   }
   const std::string& payload = w.bytes();
+  std::string out(kHeaderBytes, '\0');
+  std::memcpy(&out[0], kMagic, 8);
+  const uint32_t version = kVersion;
+  const uint64_t bytes = payload.size(), sum = Checksum(payload.data(), payload.size());
+  std::memcpy(&out[8], &version, 4);
+  std::memcpy(&out[16], &bytes, 8);
+  std::memcpy(&out[24], &sum, 8);
+  out += payload;
+  return out;
+}
+
+void WriteSummary(const std::string& path, const SummaryFile& s) {
+  const std::string b = EncodeSummary(s);
   WriteAtomically(path, [&](std::FILE* f) {
-    char head[kHeaderBytes] = {};
-    std::memcpy(head, kMagic, 8);
-    const uint32_t version = kVersion;
-    const uint64_t bytes = payload.size(), sum = Checksum(payload.data(), payload.size());
-    std::memcpy(head + 8, &version, 4);
-    std::memcpy(head + 16, &bytes, 8);
-    std::memcpy(head + 24, &sum, 8);
-    if (std::fwrite(head, 1, kHeaderBytes, f) != kHeaderBytes ||
-        std::fwrite(payload.data(), 1, payload.size(), f) != payload.size())
+    if (std::fwrite(b.data(), 1, b.size(), f) != b.size())
       throw EnvironmentError(path, std::strerror(errno));
   });
 }
 
 SummaryFile ReadSummary(const std::string& path) {
   InputFile f(path);
-  char head[kHeaderBytes];
-  const size_t got = f.Read(head, kHeaderBytes);
+  if (f.size() > (int64_t{1} << 40)) throw InputError(path, 0, "not a chunk summary: too large");
+  std::string b;
+  char buf[1 << 16];
+  for (size_t n; (n = f.Read(buf, sizeof buf)) > 0;) b.append(buf, n);
+  return DecodeSummary(path, b);
+}
+
+SummaryFile DecodeSummary(const std::string& path, const std::string& file) {
+  const char* head = file.data();
+  const size_t got = std::min<size_t>(file.size(), kHeaderBytes);
   if (got < 8 || std::memcmp(head, kMagic, 8) != 0)
     throw InputError(path, 0,
                      "not a chunk summary (no MRSUMRY magic): give the files that "
@@ -257,20 +271,15 @@ SummaryFile ReadSummary(const std::string& path) {
     throw InputError(path, 0,
                      "summary version " + std::to_string(version) + " (this build reads " +
                          std::to_string(kVersion) + ")");
-  if (f.size() >= 0 && bytes != static_cast<uint64_t>(f.size()) - kHeaderBytes)
+  if (bytes != file.size() - kHeaderBytes)
     throw InputError(path, 0,
                      "truncated or extended summary: the header announces " +
                          std::to_string(bytes) + " payload bytes, the file holds " +
-                         std::to_string(f.size() - static_cast<int64_t>(kHeaderBytes)));
-  if (bytes > (uint64_t{1} << 40)) throw InputError(path, 0, "corrupt: payload size");
-  std::string payload(bytes, '\0');
-  if (f.Read(payload.data(), bytes) != bytes)
-    throw InputError(path, 0, "truncated summary: fewer payload bytes than announced");
-  char extra;
-  if (f.Read(&extra, 1) != 0) throw InputError(path, 0, "bytes after the announced payload");
-  if (Checksum(payload.data(), payload.size()) != sum)
+                         std::to_string(file.size() - kHeaderBytes));
+  const char* payload = file.data() + kHeaderBytes;
+  if (Checksum(payload, bytes) != sum)
     throw InputError(path, 0, "corrupt summary: the checksum does not match its contents");
-  Reader r(path, payload.data(), payload.size());
+  Reader r(path, payload, bytes);
   SummaryFile s;
   s.id.format = r.Str();
   s.id.input_bytes = r.Get<uint64_t>();
@@ -300,6 +309,9 @@ SummaryFile ReadSummary(const std::string& path) {
     if (x.thread >= static_cast<uint32_t>(s.info.threads) || (g != 1 && g != 2))
       r.Fail("corrupt: a stream's thread or granularity");
     x.granularity = static_cast<Granularity>(g);
+    const uint32_t resolved = r.Get<uint32_t>();
+    if (resolved > 1) r.Fail("corrupt: a stream's flags");
+    x.resolved = resolved;
     x.accesses = r.Get<uint64_t>();
     x.offset = r.Get<uint64_t>();
     x.chunk.first_ids = r.U64s("first touch");
@@ -308,6 +320,7 @@ SummaryFile ReadSummary(const std::string& path) {
     const size_t f = x.chunk.first_ids.size();
     if (x.chunk.first_positions.size() != f || x.chunk.stack.size() != f)
       r.Fail("corrupt: a stream's first touches and stack differ in length");
+    if (x.resolved && f) r.Fail("corrupt: a resolved stream with first touches");
     for (size_t i = 0; i < f; ++i)
       if (x.chunk.first_positions[i] >= x.accesses ||
           (i && x.chunk.first_positions[i] <= x.chunk.first_positions[i - 1]))
@@ -316,7 +329,11 @@ SummaryFile ReadSummary(const std::string& path) {
     uint64_t counted = f;
     for (uint64_t i = 0; i < h; ++i) {
       const uint64_t d = r.Get<uint64_t>(), c = r.Get<uint64_t>();
-      if (d >= x.accesses || c > x.accesses - counted) r.Fail("corrupt: histogram entry");
+      // Inside a chunk a distance is below its accesses; resolved, below the stream's accesses
+      // up to the chunk's end.
+      const uint64_t bound = x.resolved ? x.offset + x.accesses : x.accesses;
+      if ((d >= bound && !(x.resolved && d == StackDistance::kCold)) || c > x.accesses - counted)
+        r.Fail("corrupt: histogram entry");
       counted += c;
       x.hist.emplace_back(d, c);
     }
@@ -368,21 +385,21 @@ void TraceOffsets(const std::string& path, uint64_t first, uint32_t line_bytes,
 
 }  // namespace
 
-void RunChunk(const AnalyzeConfig& cfg, const Log& log) {
-  if (cfg.inputs.size() != 1) throw UsageError("--chunk takes one trace file");
+SummaryFile SummarizeChunk(const AnalyzeConfig& cfg, uint32_t r, uint32_t p, const Log& log) {
+  if (cfg.inputs.size() != 1) throw UsageError("a chunked analysis takes one trace file");
   const std::string& in = cfg.inputs[0];
   const TraceFormat* fmt = cfg.format.empty() ? nullptr : &ParseTraceFormat(cfg.format);
-  if (in == "-") throw UsageError("--chunk needs a file: standard input cannot be cut");
+  if (in == "-") throw UsageError("a chunked analysis needs a file: standard input cannot be cut");
   if (!fmt && ClassifyInput(in) == InputKind::kMesh)
-    throw UsageError("--chunk takes a trace file, not a mesh (write one with `meshreuse trace`)");
+    throw UsageError(
+        "a chunked analysis takes a trace file, not a mesh (write one with `meshreuse trace`)");
   if (fmt && fmt->syntax != TraceSyntax::kFixedRecords)
-    throw UsageError(std::string("--chunk: a ") + fmt->name +
+    throw UsageError(std::string("a ") + fmt->name +
                      " trace cannot be cut into chunks (its records differ in length); chunk a "
                      "fixed-record copy of it (u64) instead");
-  if (cfg.sample) throw UsageError("--chunk computes the exact analysis (no --sample-*)");
+  if (cfg.sample) throw UsageError("a chunked analysis is exact (no --sample-*)");
   if (cfg.threads != 1)
-    throw UsageError("--chunk analyses its chunk on one thread: run more chunks instead");
-  const auto [r, p] = *cfg.chunk;
+    throw UsageError("each chunk is analysed on one thread: run more chunks (ranks) instead");
 
   AnalyzeResult shape;  // the granularity the whole run would use
   SummaryFile s;
@@ -459,86 +476,203 @@ void RunChunk(const AnalyzeConfig& cfg, const Log& log) {
       s.streams.push_back(std::move(ss));
     }
   }
-  WriteSummary(cfg.summary_out, s);
+  return s;
+}
+
+void RunChunk(const AnalyzeConfig& cfg, const Log& log) {
+  const auto [r, p] = *cfg.chunk;
+  WriteSummary(cfg.summary_out, SummarizeChunk(cfg, r, p, log));
   log.Say("wrote " + cfg.summary_out);
 }
 
-AnalyzeResult MergeSummaries(const AnalyzeConfig& cfg, const Log& log) {
-  if (cfg.inputs.empty()) throw UsageError("--merge: no summary given");
-  AnalyzeResult res;
-  std::unique_ptr<ReuseAnalysis> a;
-  SummaryIdentity id;
-  std::string first_path;
-  uint32_t expect = 0;
-  uint64_t next_record = 0;
-  for (const std::string& path : cfg.inputs) {
-    SummaryFile s = ReadSummary(path);
-    if (!a) {
-      id = s.id;
-      first_path = path;
-      res.granularity = static_cast<Granularity>(id.granularity);
-      ReuseOptions o;
-      o.granularity = res.granularity;
-      o.line_bytes = id.line_bytes;
-      o.profile = cfg.profile;
-      a = std::make_unique<ReuseAnalysis>(o);
-      StreamInfo info = s.info;
-      info.input = s.input;
-      a->Begin(info);
-      if (cfg.inputs.size() != id.chunks)
-        throw InputError(path, 0,
-                         "a run of " + std::to_string(id.chunks) + " chunks, and " +
-                             std::to_string(cfg.inputs.size()) +
-                             " summaries given: give every chunk's summary once, in order 0.." +
-                             std::to_string(id.chunks - 1));
-    } else if (!(s.id == id)) {
-      throw InputError(path, 0,
-                       "a summary of another analysis: its trace, options or chunk count differ "
-                       "from those of " +
-                           first_path);
-    }
-    if (s.chunk != expect)
-      throw InputError(path, 0,
-                       "chunk " + ChunkName(s.chunk, id.chunks) + " where chunk " +
-                           ChunkName(expect, id.chunks) +
-                           " was expected: give every summary once, in order 0.." +
-                           std::to_string(id.chunks - 1));
-    if (s.first != next_record)
-      throw InputError(path, 0, "corrupt: its records do not follow the previous chunk's");
-    if (s.info.threads != a->threads())
-      throw InputError(path, 0, "corrupt: a thread count unlike the first summary's");
-    ++expect;
-    next_record = s.end;
-    log.Say("merging chunk " + ChunkName(s.chunk, id.chunks) + " (" + path + ")");
-    for (int t = 0; t < a->threads(); ++t) a->AddMoves(t, s.moves[t]);
-    for (StreamSummary& x : s.streams) {
-      StreamAnalysis& st = a->MakeStream(static_cast<int>(x.thread), x.granularity);
-      st.batched = true;                       // the stack travels as a list
-      const uint64_t at = st.hist.accesses();  // the stream's accesses before this chunk
-      const bool prof = st.profile.enabled();
-      if (prof && x.offset != at)
-        throw InputError(path, 0,
-                         "the profile cannot be merged: the chunk counted its stream " +
-                             std::to_string(x.thread) + " to start at access " +
-                             std::to_string(x.offset) + ", the chunks before it hold " +
-                             std::to_string(at) +
-                             " (accesses straddling two lines before the chunk); merge without "
-                             "profile output");
+SummaryMerger::SummaryMerger(bool profile) : profile_(profile) {}
+SummaryMerger::~SummaryMerger() = default;
+
+void SummaryMerger::Add(SummaryFile s, const std::string& name, size_t given) {
+  if (!a_) {
+    id_ = s.id;
+    first_name_ = name;
+    granularity_ = static_cast<Granularity>(id_.granularity);
+    ReuseOptions o;
+    o.granularity = granularity_;
+    o.line_bytes = id_.line_bytes;
+    o.profile = profile_;
+    a_ = std::make_unique<ReuseAnalysis>(o);
+    StreamInfo info = s.info;
+    info.input = s.input;
+    a_->Begin(info);
+    if (given != id_.chunks)
+      throw InputError(name, 0,
+                       "a run of " + std::to_string(id_.chunks) + " chunks, and " +
+                           std::to_string(given) +
+                           " summaries given: give every chunk's summary once, in order 0.." +
+                           std::to_string(id_.chunks - 1));
+  } else if (!(s.id == id_)) {
+    throw InputError(name, 0,
+                     "a summary of another analysis: its trace, options or chunk count differ "
+                     "from those of " +
+                         first_name_);
+  }
+  if (s.chunk != expect_)
+    throw InputError(name, 0,
+                     "chunk " + ChunkName(s.chunk, id_.chunks) + " where chunk " +
+                         ChunkName(expect_, id_.chunks) +
+                         " was expected: give every summary once, in order 0.." +
+                         std::to_string(id_.chunks - 1));
+  if (s.first != next_record_)
+    throw InputError(name, 0, "corrupt: its records do not follow the previous chunk's");
+  if (s.info.threads != a_->threads())
+    throw InputError(name, 0, "corrupt: a thread count unlike the first summary's");
+  ++expect_;
+  next_record_ = s.end;
+  for (int t = 0; t < a_->threads(); ++t) a_->AddMoves(t, s.moves[t]);
+  for (StreamSummary& x : s.streams) {
+    StreamAnalysis& st = a_->MakeStream(static_cast<int>(x.thread), x.granularity);
+    st.batched = true;                       // the stack travels as a list
+    const uint64_t at = st.hist.accesses();  // the stream's accesses before this chunk
+    const bool prof = st.profile.enabled();
+    if (prof && x.offset != at)
+      throw InputError(name, 0,
+                       "the profile cannot be merged: the chunk counted its stream " +
+                           std::to_string(x.thread) + " to start at access " +
+                           std::to_string(x.offset) + ", the chunks before it hold " +
+                           std::to_string(at) +
+                           " (accesses straddling two lines before the chunk); merge without "
+                           "profile output");
+    if (!x.resolved) {
       const std::vector<uint64_t> d = ResolveChunk(x.chunk, &st.stack);
       for (size_t k = 0; k < d.size(); ++k) {
         st.hist.Add(d[k]);
         if (prof) st.profile.AddAt(at + x.chunk.first_positions[k], d[k]);
       }
-      for (const auto& [dist, n] : x.hist) st.hist.AddCount(dist, n);
-      if (prof)
-        for (const StreamSummary::Step& p : x.profile)
-          if (!st.profile.AddToStep(p.index, p.accesses, p.cold, p.sum))
-            throw InputError(path, 0, "corrupt: a profile step beyond the sweeps");
     }
+    for (const auto& [dist, n] : x.hist) st.hist.AddCount(dist, n);
+    if (prof)
+      for (const StreamSummary::Step& p : x.profile)
+        if (!st.profile.AddToStep(p.index, p.accesses, p.cold, p.sum))
+          throw InputError(name, 0, "corrupt: a profile step beyond the sweeps");
   }
-  a->End();
-  res.runs.push_back(std::move(a));
+}
+
+AnalyzeResult SummaryMerger::Finish() {
+  if (!a_) throw std::logic_error("SummaryMerger: nothing added");
+  a_->End();
+  AnalyzeResult res;
+  res.granularity = granularity_;
+  res.runs.push_back(std::move(a_));
   return res;
+}
+
+AnalyzeResult MergeSummaries(const AnalyzeConfig& cfg, const Log& log) {
+  if (cfg.inputs.empty()) throw UsageError("--merge: no summary given");
+  SummaryMerger m(cfg.profile);
+  for (const std::string& path : cfg.inputs) {
+    SummaryFile s = ReadSummary(path);
+    log.Say("merging chunk " + ChunkName(s.chunk, s.id.chunks) + " (" + path + ")");
+    m.Add(std::move(s), path, cfg.inputs.size());
+  }
+  return m.Finish();
+}
+
+AnalyzeResult RunDistributed(const AnalyzeConfig& cfg, ChunkTransport& tx, const Log& log) {
+  const int rank = tx.rank(), ranks = tx.size();
+  const Log quiet;
+  SummaryFile s = SummarizeChunk(cfg, static_cast<uint32_t>(rank), static_cast<uint32_t>(ranks),
+                                 rank == 0 ? log : quiet);
+  // Every rank relays every stream some chunk has, in one order: stream key = thread * 2 + g - 1.
+  const size_t keys = static_cast<size_t>(s.info.threads) * 2;
+  std::vector<uint64_t> present(keys, 0), accesses(keys, 0);
+  std::vector<StreamSummary*> mine(keys, nullptr);
+  for (StreamSummary& x : s.streams) {
+    const size_t k = x.thread * 2 + static_cast<size_t>(x.granularity) - 1;
+    present[k] = 1, accesses[k] = x.accesses, mine[k] = &x;
+  }
+  present = tx.AllReduceMax(present);
+  const std::vector<uint64_t> offsets = tx.ExclusiveScanSum(accesses);
+  if (rank == 0) log.Say("streaming the LRU stacks through " + std::to_string(ranks) + " ranks");
+  // A profile for placing first touches at their true positions in each stream.
+  ReuseOptions po;
+  po.granularity = static_cast<Granularity>(s.id.granularity);
+  po.line_bytes = s.id.line_bytes;
+  po.profile = cfg.profile;
+  ReuseAnalysis places(po);
+  places.Begin(s.info);
+  constexpr size_t kBlock = size_t{1} << 16;
+  std::vector<uint64_t> in, out;
+  for (size_t k = 0; k < keys; ++k) {
+    if (!present[k]) continue;
+    StreamSummary* x = mine[k];
+    const ChunkSummary empty;
+    ChunkResolver res(x ? x->chunk : empty);
+    const bool last = rank + 1 == ranks;
+    auto forward = [&](bool flush) {
+      if (last) {
+        out.clear();
+        return;
+      }
+      if (!out.empty() && (flush || out.size() >= kBlock)) {
+        tx.SendIds(out.data(), out.size());
+        out.clear();
+      }
+    };
+    if (rank > 0)
+      while (tx.RecvIds(&in) > 0) {
+        res.Filter(in.data(), in.size(), &out);
+        forward(false);
+      }
+    if (x)
+      for (size_t at = 0; at < x->chunk.stack.size(); at += kBlock) {
+        out.insert(out.end(), x->chunk.stack.begin() + at,
+                   x->chunk.stack.begin() + std::min(x->chunk.stack.size(), at + kBlock));
+        forward(false);
+      }
+    forward(true);
+    if (!last) tx.SendIds(nullptr, 0);  // end of this stream
+    if (!x) continue;
+    // Off the critical path: this chunk's first touches, folded into its histogram and profile.
+    const std::vector<uint64_t> d = res.FirstTouchDistances();
+    StreamAnalysis& st = places.MakeStream(static_cast<int>(x->thread), x->granularity);
+    const bool prof = st.profile.enabled();
+    if (prof && x->offset != offsets[k])
+      throw InputError(s.input, 0,
+                       "the profile cannot be computed: chunk " + std::to_string(rank) +
+                           " counted its stream " + std::to_string(x->thread) +
+                           " to start at access " + std::to_string(x->offset) +
+                           ", the chunks before it hold " + std::to_string(offsets[k]) +
+                           " (accesses straddling two lines)");
+    ReuseHistogram h;
+    for (const auto& [dist, n] : x->hist) h.AddCount(dist, n);
+    for (size_t i = 0; i < d.size(); ++i) {
+      h.Add(d[i]);
+      if (prof) st.profile.AddAt(offsets[k] + x->chunk.first_positions[i], d[i]);
+    }
+    x->hist.clear();
+    const std::vector<uint64_t>& c = h.counts();
+    for (size_t dist = 0; dist < c.size(); ++dist)
+      if (c[dist]) x->hist.emplace_back(dist, c[dist]);
+    if (h.cold()) x->hist.emplace_back(StackDistance::kCold, h.cold());
+    if (prof) {
+      const auto& steps = st.profile.steps();
+      for (size_t i = 0; i < steps.size(); ++i)
+        if (steps[i].accesses)
+          x->profile.push_back({i, steps[i].accesses, steps[i].cold, steps[i].sum});
+    }
+    x->chunk = ChunkSummary();
+    x->resolved = true;
+    x->offset = offsets[k];  // the true start, now known
+  }
+  // Rank 0 gathers the resolved chunks, in order, and adds them up (integers: exact).
+  if (rank != 0) {
+    tx.SendBytes(0, EncodeSummary(s));
+    return AnalyzeResult();
+  }
+  log.Say("adding up " + std::to_string(ranks) + " resolved chunks");
+  SummaryMerger m(cfg.profile);
+  m.Add(std::move(s), "rank 0", static_cast<size_t>(ranks));
+  for (int r = 1; r < ranks; ++r)
+    m.Add(DecodeSummary("rank " + std::to_string(r), tx.RecvBytes(r)), "rank " + std::to_string(r),
+          static_cast<size_t>(ranks));
+  return m.Finish();
 }
 
 }  // namespace meshreuse

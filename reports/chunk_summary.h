@@ -19,6 +19,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <utility>
 #include <vector>
@@ -44,6 +45,10 @@ struct StreamSummary {
     unsigned __int128 sum;
   };
   std::vector<Step> profile;  // non-empty steps
+  // Resolved (a distributed run's chunk after the stack went through it): the first touches'
+  // distances are in hist (cold ones as StackDistance::kCold) and profile; no first touches or
+  // stack.
+  bool resolved = false;
 };
 
 struct SummaryIdentity {                      // what every summary of one analysis shares
@@ -63,14 +68,57 @@ struct SummaryFile {
   std::vector<StreamSummary> streams;
 };
 
+std::string EncodeSummary(const SummaryFile& s);  // the file's bytes
+// From bytes (a file's, or a rank's message); `name` names them in errors.
+SummaryFile DecodeSummary(const std::string& name, const std::string& bytes);
 void WriteSummary(const std::string& path, const SummaryFile& s);
 // The checksum the header holds, of the payload bytes (for tests that edit a payload).
 uint64_t SummaryChecksum(const char* payload, size_t n);
 SummaryFile ReadSummary(const std::string& path);  // InputError naming the file and the problem
 
-// The chunk run: cfg.inputs holds one trace; writes cfg.summary_out.
+// Chunk r of P of cfg.inputs[0] (one trace), analysed into its summary.
+SummaryFile SummarizeChunk(const AnalyzeConfig& cfg, uint32_t r, uint32_t p, const Log& log);
+// The chunk run: writes cfg.summary_out.
 void RunChunk(const AnalyzeConfig& cfg, const Log& log);
+
+// Summaries of chunks 0..P-1 added in order into one analysis (InputError naming the one that is
+// out of order, foreign or missing).
+class SummaryMerger {
+ public:
+  explicit SummaryMerger(bool profile);
+  ~SummaryMerger();
+  void Add(SummaryFile s, const std::string& name, size_t given);  // `given`: summaries in all
+  AnalyzeResult Finish();
+
+ private:
+  bool profile_;
+  std::unique_ptr<ReuseAnalysis> a_;
+  SummaryIdentity id_;
+  Granularity granularity_ = Granularity::kBoth;
+  std::string first_name_;
+  uint32_t expect_ = 0;
+  uint64_t next_record_ = 0;
+};
 // The merge: cfg.inputs are summaries of chunks 0..P-1, in order.
 AnalyzeResult MergeSummaries(const AnalyzeConfig& cfg, const Log& log);
+
+// What a distributed run needs from its message layer (the MPI driver, cli/mpi_main.cc, which
+// only moves bytes): ranks 0..size-1 in a chain.
+class ChunkTransport {
+ public:
+  virtual ~ChunkTransport() = default;
+  virtual int rank() const = 0;
+  virtual int size() const = 0;
+  virtual void SendIds(const uint64_t* ids, size_t n) = 0;  // to rank + 1; n = 0: end of a stream
+  virtual size_t RecvIds(std::vector<uint64_t>* ids) = 0;   // from rank - 1; 0: end of a stream
+  virtual void SendBytes(int to, const std::string& bytes) = 0;
+  virtual std::string RecvBytes(int from) = 0;
+  virtual std::vector<uint64_t> AllReduceMax(const std::vector<uint64_t>& v) = 0;
+  virtual std::vector<uint64_t> ExclusiveScanSum(const std::vector<uint64_t>& v) = 0;
+};
+// Rank r analyses chunk r of P = size() (reading only its own records), the LRU stacks stream
+// rank to rank, each rank resolves its first touches, rank 0 adds the resolved chunks up: its
+// result equals the serial analyzer's; the other ranks return an empty result.
+AnalyzeResult RunDistributed(const AnalyzeConfig& cfg, ChunkTransport& tx, const Log& log);
 
 }  // namespace meshreuse
