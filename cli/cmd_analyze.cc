@@ -21,7 +21,7 @@ int AnalyzeCommand(const Args& args, ChunkTransport* transport) {
   AnalyzeConfig cfg;
   std::string orderings = "ori", granularity, quantiles = "50,75,90,100", cache = "westmere-ex",
               mode = "gauss-seidel", hist_csv, prof_csv, mrc_csv, out_dir, measured, triangle_order,
-              seed = "1", sample_size, element_bytes = "66", line_bytes = "64", chunk;
+              seed = "1", sample_size, element_bytes = "66", line_bytes = "64", chunk, rank_stats;
   double sample_rate = 0;
   desc.add_options()(
       "input", po::value(&cfg.inputs)->required()->multitoken(),
@@ -78,7 +78,11 @@ int AnalyzeCommand(const Args& args, ChunkTransport* transport) {
                                                    "with --chunk: the summary file to write")(
       "merge",
       "the inputs are the summaries of chunks 0..P-1, in order: merge them into exactly the "
-      "serial analysis (every table and output below)")("quiet,q", "no progress on stderr");
+      "serial analysis (every table and output below)")(
+      "rank-stats", po::value(&rank_stats),
+      "meshreuse-mpi: write each rank's CPU seconds per phase, wall seconds, records, distinct "
+      "ids, stack ids received and sent, bytes sent and peak memory (JSON) to this file")(
+      "quiet,q", "no progress on stderr");
   AddFormatOptions(desc);
   AddTriangleOrderOption(desc, &triangle_order);
   po::positional_options_description pos;
@@ -134,7 +138,10 @@ int AnalyzeCommand(const Args& args, ChunkTransport* transport) {
     RunChunk(cfg, MakeLog(progress));
     return 0;
   }
+  if (!rank_stats.empty() && !transport)
+    throw UsageError("--rank-stats is for a distributed run (mpirun ... meshreuse-mpi analyze)");
   if (writer) {
+    if (!rank_stats.empty()) CheckOutputPath(rank_stats, "--rank-stats", InputFiles(cfg.inputs));
     for (const auto& [path, opt] :
          {std::pair{hist_csv, "--histogram-csv"}, std::pair{prof_csv, "--profile-csv"},
           std::pair{mrc_csv, "--mrc-csv"}})
@@ -146,6 +153,12 @@ int AnalyzeCommand(const Args& args, ChunkTransport* transport) {
   const Progress progress(vm.count("quiet") > 0 || !writer);
   const AnalyzeResult r = RunAnalyze(cfg, MakeLog(progress));
   if (!writer) return 0;
+  if (!rank_stats.empty())
+    WriteAtomically(rank_stats, [&](std::FILE* f) {
+      const std::string j = RankStatsJson(r.ranks).dump(2) + "\n";
+      if (std::fwrite(j.data(), 1, j.size(), f) != j.size())
+        throw EnvironmentError(rank_stats, "cannot write");
+    });
   if (fmt == OutputFormat::kText) {
     Print(AnalyzeTable(r, cfg, true), fmt);
     for (const std::string& n : AnalyzeNotes(r, cfg)) std::printf("%s\n", n.c_str());

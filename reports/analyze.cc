@@ -353,6 +353,25 @@ std::vector<std::string> AnalyzeNotes(const AnalyzeResult& r, const AnalyzeConfi
   return n;
 }
 
+Json RankStatsJson(const std::vector<RankStats>& ranks) {
+  Json a = Json::array();
+  for (const RankStats& r : ranks)
+    a.push_back({{"rank", r.rank},
+                 {"analyse_cpu_s", r.analyse_cpu},
+                 {"stream_cpu_s", r.stream_cpu},
+                 {"resolve_cpu_s", r.resolve_cpu},
+                 {"reduce_cpu_s", r.reduce_cpu},
+                 {"wall_s", r.wall},
+                 {"records", r.records},
+                 {"accesses", r.accesses},
+                 {"distinct", r.distinct},
+                 {"stack_ids_in", r.stack_ids_in},
+                 {"stack_ids_sent", r.stack_ids_sent},
+                 {"bytes_sent", r.bytes_sent},
+                 {"peak_rss_bytes", r.peak_rss_bytes}});
+  return a;
+}
+
 Json AnalyzeConfigJson(const AnalyzeConfig& cfg, const AnalyzeResult& r) {
   Json j;
   j["inputs"] = cfg.inputs;

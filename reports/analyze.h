@@ -60,11 +60,23 @@ struct AnalyzeConfig {
   ChunkTransport* transport = nullptr;
 };
 
+// What one rank of a distributed run spent (reports/chunk_summary.h, RunDistributed): thread CPU
+// seconds per phase, wall seconds, what it held and sent. The scaling model's constants
+// (scripts/scale_mpi.sh) come from these.
+struct RankStats {
+  int rank = 0;
+  double analyse_cpu = 0, stream_cpu = 0, resolve_cpu = 0, reduce_cpu = 0, wall = 0;
+  uint64_t records = 0, accesses = 0, distinct = 0, stack_ids_in = 0, stack_ids_sent = 0,
+           bytes_sent = 0, peak_rss_bytes = 0;
+};
+
 struct AnalyzeResult {
   std::vector<std::unique_ptr<ReuseAnalysis>> runs;  // one per input (x ordering for meshes)
   Granularity granularity = Granularity::kBoth;
   std::string granularity_note;  // the default chosen for a foreign trace, to say under the table
+  std::vector<RankStats> ranks;  // a distributed run, on rank 0: every rank's
 };
+Json RankStatsJson(const std::vector<RankStats>& ranks);
 
 // "50,75,90,100" -> {0.5, 0.75, 0.9, 1}: each a percentage in 0..100 (UsageError saying which one
 // is not, and why).

@@ -1,8 +1,11 @@
 // Chunk summaries, their file format, the chunk run and the merge; see chunk_summary.h.
 #include "reports/chunk_summary.h"
 
+#include <sys/resource.h>
+
 #include <algorithm>
 #include <cerrno>
+#include <chrono>
 #include <cstring>
 #include <limits>
 #include <memory>
@@ -12,6 +15,7 @@
 #include "core/error.h"
 #include "core/input_file.h"
 #include "core/output_file.h"
+#include "core/smoother.h"
 #include "tracer/trace_formats.h"
 #include "tracer/trace_reader.h"
 
@@ -574,11 +578,32 @@ AnalyzeResult MergeSummaries(const AnalyzeConfig& cfg, const Log& log) {
   return m.Finish();
 }
 
+namespace {
+uint64_t PeakRssBytes() {
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  return static_cast<uint64_t>(u.ru_maxrss) * 1024;  // Linux: kilobytes
+}
+}  // namespace
+
 AnalyzeResult RunDistributed(const AnalyzeConfig& cfg, ChunkTransport& tx, const Log& log) {
   const int rank = tx.rank(), ranks = tx.size();
   const Log quiet;
+  RankStats stats;
+  stats.rank = rank;
+  const auto wall0 = std::chrono::steady_clock::now();
+  double cpu = ThreadCpuSeconds();
+  auto lap = [&cpu] {
+    const double now = ThreadCpuSeconds(), d = now - cpu;
+    cpu = now;
+    return d;
+  };
   SummaryFile s = SummarizeChunk(cfg, static_cast<uint32_t>(rank), static_cast<uint32_t>(ranks),
                                  rank == 0 ? log : quiet);
+  stats.analyse_cpu = lap();
+  stats.records = s.end - s.first;
+  for (const StreamSummary& x : s.streams)
+    stats.accesses += x.accesses, stats.distinct += x.chunk.first_ids.size();
   // Every rank relays every stream some chunk has, in one order: stream key = thread * 2 + g - 1.
   const size_t keys = static_cast<size_t>(s.info.threads) * 2;
   std::vector<uint64_t> present(keys, 0), accesses(keys, 0);
@@ -612,11 +637,14 @@ AnalyzeResult RunDistributed(const AnalyzeConfig& cfg, ChunkTransport& tx, const
       }
       if (!out.empty() && (flush || out.size() >= kBlock)) {
         tx.SendIds(out.data(), out.size());
+        stats.stack_ids_sent += out.size();
         out.clear();
       }
     };
+    const double stream0 = ThreadCpuSeconds();
     if (rank > 0)
       while (tx.RecvIds(&in) > 0) {
+        stats.stack_ids_in += in.size();
         res.Filter(in.data(), in.size(), &out);
         forward(false);
       }
@@ -628,7 +656,9 @@ AnalyzeResult RunDistributed(const AnalyzeConfig& cfg, ChunkTransport& tx, const
       }
     forward(true);
     if (!last) tx.SendIds(nullptr, 0);  // end of this stream
+    stats.stream_cpu += ThreadCpuSeconds() - stream0;
     if (!x) continue;
+    const double resolve0 = ThreadCpuSeconds();
     // Off the critical path: this chunk's first touches, folded into its histogram and profile.
     const std::vector<uint64_t> d = res.FirstTouchDistances();
     StreamAnalysis& st = places.MakeStream(static_cast<int>(x->thread), x->granularity);
@@ -660,19 +690,40 @@ AnalyzeResult RunDistributed(const AnalyzeConfig& cfg, ChunkTransport& tx, const
     x->chunk = ChunkSummary();
     x->resolved = true;
     x->offset = offsets[k];  // the true start, now known
+    stats.resolve_cpu += ThreadCpuSeconds() - resolve0;
   }
+  lap();
   // Rank 0 gathers the resolved chunks, in order, and adds them up (integers: exact).
+  stats.bytes_sent = stats.stack_ids_sent * 8 + 16 * keys;  // blocks, and the two collectives
   if (rank != 0) {
-    tx.SendBytes(0, EncodeSummary(s));
+    const std::string b = EncodeSummary(s);
+    tx.SendBytes(0, b);
+    stats.bytes_sent += b.size();
+    stats.reduce_cpu = lap();
+    stats.wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+    stats.peak_rss_bytes = PeakRssBytes();
+    tx.SendBytes(0, std::string(reinterpret_cast<const char*>(&stats), sizeof stats));
     return AnalyzeResult();
   }
   log.Say("adding up " + std::to_string(ranks) + " resolved chunks");
   SummaryMerger m(cfg.profile);
   m.Add(std::move(s), "rank 0", static_cast<size_t>(ranks));
-  for (int r = 1; r < ranks; ++r)
-    m.Add(DecodeSummary("rank " + std::to_string(r), tx.RecvBytes(r)), "rank " + std::to_string(r),
-          static_cast<size_t>(ranks));
-  return m.Finish();
+  std::vector<RankStats> all(1);
+  for (int r = 1; r < ranks; ++r) {
+    const std::string name = "rank " + std::to_string(r);
+    m.Add(DecodeSummary(name, tx.RecvBytes(r)), name, static_cast<size_t>(ranks));
+    const std::string b = tx.RecvBytes(r);
+    if (b.size() != sizeof(RankStats)) throw InputError(name, 0, "corrupt statistics message");
+    all.emplace_back();
+    std::memcpy(&all.back(), b.data(), sizeof(RankStats));
+  }
+  AnalyzeResult res = m.Finish();
+  stats.reduce_cpu = lap();
+  stats.wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+  stats.peak_rss_bytes = PeakRssBytes();
+  all[0] = stats;
+  res.ranks = std::move(all);
+  return res;
 }
 
 }  // namespace meshreuse

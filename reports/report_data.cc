@@ -9,8 +9,8 @@
 namespace meshreuse {
 
 const MachineRun* ReportData::Machine(const std::string& mesh, const std::string& ordering,
-                                     const std::string& placement, int threads,
-                                     bool prefetch) const {
+                                      const std::string& placement, int threads,
+                                      bool prefetch) const {
   for (const MachineRun& r : machine)
     if (r.mesh == mesh && r.ordering == ordering && r.threads == threads &&
         r.prefetch == prefetch && (r.placement == placement || r.threads == 1))

@@ -44,7 +44,7 @@ struct MachineRun {
   std::string mesh, ordering, placement;
   int threads = 1;
   bool prefetch = false;
-  ThreadStats total;  // summed over threads
+  ThreadStats total;                       // summed over threads
   double cycles_low = 0, cycles_high = 0;  // the slowest thread's
   std::vector<std::string> level_names;
 };
@@ -60,12 +60,12 @@ struct ReportData {
   std::vector<std::string> notes;                   // said at the top of the results README
   Table histogram{{}};                              // ReuseAnalysis::HistogramColumns()
   std::vector<OrderingValidation> validation;
-  std::vector<CompareRow> timing;  // empty without timing
+  std::vector<CompareRow> timing;   // empty without timing
   std::vector<MachineRun> machine;  // empty without the many-core part
   // The run of (mesh, ordering, placement, threads, prefetch), or nullptr.
   const MachineRun* Machine(const std::string& mesh, const std::string& ordering,
                             const std::string& placement, int threads, bool prefetch = false) const;
-  Noise noise;                     // the machine while it timed
+  Noise noise;  // the machine while it timed
   // Per cache level, "measured" or "simulated"; and the counters' line for run.json and README.
   std::map<std::string, std::string> sources;
   std::string counters;

@@ -51,10 +51,11 @@ MESHREUSE_REPORT_TABLE(ReportPredictedSpeedup, "predicted_speedup",
                        "Many cores: Speedup(p) and Gain(p) predicted",
                        "Speedup(p) and Gain(p) predicted by the many-core simulator's cost model "
                        "(mean over the meshes), beside the measured speedup and the paper's claims")
-MESHREUSE_REPORT_TABLE(ReportPrefetch, "prefetch", "Table 3 (measured)",
-                       "A next-line prefetcher against the paper's measured misses",
-                       "One-thread misses ($\\times 10^3$) without and with a next-line prefetcher, "
-                       "beside the paper's PAPI measurements")
+MESHREUSE_REPORT_TABLE(
+    ReportPrefetch, "prefetch", "Table 3 (measured)",
+    "A next-line prefetcher against the paper's measured misses",
+    "One-thread misses ($\\times 10^3$) without and with a next-line prefetcher, "
+    "beside the paper's PAPI measurements")
 MESHREUSE_REPORT_DATA(ReportHistogramData, "histogram.csv")
 MESHREUSE_REPORT_DATA(ReportProfileData, "profile.csv")
 MESHREUSE_REPORT_DATA(ReportCapacitiesData, "capacities.csv")

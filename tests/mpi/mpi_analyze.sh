@@ -75,5 +75,13 @@ rc=$?
 if [[ $rc -eq 2 ]] && grep -q "cannot be cut into chunks" "$tmp/out"; then pass=$((pass + 1)); else
   fail=$((fail + 1)); echo "FAIL text input: exit $rc"; head -20 "$tmp/out"; fi
 
+# The scaling script end to end on a small trace: constants and a projection come out.
+root=$(cd "$(dirname "$0")/../.." && pwd)
+if MESHREUSE_MPI_BIN=$mpi bash "$root/scripts/scale_mpi.sh" --accesses 50000 --ids 2000 --max-np 2 \
+    --repeat 1 --out "$tmp/scale" >"$tmp/out" 2>&1 &&
+   grep -q '| 1024 |' "$tmp/scale/projection.md" &&
+   /usr/bin/python3 -c "import json,sys; c=json.load(open(sys.argv[1])); assert c['t_a_ns'] > 0 and c['t_f_ns'] > 0" "$tmp/scale/constants.json"; then
+  pass=$((pass + 1)); else fail=$((fail + 1)); echo "FAIL scale_mpi.sh"; tail -20 "$tmp/out"; fi
+
 echo "mpi_analyze: $pass passed, $fail failed"
 ((fail == 0))

@@ -1,0 +1,103 @@
+#!/usr/bin/python3
+"""The MPI analysis's model (../shared/scale-out.md section 4) from measured constants.
+
+Input: runs as NP:WALL_SECONDS:RANK_STATS_JSON (scripts/scale_mpi.sh). Constants, from the
+medians over runs: t_a = analyse CPU seconds per access (reading included), t_f = stream CPU
+seconds per stack id received, t_ft = resolve CPU seconds per first touch, memory = peak bytes per
+distinct id of a rank's chunk. Model for N accesses over M ids on P ranks (blocks of B = 65,536
+ids of s = 8 bytes; latency alpha, bandwidth beta):
+  T(P) = t_a N / P + (M / B + P) (B (t_f + s / beta) + alpha) + t_ft min(M, N / P)
+the chunk, the stack's pipelined pass through every rank, and the rank's first touches.
+Writes OUT/runs.json, OUT/constants.json, OUT/projection.md."""
+import argparse
+import json
+import statistics
+import sys
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("runs", nargs="+")
+    ap.add_argument("--out", required=True)
+    ap.add_argument("--cores", type=int, default=0)
+    ap.add_argument("--project-accesses", type=float, default=1e11)
+    ap.add_argument("--project-ids", type=float, default=1e8)
+    ap.add_argument("--alpha", type=float, default=2e-6)
+    ap.add_argument("--beta", type=float, default=1e10)
+    a = ap.parse_args()
+    runs = []
+    for r in a.runs:
+        np_, wall, path = r.split(":", 2)
+        with open(path) as f:
+            runs.append({"np": int(np_), "wall_s": float(wall), "ranks": json.load(f)})
+    by_np = {}
+    for r in runs:
+        by_np.setdefault(r["np"], []).append(r)
+    ta, tf, tft, mem = [], [], [], []
+    for r in runs:
+        for k in r["ranks"]:
+            if k["accesses"]:
+                ta.append(k["analyse_cpu_s"] / k["accesses"])
+            if k["stack_ids_in"]:
+                tf.append(k["stream_cpu_s"] / k["stack_ids_in"])
+            if k["distinct"]:
+                tft.append(k["resolve_cpu_s"] / k["distinct"])
+                mem.append(k["peak_rss_bytes"] / k["distinct"])
+    med = lambda v: statistics.median(v) if v else float("nan")
+    c = {"t_a_ns": 1e9 * med(ta), "t_f_ns": 1e9 * med(tf), "t_ft_ns": 1e9 * med(tft),
+         "bytes_per_distinct_id": med(mem), "cores": a.cores}
+    scaling = []
+    base = med([r["wall_s"] for r in by_np.get(1, [])])
+    for np_ in sorted(by_np):
+        w = [r["wall_s"] for r in by_np[np_]]
+        rank_wall = [max(k["wall_s"] for k in r["ranks"]) for r in by_np[np_]]
+        cpu = [sum(k["analyse_cpu_s"] + k["stream_cpu_s"] + k["resolve_cpu_s"] + k["reduce_cpu_s"]
+                   for k in r["ranks"]) for r in by_np[np_]]
+        sent = [max(k["bytes_sent"] for k in r["ranks"]) for r in by_np[np_]]
+        scaling.append({"np": np_, "wall_s_median": med(w), "wall_s_min": min(w),
+                        "wall_s_max": max(w), "rank_wall_s_median": med(rank_wall),
+                        "cpu_s_all_ranks_median": med(cpu), "max_bytes_sent_per_rank": med(sent),
+                        "speedup_wall": base / med(w) if base == base else None,
+                        "oversubscribed": bool(a.cores and np_ > a.cores)})
+    c["scaling"] = scaling
+    N, M, B, s = a.project_accesses, a.project_ids, 65536, 8
+    tb = B * (c["t_f_ns"] * 1e-9 + s / a.beta) + a.alpha
+    serial = c["t_a_ns"] * 1e-9 * N
+    rows = []
+    for P in (64, 128, 256, 512, 1024):
+        analyse = c["t_a_ns"] * 1e-9 * N / P
+        stream = (M / B + P) * tb
+        first = c["t_ft_ns"] * 1e-9 * min(M, N / P)
+        total = analyse + stream + first
+        rows.append((P, analyse, stream, first, total, serial / total, serial / total / P,
+                     c["bytes_per_distinct_id"] * min(M, N / P) / 1e9, M * s / 1e9))
+    with open(f"{a.out}/runs.json", "w") as f:
+        json.dump(runs, f, indent=1)
+    with open(f"{a.out}/constants.json", "w") as f:
+        json.dump(c, f, indent=1)
+    md = [f"Measured here: t_a = {c['t_a_ns']:.1f} ns per access (reading included), "
+          f"t_f = {c['t_f_ns']:.2f} ns per streamed id, t_ft = {c['t_ft_ns']:.1f} ns per first "
+          f"touch, {c['bytes_per_distinct_id']:.0f} bytes of peak memory per distinct id of a "
+          f"chunk.", "",
+          "| np | wall s (median, min-max) | slowest rank's wall s | CPU s, all ranks | "
+          "bytes sent, busiest rank | speed-up (wall) |", "|---|---|---|---|---|---|"]
+    for r in scaling:
+        md.append(f"| {r['np']}{' (oversubscribed)' if r['oversubscribed'] else ''} | "
+                  f"{r['wall_s_median']:.2f} ({r['wall_s_min']:.2f}-{r['wall_s_max']:.2f}) | "
+                  f"{r['rank_wall_s_median']:.2f} | {r['cpu_s_all_ranks_median']:.2f} | "
+                  f"{r['max_bytes_sent_per_rank']:.3g} | "
+                  f"{r['speedup_wall']:.2f}x |")
+    md += ["", f"Model for N = {N:.3g} accesses over M = {M:.3g} ids (serial: {serial:.0f} s), "
+           f"alpha = {a.alpha:g} s, beta = {a.beta:.3g} bytes/s (stated, not measured):", "",
+           "| P | analyse s | stream s | first touches s | total s | speed-up | efficiency | "
+           "memory per rank GB | bytes sent per rank GB |", "|---|---|---|---|---|---|---|---|---|"]
+    for P, an, st, ft, tot, sp, eff, memg, sentg in rows:
+        md.append(f"| {P} | {an:.1f} | {st:.2f} | {ft:.2f} | {tot:.1f} | {sp:.0f}x | "
+                  f"{100 * eff:.0f}% | {memg:.2f} | {sentg:.2f} |")
+    with open(f"{a.out}/projection.md", "w") as f:
+        f.write("\n".join(md) + "\n")
+    print("\n".join(md))
+
+
+if __name__ == "__main__":
+    sys.exit(main())
