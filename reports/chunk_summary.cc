@@ -397,10 +397,6 @@ SummaryFile SummarizeChunk(const AnalyzeConfig& cfg, uint32_t r, uint32_t p, con
   if (!fmt && ClassifyInput(in) == InputKind::kMesh)
     throw UsageError(
         "a chunked analysis takes a trace file, not a mesh (write one with `meshreuse trace`)");
-  if (fmt && fmt->syntax != TraceSyntax::kFixedRecords)
-    throw UsageError(std::string("a ") + fmt->name +
-                     " trace cannot be cut into chunks (its records differ in length); chunk a "
-                     "fixed-record copy of it (u64) instead");
   if (cfg.sample) throw UsageError("a chunked analysis is exact (no --sample-*)");
   if (cfg.threads != 1)
     throw UsageError("each chunk is analysed on one thread: run more chunks (ranks) instead");
@@ -423,7 +419,10 @@ SummaryFile SummarizeChunk(const AnalyzeConfig& cfg, uint32_t r, uint32_t p, con
 
   uint64_t total;
   std::vector<uint64_t> eoff, loff;
-  if (fmt) {
+  const bool text = fmt && fmt->syntax != TraceSyntax::kFixedRecords;
+  if (text) {
+    total = s.id.input_bytes;  // a text trace is cut by bytes, at line boundaries
+  } else if (fmt) {
     total = ForeignTraceLength(in, *fmt);
     if (total == 0 && s.id.input_bytes != 0)
       throw InputError(in, 0, "a compressed trace cannot be cut into chunks: decompress it first");
@@ -435,7 +434,9 @@ SummaryFile SummarizeChunk(const AnalyzeConfig& cfg, uint32_t r, uint32_t p, con
   s.first = static_cast<uint64_t>(U{total} * r / p);
   s.end = static_cast<uint64_t>(U{total} * (r + 1) / p);
   s.total = total;
-  if (fmt) {
+  if (text) {
+    eoff = loff = {0};  // no profile: a text trace's length is not known up front
+  } else if (fmt) {
     eoff = loff = {s.first};  // one stream, one access per record (fixed records are 1 byte)
   } else {
     TraceOffsets(in, s.first, cfg.line_bytes, &eoff, &loff);
@@ -449,7 +450,7 @@ SummaryFile SummarizeChunk(const AnalyzeConfig& cfg, uint32_t r, uint32_t p, con
   ReuseAnalysis a(o);
   a.SetStreamOffsets(eoff, loff);
   const RecordRange range{s.first, s.end};
-  log.Say("analysing chunk " + ChunkName(r, p) + " of " + in + ": records " +
+  log.Say("analysing chunk " + ChunkName(r, p) + " of " + in + (text ? ": bytes " : ": records ") +
           std::to_string(s.first) + ".." + std::to_string(s.end) + " of " + std::to_string(total));
   if (fmt)
     StreamForeignTrace(in, *fmt, cfg.instructions, a, {}, &range);

@@ -3,8 +3,9 @@
 //   meshreuse analyze TRACE --chunk r/P --summary-out S_r    (r = 0..P-1, anywhere, any order)
 //   meshreuse analyze --merge S_0 ... S_{P-1}                 (the serial analyzer's every output)
 // Chunk r takes records [N r / P, N (r + 1) / P) of a meshreuse trace or a fixed-record trace
-// (u32, u64, parda, oracle), read by range from a plain file (a zstd or text trace cannot be
-// entered in the middle: refused, saying so). Per thread stream and granularity its summary holds
+// (u32, u64, parda, oracle), or of a text or lackey trace the whole lines that begin in bytes
+// [B r / P, B (r + 1) / P), read by range from a plain file (a zstd trace cannot be entered in
+// the middle: refused, saying so). Per thread stream and granularity its summary holds
 // the chunk's first touches (ids, places), its LRU stack (bottom-up), the distances decided inside
 // it as (distance, count) pairs, its profile steps, and its accesses; the merge streams the stack
 // through the chunks in order (analysis/streamed_chain.h, ResolveChunk) and adds integers, so the
@@ -62,7 +63,7 @@ struct SummaryFile {
   SummaryIdentity id;
   std::string input;  // as given to the chunk run
   uint32_t chunk = 0;
-  uint64_t first = 0, end = 0, total = 0;  // records [first, end) of total
+  uint64_t first = 0, end = 0, total = 0;  // records [first, end) of total (text: bytes)
   StreamInfo info;
   std::vector<uint64_t> moves;  // per thread
   std::vector<StreamSummary> streams;

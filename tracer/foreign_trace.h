@@ -108,43 +108,13 @@ void Fixed(const std::string& path, InputStream& in, std::vector<char>& buf, siz
 
 }  // namespace foreign_detail
 
-// Fixed-record formats may be read by range: records [first, end) only (a chunk: a plain regular
-// file, InputStream::SeekTo); other formats refuse a range.
+namespace foreign_detail {
+
+// Text and lackey lines, parsed one by one (called by ReadForeignTrace).
 template <class F>
-ForeignTraceCounts ReadForeignTrace(const std::string& path, const TraceFormat& fmt, F&& add,
-                                    bool instructions = false, uint64_t first = 0,
-                                    uint64_t end = ~uint64_t{0}) {
-  using foreign_detail::kReserved;
-  ForeignTraceCounts count;
-  InputStream in(path);
-  std::vector<char> buf(1 << 20);
-  const bool ranged = first != 0 || end != ~uint64_t{0};
-  if (ranged && fmt.syntax != TraceSyntax::kFixedRecords)
-    throw InputError(path, 0,
-                     std::string("a ") + fmt.name +
-                         " trace cannot be cut into chunks: its records differ in length; chunk a "
-                         "fixed-record copy of it (u64) instead");
-  if (fmt.syntax == TraceSyntax::kFixedRecords) {
-    const size_t w = fmt.record_bytes, at = fmt.value_offset;
-    if (ranged) {
-      in.SeekTo(first * w);
-      in.SetLimit((end - first) * w);
-    }
-    switch (fmt.value_bytes) {
-      case 1:
-        foreign_detail::Fixed<1>(path, in, buf, w, at, add, count, first * w);
-        break;
-      case 2:
-        foreign_detail::Fixed<2>(path, in, buf, w, at, add, count, first * w);
-        break;
-      case 4:
-        foreign_detail::Fixed<4>(path, in, buf, w, at, add, count, first * w);
-        break;
-      default:
-        foreign_detail::Fixed<8>(path, in, buf, w, at, add, count, first * w);
-    }
-    return count;
-  }
+void ReadTextLines(const std::string& path, const TraceFormat& fmt, InputStream& in,
+                   std::vector<char>& buf, bool instructions, F& add, ForeignTraceCounts& count,
+                   bool at_start, bool whole_file) {
   const bool lackey = fmt.syntax == TraceSyntax::kLackey;
   constexpr size_t kMaxLine = 4096;
   int64_t line = 0;
@@ -153,7 +123,8 @@ ForeignTraceCounts ReadForeignTrace(const std::string& path, const TraceFormat& 
     ++line;
     if (static_cast<size_t>(e - b) > kMaxLine)
       throw InputError(path, line, "line longer than 4096 bytes: not a text trace");
-    if (line == 1 && e - b >= 3 && std::memcmp(b, "\xEF\xBB\xBF", 3) == 0) b += 3;  // BOM
+    if (at_start && line == 1 && e - b >= 3 && std::memcmp(b, "\xEF\xBB\xBF", 3) == 0)
+      b += 3;  // a byte-order mark
     if (std::memchr(b, '\0', e - b))
       throw InputError(path, line, "binary data (a NUL byte): not a text trace");
     if (lackey) return foreign_detail::LackeyLine(path, line, b, e, instructions, add, count);
@@ -200,7 +171,7 @@ ForeignTraceCounts ReadForeignTrace(const std::string& path, const TraceFormat& 
     }
   }
   if (!pending.empty()) parse(pending.data(), pending.data() + pending.size());
-  if (lackey && count.data == 0 && !(instructions && count.instructions > 0))
+  if (whole_file && lackey && count.data == 0 && !(instructions && count.instructions > 0))
     throw InputError(path, 0,
                      count.instructions
                          ? "no load or store records (L, S, M lines), only instruction fetches: "
@@ -208,6 +179,64 @@ ForeignTraceCounts ReadForeignTrace(const std::string& path, const TraceFormat& 
                            "lines)"
                          : "no lackey records (L, S, M or I lines): run valgrind --tool=lackey "
                            "--trace-mem=yes --log-file=FILE PROGRAM and read FILE");
+}
+
+}  // namespace foreign_detail
+
+// A range (a chunk; a plain regular file, InputStream::SeekTo): records [first, end) of a
+// fixed-record format; bytes [first, end) of a text or lackey trace, as the whole lines that begin
+// there.
+template <class F>
+ForeignTraceCounts ReadForeignTrace(const std::string& path, const TraceFormat& fmt, F&& add,
+                                    bool instructions = false, uint64_t first = 0,
+                                    uint64_t end = ~uint64_t{0}) {
+  using foreign_detail::kReserved;
+  ForeignTraceCounts count;
+  InputStream in(path);
+  std::vector<char> buf(1 << 20);
+  const bool ranged = first != 0 || end != ~uint64_t{0};
+  if (fmt.syntax == TraceSyntax::kFixedRecords) {
+    const size_t w = fmt.record_bytes, at = fmt.value_offset;
+    if (ranged) {
+      in.SeekTo(first * w);
+      in.SetLimit((end - first) * w);
+    }
+    switch (fmt.value_bytes) {
+      case 1:
+        foreign_detail::Fixed<1>(path, in, buf, w, at, add, count, first * w);
+        break;
+      case 2:
+        foreign_detail::Fixed<2>(path, in, buf, w, at, add, count, first * w);
+        break;
+      case 4:
+        foreign_detail::Fixed<4>(path, in, buf, w, at, add, count, first * w);
+        break;
+      default:
+        foreign_detail::Fixed<8>(path, in, buf, w, at, add, count, first * w);
+    }
+    return count;
+  }
+  // A chunk of a text trace: first and end are byte offsets; the chunk is the whole lines that
+  // begin in [first, end), so consecutive chunks hold every line once.
+  uint64_t chunk_start = 0;
+  if (ranged) {
+    const int64_t size = in.size();
+    const uint64_t a = in.NextLineStart(first);
+    const uint64_t b =
+        size >= 0 && end >= static_cast<uint64_t>(size) ? size : in.NextLineStart(end);
+    in.SeekTo(a);
+    in.SetLimit(b > a ? b - a : 0);
+    chunk_start = a;
+  }
+  try {
+    foreign_detail::ReadTextLines(path, fmt, in, buf, instructions, add, count, chunk_start == 0,
+                                  !ranged);
+  } catch (const InputError& e) {
+    if (!ranged) throw;
+    throw InputError(path, 0,
+                     std::string(e.what()) + " (lines counted from byte offset " +
+                         std::to_string(chunk_start) + ", where this chunk begins)");
+  }
   return count;
 }
 

@@ -12,6 +12,7 @@
 #include <cstdio>
 #include <cstring>
 #include <stdexcept>
+#include <vector>
 
 #include "core/error.h"
 #include "core/output_file.h"
@@ -146,6 +147,19 @@ void InputStream::SeekTo(uint64_t offset) {
   peek_at_ = peek_.size();
   if (fseeko(file_.get(), static_cast<off_t>(offset), SEEK_SET) != 0)
     throw InputError(path(), 0, std::string("cannot seek: ") + std::strerror(errno));
+}
+
+uint64_t InputStream::NextLineStart(uint64_t offset, size_t max_line) {
+  if (offset == 0) return 0;
+  SeekTo(offset - 1);  // a line begins at `offset` when the byte before it ends one
+  std::vector<char> b(max_line + 2);
+  const size_t got = ReadAll(b.data(), b.size());
+  const void* nl = std::memchr(b.data(), '\n', got);
+  if (nl) return offset + static_cast<uint64_t>(static_cast<const char*>(nl) - b.data());
+  if (got < b.size()) return offset - 1 + got;  // the last line runs to the end
+  throw InputError(path(), 0,
+                   "no line ends within " + std::to_string(max_line) + " bytes of byte offset " +
+                       std::to_string(offset) + ": not a text trace");
 }
 
 size_t InputStream::Read(void* buf, size_t n) {

@@ -36,6 +36,10 @@ class InputStream {
   // stream cannot be entered in the middle, a pipe cannot seek (InputError saying so).
   void SeekTo(uint64_t offset);
   void SetLimit(uint64_t limit) { limit_ = limit; }
+  // Where the first line that begins at or after byte `offset` begins (the size at the end): a
+  // text trace's chunk is the lines that begin in its byte range. Seeks (SeekTo's rules); a line
+  // longer than max_line bytes is an InputError.
+  uint64_t NextLineStart(uint64_t offset, size_t max_line = 4096);
 
  private:
   size_t ReadRaw(void* buf, size_t n);  // the file's bytes, after the peeked ones

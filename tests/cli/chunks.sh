@@ -2,10 +2,10 @@
 # Chunk summaries and the merge (reports/chunk_summary.h) as a user runs them, against the serial
 # analyzer: every output (table, histogram, profile, miss-ratio curve) byte for byte equal for
 # P = 1, 2, 3, 4, 7 chunks on a meshreuse trace (2 threads, 3 sweeps, element and line), u64
-# scans, uniform and hashed 64-bit ids, u32, oracle, fewer accesses than chunks and sizes not
-# divisible by P; --threads 2 and 3 (the streamed merge) equal too; and each bad merge refused by
+# scans, uniform and hashed 64-bit ids, u32, oracle, text (BOM, comments, CRLF: cut at line
+# boundaries) and lackey, fewer accesses than chunks and sizes not divisible by P; --threads 2 and 3 (the streamed merge) equal too; and each bad merge refused by
 # name with exit 2: reordered, repeated, missing, truncated, corrupt, foreign and non-summary
-# files; chunks of a zstd, text or piped trace refused before any work; no summary left behind.
+# files; chunks of a zstd trace refused before any work; no summary left behind.
 # Usage: chunks.sh MESHREUSE DATA
 set -u
 bin=$1 data=$2
@@ -64,14 +64,21 @@ with open(f"{d}/ids.u32", "wb") as f:
     f.write(b"".join(struct.pack("<I", rng.randrange(1000) * 4) for _ in range(5003)))
 with open(f"{d}/cache.oracle", "wb") as f:  # oracleGeneral: u32 time, u64 id, u32 size, i64 next
     f.write(b"".join(struct.pack("<IQIq", i, rng.randrange(400) << 40, 1, -1) for i in range(3001)))
+with open(f"{d}/ids.txt", "wb") as f:  # a BOM, comments, blank lines, CRLF, hex: cut at lines
+    lines = ["\ufeff# ids"] + [("0x%x" if i % 5 == 0 else "%d") % rng.randrange(700) +
+                                ("  # c" if i % 7 == 0 else "") for i in range(4001)]
+    lines[100:100] = ["", "   ", "# comment"]
+    f.write(("\r\n".join(lines[:2000]) + "\n" + "\n".join(lines[2000:])).encode())
 PY
+zstd -q -d -c "$data/lackey/transpose.lackey.zst" >"$tmp/transpose.lackey"
 
 for P in 1 2 3 4 7; do
   outputs "$tmp/serial" "$tmp/mesh.trace"
   chunked "$tmp/merged" "$P" "$tmp/mesh.trace"
   same "mesh trace P=$P" "$tmp/serial" "$tmp/merged"
   for f in "scan.u64 u64 element" "uniform.u64 u64 element" "hashed.u64 u64 element" \
-           "tiny.u64 u64 element" "ids.u32 u32 line" "cache.oracle oracle element"; do
+           "tiny.u64 u64 element" "ids.u32 u32 line" "cache.oracle oracle element" \
+           "ids.txt text element" "transpose.lackey lackey line"; do
     set -- $f
     outputs "$tmp/serial" "$tmp/$1" --format "$2" --granularity "$3"
     chunked "$tmp/merged" "$P" "$tmp/$1" --format "$2" --granularity "$3"
@@ -112,9 +119,12 @@ contains "not a summary" "not a chunk summary"
 check "zstd chunk" 2 "$bin" analyze "$tmp/mesh.trace.zst" --chunk 1/2 --summary-out "$tmp/z" --quiet
 contains "zstd chunk" "decompress it first"
 [[ ! -e "$tmp/z" ]] && pass=$((pass + 1)) || { fail=$((fail + 1)); echo "FAIL zstd chunk left a summary"; }
-printf '1\n2\n' >"$tmp/ids.txt"
-check "text chunk" 2 "$bin" analyze "$tmp/ids.txt" --format text --chunk 0/2 --summary-out "$tmp/x" --quiet
-contains "text chunk" "cannot be cut into chunks"
+zstd -q -f "$tmp/ids.txt" -o "$tmp/ids.txt.zst"
+check "zstd text chunk" 2 "$bin" analyze "$tmp/ids.txt.zst" --format text --chunk 1/2 --summary-out "$tmp/x" --quiet
+contains "zstd text chunk" "decompress it first"
+printf '1\n2\nx\n3\n' >"$tmp/bad.txt"
+check "bad text chunk" 2 "$bin" analyze "$tmp/bad.txt" --format text --chunk 1/2 --summary-out "$tmp/x" --quiet
+contains "bad text chunk" "where this chunk begins"
 check "bad chunk spec" 2 "$bin" analyze "$tmp/uniform.u64" --format u64 --chunk 3/3 --summary-out "$tmp/x" --quiet
 contains "bad chunk spec" "expected 0 <= r < P"
 check "chunk without out" 2 "$bin" analyze "$tmp/uniform.u64" --format u64 --chunk 0/3 --quiet
