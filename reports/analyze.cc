@@ -91,6 +91,8 @@ class VertexReuse : public AccessConsumer {
   std::vector<double> sum_, max_, finite_, cold_;
 };
 
+}  // namespace
+
 // Progress of a file as "analysing: 42% ..." at most every 2 s.
 ProgressFn FileProgress(const Log& log) {
   auto last = std::make_shared<double>(-1);
@@ -109,8 +111,6 @@ ProgressFn FileProgress(const Log& log) {
     log.Say(b);
   };
 }
-
-}  // namespace
 
 std::vector<double> ParseQuantiles(const std::string& list) {
   std::vector<double> qs;

@@ -453,9 +453,9 @@ SummaryFile SummarizeChunk(const AnalyzeConfig& cfg, uint32_t r, uint32_t p, con
   log.Say("analysing chunk " + ChunkName(r, p) + " of " + in + (text ? ": bytes " : ": records ") +
           std::to_string(s.first) + ".." + std::to_string(s.end) + " of " + std::to_string(total));
   if (fmt)
-    StreamForeignTrace(in, *fmt, cfg.instructions, a, {}, &range);
+    StreamForeignTrace(in, *fmt, cfg.instructions, a, FileProgress(log), &range);
   else
-    StreamTraceFile(in, a, {}, &range);
+    StreamTraceFile(in, a, FileProgress(log), &range);
   s.info = a.info();
   s.info.input.clear();
   for (int t = 0; t < a.threads(); ++t) {

@@ -175,7 +175,10 @@ void StreamForeignTrace(const std::string& path, const TraceFormat& format, bool
   out.reserve(kBatch);
   uint64_t seen = 0;
   const uint64_t first = range ? range->first : 0, end = range ? range->end : ~uint64_t{0};
-  const uint64_t todo = range ? end - first : info.records;
+  // Accesses to come, when known (a text chunk's range is in bytes: unknown).
+  const uint64_t todo = !range                                        ? info.records
+                        : format.syntax == TraceSyntax::kFixedRecords ? end - first
+                                                                      : 0;
   ReadForeignTrace(
       path, format,
       [&](uint64_t v, uint32_t size, bool write, bool fetch) {
