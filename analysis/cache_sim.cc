@@ -8,6 +8,7 @@
 #include <string>
 
 #include "core/error.h"
+#include "core/mix.h"
 #include "core/schedule.h"
 
 namespace meshreuse {
@@ -15,13 +16,6 @@ namespace meshreuse {
 namespace {
 constexpr uint64_t kEmpty = ~uint64_t{0};
 
-uint64_t Mix(uint64_t x) {  // SplitMix64 finaliser: spreads consecutive line numbers
-  x ^= x >> 30;
-  x *= 0xbf58476d1ce4e5b9ull;
-  x ^= x >> 27;
-  x *= 0x94d049bb133111ebull;
-  return x ^ (x >> 31);
-}
 }  // namespace
 
 LevelStats& LevelStats::operator+=(const LevelStats& o) {
@@ -102,13 +96,13 @@ bool CacheHierarchy::FirstTouch(uint64_t line) {
     const uint64_t m = seen_.size() - 1;
     for (uint64_t x : old)
       if (x != kEmpty) {
-        uint64_t i = Mix(x) & m;
+        uint64_t i = Mix64(x) & m;
         while (seen_[i] != kEmpty) i = (i + 1) & m;
         seen_[i] = x;
       }
   }
   const uint64_t m = seen_.size() - 1;
-  for (uint64_t i = Mix(line) & m;; i = (i + 1) & m) {
+  for (uint64_t i = Mix64(line) & m;; i = (i + 1) & m) {
     if (seen_[i] == line) return false;
     if (seen_[i] == kEmpty) {
       seen_[i] = line;

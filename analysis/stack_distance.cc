@@ -4,17 +4,12 @@
 #include <algorithm>
 #include <stdexcept>
 
+#include "core/mix.h"
+
 namespace meshreuse {
 
 namespace {
 constexpr uint64_t kEmptyKey = std::numeric_limits<uint64_t>::max();
-inline uint64_t Mix(uint64_t x) {  // SplitMix64 finaliser
-  x ^= x >> 30;
-  x *= 0xBF58476D1CE4E5B9ull;
-  x ^= x >> 27;
-  x *= 0x94D049BB133111EBull;
-  return x ^ (x >> 31);
-}
 inline uint32_t Popcount(uint64_t x) { return static_cast<uint32_t>(__builtin_popcountll(x)); }
 constexpr uint32_t kGroup = 512;
 }  // namespace
@@ -34,13 +29,13 @@ StackDistance::StackDistance(uint64_t dense_ids, uint32_t min_capacity)
 
 size_t StackDistance::MemoryBytes() const {
   return dense_last_.capacity() * 4 + hashed_last_.capacity() * 4 + free_slots_.capacity() * 4 +
-         keys_.capacity() * 8 + slots_.capacity() * 4 + bits_.capacity() * 8 +
-         owner_.size() * 4 + tree_.capacity() * 4;
+         keys_.capacity() * 8 + slots_.capacity() * 4 + bits_.capacity() * 8 + owner_.size() * 4 +
+         tree_.capacity() * 4;
 }
 
 uint32_t* StackDistance::FindHashed(uint64_t id, size_t* slot_index) {
   const size_t mask = keys_.size() - 1;
-  size_t j = Mix(id) & mask;
+  size_t j = Mix64(id) & mask;
   while (keys_[j] != kEmptyKey && keys_[j] != id) j = (j + 1) & mask;
   *slot_index = j;
   return keys_[j] == id ? &hashed_last_[slots_[j]] : nullptr;
@@ -77,7 +72,7 @@ void StackDistance::GrowDense(uint64_t id) {
   std::fill(keys_.begin(), keys_.end(), kEmptyKey);
   const size_t mask = keys_.size() - 1;
   for (size_t k = 0; k < keep_keys.size(); ++k) {
-    size_t j = Mix(keep_keys[k]) & mask;
+    size_t j = Mix64(keep_keys[k]) & mask;
     while (keys_[j] != kEmptyKey) j = (j + 1) & mask;
     keys_[j] = keep_keys[k];
     slots_[j] = keep_slots[k];
@@ -100,7 +95,7 @@ uint32_t& StackDistance::LastOfSlow(uint64_t id, uint32_t* key) {
     const size_t mask = k.size() - 1;
     for (size_t i = 0; i < keys_.size(); ++i)
       if (keys_[i] != kEmptyKey) {
-        size_t j = Mix(keys_[i]) & mask;
+        size_t j = Mix64(keys_[i]) & mask;
         while (k[j] != kEmptyKey) j = (j + 1) & mask;
         k[j] = keys_[i];
         s[j] = slots_[i];
@@ -194,7 +189,7 @@ bool StackDistance::Remove(uint64_t id) {
     const size_t mask = keys_.size() - 1;
     size_t hole = j;
     for (size_t i = (j + 1) & mask; keys_[i] != kEmptyKey; i = (i + 1) & mask) {
-      const size_t home = Mix(keys_[i]) & mask;
+      const size_t home = Mix64(keys_[i]) & mask;
       // Move i into the hole unless its home lies cyclically in (hole, i].
       const bool stays = hole <= i ? (home > hole && home <= i) : (home > hole || home <= i);
       if (!stays) {

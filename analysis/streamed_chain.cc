@@ -11,18 +11,13 @@
 #include <stdexcept>
 #include <thread>
 
+#include "core/mix.h"
+
 namespace meshreuse {
 
 namespace {
 constexpr uint64_t kEmptyKey = ~uint64_t{0};  // reserved by the analyzer: never an id
 constexpr uint64_t kNotFound = ~uint64_t{0};
-inline uint64_t Mix(uint64_t x) {  // SplitMix64 finaliser
-  x ^= x >> 30;
-  x *= 0xBF58476D1CE4E5B9ull;
-  x ^= x >> 27;
-  x *= 0x94D049BB133111EBull;
-  return x ^ (x >> 31);
-}
 }  // namespace
 
 IdIndex::IdIndex(const std::vector<uint64_t>& ids) {
@@ -42,7 +37,7 @@ IdIndex::IdIndex(const std::vector<uint64_t>& ids) {
   slots_.assign(cap, Slot{kEmptyKey, kAbsent});
   const size_t mask = cap - 1;
   for (size_t k = 0; k < ids.size(); ++k) {
-    size_t j = Mix(ids[k]) & mask;
+    size_t j = Mix64(ids[k]) & mask;
     while (slots_[j].key != kEmptyKey) j = (j + 1) & mask;
     slots_[j] = Slot{ids[k], static_cast<uint32_t>(k)};
   }
@@ -51,7 +46,7 @@ IdIndex::IdIndex(const std::vector<uint64_t>& ids) {
 uint32_t IdIndex::FindHashed(uint64_t id) const {
   if (slots_.empty()) return kAbsent;
   const size_t mask = slots_.size() - 1;
-  for (size_t j = Mix(id) & mask;; j = (j + 1) & mask) {
+  for (size_t j = Mix64(id) & mask;; j = (j + 1) & mask) {
     const Slot& s = slots_[j];
     if (s.key == id) return s.index;
     if (s.key == kEmptyKey) return kAbsent;

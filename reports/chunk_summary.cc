@@ -14,6 +14,7 @@
 #include "core/access.h"
 #include "core/error.h"
 #include "core/input_file.h"
+#include "core/mix.h"
 #include "core/output_file.h"
 #include "core/smoother.h"
 #include "tracer/trace_formats.h"
@@ -27,14 +28,6 @@ constexpr char kMagic[8] = {'M', 'R', 'S', 'U', 'M', 'R', 'Y', '\0'};
 constexpr uint32_t kVersion = 1;
 constexpr size_t kHeaderBytes = 32;
 
-uint64_t Mix(uint64_t x) {  // SplitMix64 finaliser
-  x ^= x >> 30;
-  x *= 0xBF58476D1CE4E5B9ull;
-  x ^= x >> 27;
-  x *= 0x94D049BB133111EBull;
-  return x ^ (x >> 31);
-}
-
 // A 64-bit checksum of bytes, 8 at a time (detects corruption; not cryptographic).
 uint64_t Checksum(const char* p, size_t n) {
   uint64_t h = 0x9E3779B97F4A7C15ull ^ n;
@@ -42,11 +35,11 @@ uint64_t Checksum(const char* p, size_t n) {
   for (; i + 8 <= n; i += 8) {
     uint64_t w;
     std::memcpy(&w, p + i, 8);
-    h = Mix(h ^ w) + i;
+    h = Mix64(h ^ w) + i;
   }
   uint64_t w = 0;
   if (n > i) std::memcpy(&w, p + i, n - i);
-  return Mix(h ^ w ^ (n - i));
+  return Mix64(h ^ w ^ (n - i));
 }
 
 class Writer {
@@ -160,7 +153,7 @@ uint64_t Fingerprint(const std::string& path, uint64_t* bytes) {
     if (fseeko(f.get(), static_cast<off_t>(*bytes - b.size()), SEEK_SET) != 0)
       throw InputError(path, 0, "cannot seek");
     const size_t tail = f.Read(b.data(), b.size());
-    h = Mix(h ^ Checksum(b.data(), tail));
+    h = Mix64(h ^ Checksum(b.data(), tail));
   }
   return h;
 }

@@ -5,17 +5,7 @@ set -u
 bin=$1 data=$2
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
-pass=0 fail=0
-check() {  # check NAME EXPECTED_RC COMMAND... ; stdout+stderr in $tmp/out
-  local name=$1 want=$2
-  shift 2
-  "$@" >"$tmp/out" 2>&1
-  local rc=$?
-  if [[ $rc -eq $want ]]; then pass=$((pass + 1)); else fail=$((fail + 1)); echo "FAIL $name: exit $rc, expected $want"; sed 's/^/    /' "$tmp/out" | head -20; fi
-}
-contains() {  # contains NAME TEXT : the last output contains TEXT
-  if grep -qF -- "$2" "$tmp/out"; then pass=$((pass + 1)); else fail=$((fail + 1)); echo "FAIL $1: output lacks '$2'"; sed 's/^/    /' "$tmp/out" | head -20; fi
-}
+source "$(dirname "$0")/lib.sh"
 
 check "no arguments" 2 "$bin"
 contains "no arguments" "usage: meshreuse <command>"
