@@ -96,10 +96,11 @@ class KillingTransport : public MpiTransport {
 void Usage(std::FILE* out) {
   std::fprintf(out,
                "usage: mpirun -np P meshreuse-mpi analyze TRACE [--format F] [options of "
-               "`meshreuse analyze`]\n\nThe exact reuse analysis of one trace file (a meshreuse "
-               "trace or a fixed-record format, plain) across P ranks: rank r reads records "
-               "[N r/P, N (r+1)/P); rank 0 prints and writes what `meshreuse analyze TRACE` "
-               "would.\n");
+               "`meshreuse analyze`]\n\nThe exact reuse analysis of one plain trace file (a "
+               "meshreuse trace, a fixed-record, text or lackey one) across P ranks: rank r reads "
+               "only its part (records [N r/P, N (r+1)/P), or the lines that begin in its bytes); "
+               "rank 0 prints and writes what `meshreuse analyze TRACE` would. --rank-stats FILE: "
+               "each rank's CPU seconds per phase, bytes sent and peak memory.\n");
 }
 
 }  // namespace
