@@ -112,6 +112,7 @@ class StackDistance {
   uint64_t Visit(uint64_t id);
   uint32_t* FindHashed(uint64_t id, size_t* slot_index);
   void GrowDense(uint64_t id);  // cover id, moving hashed ids in the new range into the array
+  void EraseAt(size_t index);   // deletes a table entry (its slot freed), later ones moved back
   uint64_t LiveAfter(uint32_t p) const;  // live markers at positions > p (p < t_)
   void TreeAdd(uint32_t group, int32_t delta) {
     for (uint32_t i = group + 1; i < tree_.size(); i += i & (0u - i)) tree_[i] += delta;
@@ -132,12 +133,12 @@ class StackDistance {
   std::vector<uint32_t> slots_;
   uint64_t hash_used_ = 0;
 
-  std::vector<uint64_t> bits_;   // live markers
-  U32Array owner_;               // key (id or kHashedBit | slot) of the marker at each position
-  std::vector<int32_t> tree_;    // Fenwick tree over closed groups' live counts, 1-based
-  uint32_t capacity_ = 0;        // positions in the window (a multiple of 512)
-  uint32_t t_ = 0;               // next position
-  uint32_t closed_ = 0;          // groups [0, closed_) are in the tree
+  std::vector<uint64_t> bits_;  // live markers
+  U32Array owner_;              // key (id or kHashedBit | slot) of the marker at each position
+  std::vector<int32_t> tree_;   // Fenwick tree over closed groups' live counts, 1-based
+  uint32_t capacity_ = 0;       // positions in the window (a multiple of 512)
+  uint32_t t_ = 0;              // next position
+  uint32_t closed_ = 0;         // groups [0, closed_) are in the tree
   uint64_t live_ = 0;
   uint64_t accesses_ = 0, distinct_ = 0, compactions_ = 0;
 };
