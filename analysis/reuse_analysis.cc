@@ -30,8 +30,8 @@ ReuseAnalysis::ReuseAnalysis(const ReuseOptions& o) : opt_(o) {
     throw std::invalid_argument("the line size must be a power of two");
   if (o.workers < 1 || o.workers > kMaxThreads)
     throw std::invalid_argument("workers must be 1.." + std::to_string(kMaxThreads));
-  if (o.chunk && (o.workers > 1 || !o.exact || o.sample))
-    throw std::invalid_argument("a chunk is analysed exactly, on one thread");
+  if (o.chunk && (o.workers > 1 || (o.sample && o.shards.s_max)))
+    throw std::invalid_argument("a chunk is analysed on one thread, sampled at a fixed rate");
   line_shift_ = __builtin_ctz(o.line_bytes);
   do_elements_ = static_cast<int>(o.granularity) & static_cast<int>(Granularity::kElement);
   do_lines_ = static_cast<int>(o.granularity) & static_cast<int>(Granularity::kLine);
@@ -81,6 +81,10 @@ std::unique_ptr<StreamAnalysis> ReuseAnalysis::NewStream(int t, Granularity g) {
   if (any && opt_.profile) s->profile = ReuseProfile(lengths, steps);
   const std::vector<uint64_t>& offsets = element ? element_offset_ : line_offset_;
   s->chunk = opt_.chunk;
+  if (opt_.chunk && opt_.sample) {
+    s->sampled_chunk = std::make_unique<StreamAnalysis>(0);
+    s->sampled_chunk->chunk = true;
+  }
   s->batch_limit = opt_.batch_per_worker * opt_.workers;
   s->offset = static_cast<size_t>(t) < offsets.size() ? offsets[t] : 0;
   s->profile.SetNext(s->offset);

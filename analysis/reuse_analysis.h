@@ -44,7 +44,12 @@ struct StreamAnalysis {
   std::unique_ptr<Shards> shards;
   void Add(uint64_t id) {
     if (exact) AddExact(id);
-    if (shards) shards->Access(id);
+    if (sampled_chunk) {  // a chunk: the sampled ids' own exact chunk analysis
+      ++added;
+      if (shards->Keeps(id)) sampled_chunk->AddExact(id);
+    } else if (shards) {
+      shards->Access(id);
+    }
   }
   uint64_t AddExact(uint64_t id) {  // the access's distance (StackDistance::kCold if cold)
     const uint64_t d = sd.Access(id);
@@ -71,6 +76,11 @@ struct StreamAnalysis {
   bool chunk = false;
   uint64_t offset = 0;
   std::vector<uint64_t> first_ids, first_positions;
+  // A chunk sampled at a fixed rate: the sampled ids' exact distances among themselves, as a
+  // chunk of their own (merged, they give exactly the serial SHARDS estimate:
+  // Shards::FromSampled); `added` counts the stream's accesses in the chunk.
+  std::unique_ptr<StreamAnalysis> sampled_chunk;
+  uint64_t added = 0;
   // The stream's distinct ids (exact analysis): each id's first access is its one cold access,
   // however the analysis was done (serial, batched, merged from chunks or ranks).
   uint64_t distinct() const { return hist.cold(); }
@@ -97,7 +107,7 @@ struct ReuseOptions {
   size_t batch_per_distinct = 8;
   size_t max_batch_per_worker = size_t{1} << 26;
   // One chunk of a trace, for a summary (reports/chunk_summary.h): first touches kept, not
-  // counted (StreamAnalysis::chunk); exact and serial only.
+  // counted (StreamAnalysis::chunk); serial; sampling at a fixed rate only.
   bool chunk = false;
   // Sampling (SHARDS) beside or instead of the exact analysis.
   bool exact = true;

@@ -38,6 +38,24 @@ void Shards::Sampled(uint64_t id, uint64_t h) {
   weight_[static_cast<uint64_t>(std::llround(static_cast<double>(d) / r))] += w;
 }
 
+Shards Shards::FromSampled(const ShardsOptions& o, uint64_t accesses,
+                           const ReuseHistogram& sampled) {
+  if (o.s_max) throw std::invalid_argument("Shards::FromSampled: fixed rate only");
+  Shards s(o);
+  s.accesses_ = accesses;
+  s.samples_ = sampled.accesses();
+  const double w = 1.0 / s.rate();
+  for (uint64_t k = 0; k < s.samples_; ++k) s.total_ += w;
+  for (uint64_t k = 0; k < sampled.cold(); ++k) s.cold_ += w, s.distinct_ += w;
+  const std::vector<uint64_t>& c = sampled.counts();
+  for (uint64_t d = 0; d < c.size(); ++d) {
+    if (!c[d]) continue;
+    double& bin = s.weight_[static_cast<uint64_t>(std::llround(static_cast<double>(d) / s.rate()))];
+    for (uint64_t k = 0; k < c[d]; ++k) bin += w;
+  }
+  return s;
+}
+
 void Shards::Finish() {
   if (finished_) return;
   finished_ = true;

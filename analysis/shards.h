@@ -41,6 +41,14 @@ class Shards {
     Sampled(id, h);
   }
   void Finish();  // applies SHARDS_adj; call once at the end
+  // Whether `id` is sampled (fixed rate: the threshold never moves).
+  bool Keeps(uint64_t id) const { return Hash(id) < threshold_; }
+  // The estimate of a stream of `accesses` whose sampled ids' exact distances are `sampled`
+  // (analysed elsewhere: chunks, ranks), bit for bit the one Access() would have built: at a
+  // fixed rate every sample adds the same weight 1/R, so each sum is that weight added as many
+  // times, whatever the order. Fixed rate only (std::invalid_argument otherwise).
+  static Shards FromSampled(const ShardsOptions& o, uint64_t accesses,
+                            const ReuseHistogram& sampled);
 
   uint64_t accesses() const { return accesses_; }
   uint64_t samples() const { return samples_; }

@@ -153,6 +153,11 @@ int AnalyzeCommand(const Args& args, ChunkTransport* transport) {
   const Progress progress(vm.count("quiet") > 0 || !writer);
   const AnalyzeResult r = RunAnalyze(cfg, MakeLog(progress));
   if (!writer) return 0;
+  if (r.sampling) {  // merged summaries of a sampled analysis: their tables
+    cfg.sample = true;
+    cfg.shards = *r.sampling;
+    cfg.sample_error = r.sampling_with_exact;
+  }
   if (!rank_stats.empty())
     WriteAtomically(rank_stats, [&](std::FILE* f) {
       const std::string j = RankStatsJson(r.ranks).dump(2) + "\n";

@@ -75,6 +75,10 @@ struct AnalyzeResult {
   Granularity granularity = Granularity::kBoth;
   std::string granularity_note;  // the default chosen for a foreign trace, to say under the table
   std::vector<RankStats> ranks;  // a distributed run, on rank 0: every rank's
+  // Merged summaries that were sampled: the sampling the chunk runs used (the tables need it),
+  // and whether they ran the exact analysis too.
+  std::optional<ShardsOptions> sampling;
+  bool sampling_with_exact = false;
 };
 Json RankStatsJson(const std::vector<RankStats>& ranks);
 

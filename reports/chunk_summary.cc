@@ -169,7 +169,8 @@ uint64_t SummaryChecksum(const char* payload, size_t n) { return Checksum(payloa
 bool SummaryIdentity::operator==(const SummaryIdentity& o) const {
   return format == o.format && input_bytes == o.input_bytes && fingerprint == o.fingerprint &&
          granularity == o.granularity && line_bytes == o.line_bytes &&
-         instructions == o.instructions && chunks == o.chunks;
+         instructions == o.instructions && chunks == o.chunks && exact == o.exact &&
+         sample == o.sample && rate == o.rate && seed == o.seed;
 }
 
 std::pair<uint32_t, uint32_t> ParseChunk(const std::string& s) {
@@ -196,6 +197,10 @@ std::string EncodeSummary(const SummaryFile& s) {
   w.Put<uint32_t>(s.id.line_bytes);
   w.Put<uint32_t>(s.id.instructions);
   w.Put<uint32_t>(s.id.chunks);
+  w.Put<uint32_t>(s.id.exact);
+  w.Put<uint32_t>(s.id.sample);
+  w.Put<double>(s.id.rate);
+  w.Put<uint64_t>(s.id.seed);
   w.Str(s.input);
   w.Put<uint32_t>(s.chunk);
   w.Put<uint64_t>(s.first);
@@ -208,6 +213,8 @@ std::string EncodeSummary(const SummaryFile& s) {
     w.Put<uint32_t>(x.thread);
     w.Put<uint32_t>(static_cast<uint32_t>(x.granularity));
     w.Put<uint32_t>(x.resolved);
+    w.Put<uint32_t>(x.sampled);
+    w.Put<uint64_t>(x.stream_accesses);
     w.Put<uint64_t>(x.accesses);
     w.Put<uint64_t>(x.offset);
     w.U64s(x.chunk.first_ids);
@@ -285,6 +292,13 @@ SummaryFile DecodeSummary(const std::string& path, const std::string& file) {
   s.id.line_bytes = r.Get<uint32_t>();
   s.id.instructions = r.Get<uint32_t>();
   s.id.chunks = r.Get<uint32_t>();
+  s.id.exact = r.Get<uint32_t>();
+  s.id.sample = r.Get<uint32_t>();
+  s.id.rate = r.Get<double>();
+  s.id.seed = r.Get<uint64_t>();
+  if (s.id.exact > 1 || s.id.sample > 1 || (!s.id.exact && !s.id.sample) ||
+      (s.id.sample && !(s.id.rate > 0 && s.id.rate <= 1)))
+    r.Fail("corrupt: sampling options");
   s.input = r.Str();
   s.chunk = r.Get<uint32_t>();
   s.first = r.Get<uint64_t>();
@@ -309,6 +323,11 @@ SummaryFile DecodeSummary(const std::string& path, const std::string& file) {
     const uint32_t resolved = r.Get<uint32_t>();
     if (resolved > 1) r.Fail("corrupt: a stream's flags");
     x.resolved = resolved;
+    const uint32_t sampled = r.Get<uint32_t>();
+    if (sampled > 1 || (sampled && !s.id.sample) || (!sampled && !s.id.exact))
+      r.Fail("corrupt: a stream's sampling flag");
+    x.sampled = sampled;
+    x.stream_accesses = r.Get<uint64_t>();
     x.accesses = r.Get<uint64_t>();
     x.offset = r.Get<uint64_t>();
     x.chunk.first_ids = r.U64s("first touch");
@@ -390,7 +409,10 @@ SummaryFile SummarizeChunk(const AnalyzeConfig& cfg, uint32_t r, uint32_t p, con
   if (!fmt && ClassifyInput(in) == InputKind::kMesh)
     throw UsageError(
         "a chunked analysis takes a trace file, not a mesh (write one with `meshreuse trace`)");
-  if (cfg.sample) throw UsageError("a chunked analysis is exact (no --sample-*)");
+  if (cfg.sample && cfg.shards.s_max)
+    throw UsageError(
+        "a chunked analysis samples at a fixed rate (--sample-rate): a fixed-size sample's "
+        "threshold depends on every id before it (run --sample-size serially)");
   if (cfg.threads != 1)
     throw UsageError("each chunk is analysed on one thread: run more chunks (ranks) instead");
 
@@ -403,6 +425,10 @@ SummaryFile SummarizeChunk(const AnalyzeConfig& cfg, uint32_t r, uint32_t p, con
   s.id.fingerprint = Fingerprint(in, &s.id.input_bytes);
   s.id.line_bytes = cfg.line_bytes;
   s.id.instructions = cfg.instructions;
+  s.id.exact = !cfg.sample || cfg.sample_error;
+  s.id.sample = cfg.sample;
+  s.id.rate = cfg.sample ? cfg.shards.rate : 0;
+  s.id.seed = cfg.sample ? cfg.shards.seed : 0;
   Granularity g = Granularity::kBoth;
   if (cfg.granularity)
     g = *cfg.granularity;
@@ -440,6 +466,9 @@ SummaryFile SummarizeChunk(const AnalyzeConfig& cfg, uint32_t r, uint32_t p, con
   o.line_bytes = cfg.line_bytes;
   o.profile = true;
   o.chunk = true;
+  o.exact = s.id.exact;
+  o.sample = s.id.sample;
+  o.shards = cfg.shards;
   ReuseAnalysis a(o);
   a.SetStreamOffsets(eoff, loff);
   const RecordRange range{s.first, s.end};
@@ -456,22 +485,29 @@ SummaryFile SummarizeChunk(const AnalyzeConfig& cfg, uint32_t r, uint32_t p, con
     for (Granularity sg : {Granularity::kElement, Granularity::kLine}) {
       const StreamAnalysis* x = a.stream(t, sg);
       if (!x) continue;
-      StreamSummary ss;
-      ss.thread = static_cast<uint32_t>(t);
-      ss.granularity = sg;
-      ss.accesses = x->sd.accesses();
-      ss.offset = x->offset;
-      ss.chunk.first_ids = x->first_ids;
-      ss.chunk.first_positions = x->first_positions;
-      ss.chunk.stack = x->sd.StackBottomUp();
-      const std::vector<uint64_t>& c = x->hist.counts();
-      for (size_t d = 0; d < c.size(); ++d)
-        if (c[d]) ss.hist.emplace_back(d, c[d]);
-      const auto& steps = x->profile.steps();
-      for (size_t i = 0; i < steps.size(); ++i)
-        if (steps[i].accesses)
-          ss.profile.push_back({i, steps[i].accesses, steps[i].cold, steps[i].sum});
-      s.streams.push_back(std::move(ss));
+      // The exact chunk, and the sampled ids' chunk: one entry each.
+      for (const StreamAnalysis* y :
+           {x->exact ? x : nullptr, static_cast<const StreamAnalysis*>(x->sampled_chunk.get())}) {
+        if (!y) continue;
+        StreamSummary ss;
+        ss.thread = static_cast<uint32_t>(t);
+        ss.granularity = sg;
+        ss.sampled = y != x;
+        ss.accesses = y->sd.accesses();
+        ss.stream_accesses = x->exact ? x->sd.accesses() : x->added;
+        ss.offset = ss.sampled ? 0 : x->offset;
+        ss.chunk.first_ids = y->first_ids;
+        ss.chunk.first_positions = y->first_positions;
+        ss.chunk.stack = y->sd.StackBottomUp();
+        const std::vector<uint64_t>& c = y->hist.counts();
+        for (size_t d = 0; d < c.size(); ++d)
+          if (c[d]) ss.hist.emplace_back(d, c[d]);
+        const auto& steps = y->profile.steps();
+        for (size_t i = 0; i < steps.size(); ++i)
+          if (steps[i].accesses)
+            ss.profile.push_back({i, steps[i].accesses, steps[i].cold, steps[i].sum});
+        s.streams.push_back(std::move(ss));
+      }
     }
   }
   return s;
@@ -495,6 +531,11 @@ void SummaryMerger::Add(SummaryFile s, const std::string& name, size_t given) {
     o.granularity = granularity_;
     o.line_bytes = id_.line_bytes;
     o.profile = profile_;
+    o.exact = id_.exact;
+    o.sample = id_.sample;
+    o.shards.rate = id_.sample ? id_.rate : 1;
+    o.shards.seed = id_.seed;
+    shards_ = o.shards;
     a_ = std::make_unique<ReuseAnalysis>(o);
     StreamInfo info = s.info;
     info.input = s.input;
@@ -526,6 +567,14 @@ void SummaryMerger::Add(SummaryFile s, const std::string& name, size_t given) {
   for (int t = 0; t < a_->threads(); ++t) a_->AddMoves(t, s.moves[t]);
   for (StreamSummary& x : s.streams) {
     StreamAnalysis& st = a_->MakeStream(static_cast<int>(x.thread), x.granularity);
+    if (x.sampled) {  // the sampled ids, a stream of their own (no profile)
+      Sampled& z = sampled_[{static_cast<int>(x.thread), static_cast<int>(x.granularity)}];
+      if (!x.resolved)
+        for (uint64_t d : ResolveChunk(x.chunk, &z.stack)) z.hist.Add(d);
+      for (const auto& [dist, n] : x.hist) z.hist.AddCount(dist, n);
+      z.accesses += x.stream_accesses;
+      continue;
+    }
     st.batched = true;                       // the stack travels as a list
     const uint64_t at = st.hist.accesses();  // the stream's accesses before this chunk
     const bool prof = st.profile.enabled();
@@ -554,9 +603,19 @@ void SummaryMerger::Add(SummaryFile s, const std::string& name, size_t given) {
 
 AnalyzeResult SummaryMerger::Finish() {
   if (!a_) throw std::logic_error("SummaryMerger: nothing added");
+  // Each sampled stream's estimate, as the serial sampler would have built it (End() then applies
+  // SHARDS_adj as it does serially).
+  for (const auto& [key, z] : sampled_) {
+    StreamAnalysis& st = a_->MakeStream(key.first, static_cast<Granularity>(key.second));
+    st.shards = std::make_unique<Shards>(Shards::FromSampled(shards_, z.accesses, z.hist));
+  }
   a_->End();
   AnalyzeResult res;
   res.granularity = granularity_;
+  if (id_.sample) {
+    res.sampling = shards_;
+    res.sampling_with_exact = id_.exact;
+  }
   res.runs.push_back(std::move(a_));
   return res;
 }
@@ -598,12 +657,13 @@ AnalyzeResult RunDistributed(const AnalyzeConfig& cfg, ChunkTransport& tx, const
   stats.records = s.end - s.first;
   for (const StreamSummary& x : s.streams)
     stats.accesses += x.accesses, stats.distinct += x.chunk.first_ids.size();
-  // Every rank relays every stream some chunk has, in one order: stream key = thread * 2 + g - 1.
-  const size_t keys = static_cast<size_t>(s.info.threads) * 2;
+  // Every rank relays every stream some chunk has, in one order: stream key = (thread * 2 + g - 1)
+  // * 2 + sampled.
+  const size_t keys = static_cast<size_t>(s.info.threads) * 4;
   std::vector<uint64_t> present(keys, 0), accesses(keys, 0);
   std::vector<StreamSummary*> mine(keys, nullptr);
   for (StreamSummary& x : s.streams) {
-    const size_t k = x.thread * 2 + static_cast<size_t>(x.granularity) - 1;
+    const size_t k = (x.thread * 2 + static_cast<size_t>(x.granularity) - 1) * 2 + x.sampled;
     present[k] = 1, accesses[k] = x.accesses, mine[k] = &x;
   }
   present = tx.AllReduceMax(present);
@@ -656,7 +716,7 @@ AnalyzeResult RunDistributed(const AnalyzeConfig& cfg, ChunkTransport& tx, const
     // Off the critical path: this chunk's first touches, folded into its histogram and profile.
     const std::vector<uint64_t> d = res.FirstTouchDistances();
     StreamAnalysis& st = places.MakeStream(static_cast<int>(x->thread), x->granularity);
-    const bool prof = st.profile.enabled();
+    const bool prof = !x->sampled && st.profile.enabled();
     if (prof && x->offset != offsets[k])
       throw InputError(s.input, 0,
                        "the profile cannot be computed: chunk " + std::to_string(rank) +

@@ -20,6 +20,7 @@
 #pragma once
 
 #include <cstdint>
+#include <map>
 #include <memory>
 #include <string>
 #include <utility>
@@ -50,12 +51,19 @@ struct StreamSummary {
   // distances are in hist (cold ones as StackDistance::kCold) and profile; no first touches or
   // stack.
   bool resolved = false;
+  // The stream's sampled ids (SHARDS at a fixed rate) as a chunk of their own: accesses and
+  // first touches are the sampled ones; stream_accesses counts all of the stream's in the chunk.
+  bool sampled = false;
+  uint64_t stream_accesses = 0;
 };
 
 struct SummaryIdentity {                      // what every summary of one analysis shares
   std::string format;                         // "" for a meshreuse trace
   uint64_t input_bytes = 0, fingerprint = 0;  // the input file's size and a hash of its ends
   uint32_t granularity = 0, line_bytes = 0, instructions = 0, chunks = 0;
+  uint32_t exact = 1, sample = 0;  // the exact analysis; SHARDS at a fixed rate
+  double rate = 0;
+  uint64_t seed = 0;
   bool operator==(const SummaryIdentity& o) const;
 };
 
@@ -94,6 +102,13 @@ class SummaryMerger {
  private:
   bool profile_;
   std::unique_ptr<ReuseAnalysis> a_;
+  struct Sampled {  // a stream's sampled ids, merged as a stream of their own
+    std::vector<uint64_t> stack;
+    ReuseHistogram hist;
+    uint64_t accesses = 0;  // the whole stream's
+  };
+  std::map<std::pair<int, int>, Sampled> sampled_;  // by (thread, granularity)
+  ShardsOptions shards_;
   SummaryIdentity id_;
   Granularity granularity_ = Granularity::kBoth;
   std::string first_name_;

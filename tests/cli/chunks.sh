@@ -4,7 +4,8 @@
 # P = 1, 2, 3, 4, 7 chunks on a meshreuse trace (2 threads, 3 sweeps, element and line), u64
 # scans, uniform and hashed 64-bit ids, u32, oracle, text (BOM, comments, CRLF: cut at line
 # boundaries) and lackey, fewer accesses than chunks and sizes not divisible by P (lib.sh's
-# traces); --threads 2 and 3 (the streamed merge) equal too; each bad merge refused by name with
+# traces); SHARDS at a fixed rate (with and without --sample-error) equal to the serial estimate;
+# --threads 2 and 3 (the streamed merge) equal too; each bad merge refused by name with
 # exit 2: reordered, repeated, missing, truncated, corrupt, foreign and non-summary files; chunks
 # of a zstd trace refused before any work; no summary left behind.
 # Usage: chunks.sh MESHREUSE DATA
@@ -36,6 +37,21 @@ for P in 1 2 3 4 7; do
     same "$1 P=$P" "$tmp/serial" "$tmp/merged"
   done
 done
+# SHARDS at a fixed rate, with and without the exact analysis beside it: the merged estimate is
+# the serial sampler's, bit for bit.
+for P in 1 3 4; do
+  for extra in "--sample-rate 0.1" "--sample-rate 0.05 --sample-error"; do
+    outputs "$tmp/serial" "$bin" analyze "$tmp/mesh.trace" $extra
+    chunked "$tmp/merged" "$P" "$tmp/mesh.trace" $extra
+    same "mesh trace P=$P $extra" "$tmp/serial" "$tmp/merged"
+    outputs "$tmp/serial" "$bin" analyze "$tmp/uniform.u64" --format u64 $extra
+    chunked "$tmp/merged" "$P" "$tmp/uniform.u64" --format u64 $extra
+    same "uniform.u64 P=$P $extra" "$tmp/serial" "$tmp/merged"
+  done
+done
+check "fixed-size chunk" 2 "$bin" analyze "$tmp/uniform.u64" --format u64 --sample-size 100 --chunk 0/2 --summary-out "$tmp/x" --quiet
+contains "fixed-size chunk" "samples at a fixed rate"
+
 # The streamed merge on threads: the same outputs.
 for th in 2 3; do
   outputs "$tmp/serial" "$bin" analyze "$tmp/uniform.u64" --format u64 --granularity element

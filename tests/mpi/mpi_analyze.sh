@@ -3,7 +3,7 @@
 # (table, histogram, profile, miss-ratio curve) byte for byte equal on a meshreuse trace (2 threads,
 # 3 sweeps, element and line) and on scan, uniform, hashed 64-bit, u32, oracle, text, lackey and
 # 3-access traces (tests/cli/lib.sh; fewer accesses than ranks, sizes not divisible by P), and
-# the scaling script end to end. A rank killed mid-run ends the job
+# SHARDS at a fixed rate, and the scaling script end to end. A rank killed mid-run ends the job
 # non-zero with the rank named, never a hang; bad input exits 2 naming the rank and the problem.
 # Usage: mpi_analyze.sh MESHREUSE MESHREUSE_MPI MPIEXEC DATA
 set -u
@@ -27,6 +27,15 @@ for np in 1 2 3 4; do
     outputs "$tmp/serial" "$bin" analyze "$tmp/$1" --format "$2" --granularity "$3"
     outputs "$tmp/mpi" run "$np" "$mpi" analyze "$tmp/$1" --format "$2" --granularity "$3"
     same "$1 -np $np" "$tmp/serial" "$tmp/mpi"
+  done
+done
+
+# SHARDS at a fixed rate: the serial estimate, bit for bit.
+for np in 2 3; do
+  for extra in "--sample-rate 0.1" "--sample-rate 0.05 --sample-error"; do
+    outputs "$tmp/serial" "$bin" analyze "$tmp/mesh.trace" $extra
+    outputs "$tmp/mpi" run "$np" "$mpi" analyze "$tmp/mesh.trace" $extra
+    same "mesh trace -np $np $extra" "$tmp/serial" "$tmp/mpi"
   done
 done
 
