@@ -72,10 +72,11 @@ int AnalyzeCommand(const Args& args, ChunkTransport* transport) {
       "sampling)")("out", po::value(&out_dir),
                    "write analyze.{csv,json}, histogram.csv, profile.csv, run.json")(
       "chunk", po::value(&chunk),
-      "r/P: analyse only chunk r (0-based) of P equal parts of one trace file (plain: records of a "
-      "meshreuse or fixed-record trace, whole lines of a text or lackey one) and write its "
-      "summary (--summary-out); any batch system can run the P chunks, then --merge")(
-      "summary-out", po::value(&cfg.summary_out), "with --chunk: the summary file to write")(
+      "r/P: analyse only chunk r (0-based) of P equal parts of one input and write its summary "
+      "(--summary-out): records of a meshreuse or fixed-record trace, whole lines of a text or "
+      "lackey one (plain files), or of a mesh's stream in one ordering (regenerated, no file); any "
+      "batch system can run the P chunks, then --merge")("summary-out", po::value(&cfg.summary_out),
+                                                         "with --chunk: the summary file to write")(
       "merge",
       "the inputs are the summaries of chunks 0..P-1, in order: merge them into exactly the "
       "serial analysis (every table and output below)")(

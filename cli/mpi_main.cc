@@ -1,7 +1,8 @@
-// meshreuse-mpi: `mpirun -np P meshreuse-mpi analyze TRACE [analyze's options]` -- the exact reuse
-// analysis of one trace file across P ranks (reports/chunk_summary.h, RunDistributed): rank r
-// reads only its own records, the LRU stacks stream rank to rank in blocks of 64 Ki ids, rank 0
-// prints and writes exactly what `meshreuse analyze TRACE` would. This file only moves bytes; the
+// meshreuse-mpi: `mpirun -np P meshreuse-mpi analyze INPUT [analyze's options]` -- the exact reuse
+// analysis of one trace file or mesh across P ranks (reports/chunk_summary.h, RunDistributed):
+// rank r reads (or, for a mesh, regenerates) only its own records, the LRU stacks stream rank to
+// rank in blocks of 64 Ki ids, rank 0 prints and writes exactly what `meshreuse analyze INPUT`
+// would. This file only moves bytes; the
 // libraries stay MPI-free. A rank that fails prints "meshreuse-mpi: rank R: error: ..." and aborts
 // the whole job with the error's exit status (2 bad input, 3 environment, 1 a bug), never a hang.
 // For tests, MESHREUSE_MPI_KILL_RANK=R makes rank R kill itself (SIGKILL) after analysing its
@@ -96,11 +97,14 @@ class KillingTransport : public MpiTransport {
 void Usage(std::FILE* out) {
   std::fprintf(out,
                "usage: mpirun -np P meshreuse-mpi analyze TRACE [--format F] [options of "
-               "`meshreuse analyze`]\n\nThe exact reuse analysis of one plain trace file (a "
-               "meshreuse trace, a fixed-record, text or lackey one) across P ranks: rank r reads "
-               "only its part (records [N r/P, N (r+1)/P), or the lines that begin in its bytes); "
-               "rank 0 prints and writes what `meshreuse analyze TRACE` would. --rank-stats FILE: "
-               "each rank's CPU seconds per phase, bytes sent and peak memory.\n");
+               "`meshreuse analyze`]\n       mpirun -np P meshreuse-mpi analyze MESH "
+               "--orderings ONE [-k K] [--threads T] [...]\n\nThe exact reuse analysis of one "
+               "input across P ranks: of a plain trace file (a meshreuse trace, a fixed-record, "
+               "text or lackey one) rank r reads only its part (records [N r/P, N (r+1)/P), or "
+               "the lines that begin in its bytes); of a mesh, rank r regenerates its part of the "
+               "traced smoother's stream (no file). Rank 0 prints and writes what `meshreuse "
+               "analyze` would. --rank-stats FILE: each rank's CPU seconds per phase, bytes sent "
+               "and peak memory.\n");
 }
 
 }  // namespace

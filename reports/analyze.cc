@@ -38,15 +38,6 @@ std::string QuantileName(double q) {
   return "q" + Fixed(100 * q, q * 100 == std::floor(q * 100) ? 0 : 1);
 }
 
-SmoothOptions TraceSweeps(const AnalyzeConfig& cfg) {
-  SmoothOptions o;
-  o.max_iters = cfg.iterations;
-  o.tol = -std::numeric_limits<double>::infinity();  // exactly `iterations` sweeps
-  o.threads = cfg.threads;
-  o.mode = cfg.mode;
-  return o;
-}
-
 ReuseOptions Options(const AnalyzeConfig& cfg, Granularity g) {
   ReuseOptions o;
   o.granularity = g;
@@ -110,6 +101,15 @@ ProgressFn FileProgress(const Log& log) {
       std::snprintf(b, sizeof b, "analysing: %.1f s so far", s);
     log.Say(b);
   };
+}
+
+SmoothOptions AnalyzeSweeps(const AnalyzeConfig& cfg) {
+  SmoothOptions o;
+  o.max_iters = cfg.iterations;
+  o.tol = -std::numeric_limits<double>::infinity();  // exactly `iterations` sweeps
+  o.threads = cfg.threads;
+  o.mode = cfg.mode;
+  return o;
 }
 
 std::vector<double> ParseQuantiles(const std::string& list) {
@@ -203,7 +203,7 @@ AnalyzeResult RunAnalyze(const AnalyzeConfig& cfg, const Log& log) {
           const Permutation p = ComputeOrdering(ord, LoadMesh(in, Log()), cfg.seed);
           VertexReuse vr(m.NumVertices());
           FanOut both({a.get(), &vr});
-          StreamMesh(m, TraceSweeps(cfg), in, ParseOrderingSpec(ord).label, both);
+          StreamMesh(m, AnalyzeSweeps(cfg), in, ParseOrderingSpec(ord).label, both);
           VtkField rank{"rank", std::vector<double>(laid.NumVertices())},
               orig{"original_id", rank.values};
           for (int32_t v = 0; v < laid.NumVertices(); ++v)
@@ -213,7 +213,7 @@ AnalyzeResult RunAnalyze(const AnalyzeConfig& cfg, const Log& log) {
           WriteVtk(laid, cfg.vtk, fields);
           log.Say("wrote " + cfg.vtk);
         } else {
-          StreamMesh(m, TraceSweeps(cfg), in, ParseOrderingSpec(ord).label, *a);
+          StreamMesh(m, AnalyzeSweeps(cfg), in, ParseOrderingSpec(ord).label, *a);
         }
         log.Say(
             "done in " +

@@ -86,6 +86,10 @@ Json RankStatsJson(const std::vector<RankStats>& ranks);
 // is not, and why).
 std::vector<double> ParseQuantiles(const std::string& list);
 
+// The smoother's options for analysing meshes: exactly cfg.iterations sweeps on cfg.threads
+// streams in cfg.mode.
+SmoothOptions AnalyzeSweeps(const AnalyzeConfig& cfg);
+
 // Progress of reading a file, said as "analysing: 42% (1.2 s, about 1.6 s left)" at most every
 // 2 s.
 ProgressFn FileProgress(const Log& log);

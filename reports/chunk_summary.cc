@@ -15,8 +15,10 @@
 #include "core/error.h"
 #include "core/input_file.h"
 #include "core/mix.h"
+#include "core/orderings/registry.h"
 #include "core/output_file.h"
 #include "core/smoother.h"
+#include "reports/inputs.h"
 #include "tracer/trace_formats.h"
 #include "tracer/trace_reader.h"
 
@@ -117,6 +119,7 @@ void PutInfo(Writer& w, const StreamInfo& i) {
   w.Put<uint64_t>(i.records);
   w.Put<uint64_t>(i.sweep_records.size());
   for (const auto& s : i.sweep_records) w.U64s(s);
+  w.Put<uint64_t>(i.sweep_elements.size());  // none for Jacobi meshes (not known up front)
   for (const auto& s : i.sweep_elements) w.U64s(s);
 }
 
@@ -131,12 +134,16 @@ StreamInfo GetInfo(Reader& r) {
   i.element_bytes = r.Get<uint32_t>();
   i.canonical = r.Get<uint32_t>() != 0;
   i.records = r.Get<uint64_t>();
-  const uint64_t sweeps = r.Count(16, "sweep");
-  for (uint64_t k = 0; k < sweeps; ++k) i.sweep_records.push_back(r.U64s("sweep table"));
-  for (uint64_t k = 0; k < sweeps; ++k) i.sweep_elements.push_back(r.U64s("sweep table"));
-  for (uint64_t k = 0; k < sweeps; ++k)
-    if (i.sweep_records[k].size() != threads || i.sweep_elements[k].size() != threads)
-      r.Fail("corrupt: a sweep table does not have one entry per thread");
+  for (auto* table : {&i.sweep_records, &i.sweep_elements}) {
+    const uint64_t sweeps = r.Count(8, "sweep");
+    for (uint64_t k = 0; k < sweeps; ++k) {
+      table->push_back(r.U64s("sweep table"));
+      if (table->back().size() != threads)
+        r.Fail("corrupt: a sweep table does not have one entry per thread");
+    }
+  }
+  if (!i.sweep_elements.empty() && i.sweep_elements.size() != i.sweep_records.size())
+    r.Fail("corrupt: the sweep tables differ in length");
   return i;
 }
 
@@ -156,6 +163,15 @@ uint64_t Fingerprint(const std::string& path, uint64_t* bytes) {
     h = Mix64(h ^ Checksum(b.data(), tail));
   }
   return h;
+}
+
+// A laid-out mesh's content hash (coordinates and triangles) and its size in bytes: ties the
+// chunks of one mesh analysis together whatever file or copy each run read.
+uint64_t MeshFingerprint(const Mesh& m, uint64_t* bytes) {
+  const size_t xy = m.xy.size() * sizeof(double), tri = m.tri.size() * sizeof(int32_t);
+  *bytes = xy + tri;
+  return Mix64(Checksum(reinterpret_cast<const char*>(m.xy.data()), xy) ^
+               Checksum(reinterpret_cast<const char*>(m.tri.data()), tri) * 3);
 }
 
 std::string ChunkName(uint32_t r, uint32_t p) {
@@ -401,22 +417,145 @@ void TraceOffsets(const std::string& path, uint64_t first, uint32_t line_bytes,
 
 }  // namespace
 
+// The chunk's summary entries from its analysis (the exact chunk and the sampled ids' chunk of
+// each stream).
+void Collect(ReuseAnalysis& a, SummaryFile* out) {
+  SummaryFile& s = *out;
+  s.info = a.info();
+  s.info.input.clear();
+  for (int t = 0; t < a.threads(); ++t) {
+    s.moves.push_back(a.moves(t));
+    for (Granularity sg : {Granularity::kElement, Granularity::kLine}) {
+      const StreamAnalysis* x = a.stream(t, sg);
+      if (!x) continue;
+      // The exact chunk, and the sampled ids' chunk: one entry each.
+      for (const StreamAnalysis* y :
+           {x->exact ? x : nullptr, static_cast<const StreamAnalysis*>(x->sampled_chunk.get())}) {
+        if (!y) continue;
+        StreamSummary ss;
+        ss.thread = static_cast<uint32_t>(t);
+        ss.granularity = sg;
+        ss.sampled = y != x;
+        ss.accesses = y->sd.accesses();
+        ss.stream_accesses = x->exact ? x->sd.accesses() : x->added;
+        ss.offset = ss.sampled ? 0 : x->offset;
+        ss.chunk.first_ids = y->first_ids;
+        ss.chunk.first_positions = y->first_positions;
+        ss.chunk.stack = y->sd.StackBottomUp();
+        const std::vector<uint64_t>& c = y->hist.counts();
+        for (size_t d = 0; d < c.size(); ++d)
+          if (c[d]) ss.hist.emplace_back(d, c[d]);
+        const auto& steps = y->profile.steps();
+        for (size_t i = 0; i < steps.size(); ++i)
+          if (steps[i].accesses)
+            ss.profile.push_back({i, steps[i].accesses, steps[i].cold, steps[i].sum});
+        s.streams.push_back(std::move(ss));
+      }
+    }
+  }
+}
+
+// Passes records [first, end) of a stream on to `to`, counting where the records before them
+// leave each thread's element and line streams (the chunk's profile offsets, set on `to` before
+// its first access). The records after `end` are dropped (the smoother runs to the end).
+class RangeGate : public AccessConsumer {
+ public:
+  RangeGate(ReuseAnalysis& to, uint64_t first, uint64_t end, uint32_t line_bytes)
+      : to_(to), first_(first), end_(end), shift_(__builtin_ctz(line_bytes)) {}
+  void Begin(const StreamInfo& info) override {
+    to_.Begin(info);
+    element_.assign(info.threads, 0);
+    line_.assign(info.threads, 0);
+  }
+  void Consume(const Access* a, size_t n) override {
+    size_t i = 0;
+    for (; i < n && seen_ + i < first_; ++i) {
+      const Access& x = a[i];
+      if (x.element != Access::kNoElement) ++element_[x.thread];
+      const uint64_t b = x.address + (x.size ? x.size - 1 : 0);
+      line_[x.thread] += (x.address >> shift_) == (b >> shift_) ? 1 : 2;
+    }
+    if (i < n && seen_ + i < end_) {
+      if (!started_) to_.SetStreamOffsets(element_, line_), started_ = true;
+      const size_t k = static_cast<size_t>(std::min<uint64_t>(n, end_ - seen_));
+      to_.Consume(a + i, k - i);
+    }
+    seen_ += n;
+  }
+
+ private:
+  ReuseAnalysis& to_;
+  uint64_t first_, end_, seen_ = 0;
+  int shift_;
+  bool started_ = false;
+  std::vector<uint64_t> element_, line_;
+};
+
+// A chunk of the access stream of a mesh smoothed in the analysis' order: records [N r/P,
+// N (r+1)/P) of what `meshreuse trace MESH` would write, regenerated without a file (the stream
+// depends on topology and canonical addresses only). The rank traces up to its range's end.
+SummaryFile SummarizeMeshChunk(const AnalyzeConfig& cfg, uint32_t r, uint32_t p, const Log& log) {
+  const std::string& in = cfg.inputs[0];
+  const std::string& ord = cfg.orderings[0];
+  Mesh m = LayOut(in, ord, cfg.seed, cfg.triangle_order, log);
+  const SmoothOptions sweeps = AnalyzeSweeps(cfg);
+  SummaryFile s;
+  s.input = in;
+  s.chunk = r;
+  s.id.chunks = p;
+  s.id.format = "mesh " + ParseOrderingSpec(ord).label + " seed " + std::to_string(cfg.seed) +
+                " sweeps " + std::to_string(cfg.iterations) + " threads " +
+                std::to_string(cfg.threads) + " " + UpdateModeName(cfg.mode) + " " +
+                TriangleOrderName(cfg.triangle_order);
+  s.id.fingerprint = MeshFingerprint(m, &s.id.input_bytes);
+  s.id.line_bytes = cfg.line_bytes;
+  s.id.exact = !cfg.sample || cfg.sample_error;
+  s.id.sample = cfg.sample;
+  s.id.rate = cfg.sample ? cfg.shards.rate : 0;
+  s.id.seed = cfg.sample ? cfg.shards.seed : 0;
+  const Granularity g = cfg.granularity ? *cfg.granularity : Granularity::kBoth;
+  s.id.granularity = static_cast<uint32_t>(g);
+  const uint64_t total = MeshStreamInfo(m, sweeps).records;
+  using U = unsigned __int128;
+  s.first = static_cast<uint64_t>(U{total} * r / p);
+  s.end = static_cast<uint64_t>(U{total} * (r + 1) / p);
+  s.total = total;
+  ReuseOptions o;
+  o.granularity = g;
+  o.line_bytes = cfg.line_bytes;
+  o.profile = true;
+  o.chunk = true;
+  o.exact = s.id.exact;
+  o.sample = s.id.sample;
+  o.shards = cfg.shards;
+  ReuseAnalysis a(o);
+  RangeGate gate(a, s.first, s.end, cfg.line_bytes);
+  log.Say("analysing chunk " + ChunkName(r, p) + " of " + in + " in " + ord + " order: records " +
+          std::to_string(s.first) + ".." + std::to_string(s.end) + " of " + std::to_string(total) +
+          " (regenerated by the traced smoother)");
+  StreamMesh(m, sweeps, in, ParseOrderingSpec(ord).label, gate);
+  a.End();
+  Collect(a, &s);
+  return s;
+}
+
 SummaryFile SummarizeChunk(const AnalyzeConfig& cfg, uint32_t r, uint32_t p, const Log& log) {
-  if (cfg.inputs.size() != 1) throw UsageError("a chunked analysis takes one trace file");
+  if (cfg.inputs.size() != 1)
+    throw UsageError("a chunked analysis takes one input (a trace file or a mesh)");
   const std::string& in = cfg.inputs[0];
   const TraceFormat* fmt = cfg.format.empty() ? nullptr : &ParseTraceFormat(cfg.format);
   if (in == "-") throw UsageError("a chunked analysis needs a file: standard input cannot be cut");
-  if (!fmt && ClassifyInput(in) == InputKind::kMesh)
-    throw UsageError(
-        "a chunked analysis takes a trace file, not a mesh (write one with `meshreuse trace`)");
+  const bool mesh = !fmt && ClassifyInput(in) == InputKind::kMesh;
+  if (mesh && cfg.orderings.size() != 1)
+    throw UsageError("a chunked analysis of a mesh takes one ordering");
   if (cfg.sample && cfg.shards.s_max)
     throw UsageError(
         "a chunked analysis samples at a fixed rate (--sample-rate): a fixed-size sample's "
         "threshold depends on every id before it (run --sample-size serially)");
-  if (cfg.threads != 1)
+  if (cfg.threads != 1 && !mesh)
     throw UsageError("each chunk is analysed on one thread: run more chunks (ranks) instead");
+  if (mesh) return SummarizeMeshChunk(cfg, r, p, log);
 
-  AnalyzeResult shape;  // the granularity the whole run would use
   SummaryFile s;
   s.input = in;
   s.chunk = r;
@@ -478,38 +617,7 @@ SummaryFile SummarizeChunk(const AnalyzeConfig& cfg, uint32_t r, uint32_t p, con
     StreamForeignTrace(in, *fmt, cfg.instructions, a, FileProgress(log), &range);
   else
     StreamTraceFile(in, a, FileProgress(log), &range);
-  s.info = a.info();
-  s.info.input.clear();
-  for (int t = 0; t < a.threads(); ++t) {
-    s.moves.push_back(a.moves(t));
-    for (Granularity sg : {Granularity::kElement, Granularity::kLine}) {
-      const StreamAnalysis* x = a.stream(t, sg);
-      if (!x) continue;
-      // The exact chunk, and the sampled ids' chunk: one entry each.
-      for (const StreamAnalysis* y :
-           {x->exact ? x : nullptr, static_cast<const StreamAnalysis*>(x->sampled_chunk.get())}) {
-        if (!y) continue;
-        StreamSummary ss;
-        ss.thread = static_cast<uint32_t>(t);
-        ss.granularity = sg;
-        ss.sampled = y != x;
-        ss.accesses = y->sd.accesses();
-        ss.stream_accesses = x->exact ? x->sd.accesses() : x->added;
-        ss.offset = ss.sampled ? 0 : x->offset;
-        ss.chunk.first_ids = y->first_ids;
-        ss.chunk.first_positions = y->first_positions;
-        ss.chunk.stack = y->sd.StackBottomUp();
-        const std::vector<uint64_t>& c = y->hist.counts();
-        for (size_t d = 0; d < c.size(); ++d)
-          if (c[d]) ss.hist.emplace_back(d, c[d]);
-        const auto& steps = y->profile.steps();
-        for (size_t i = 0; i < steps.size(); ++i)
-          if (steps[i].accesses)
-            ss.profile.push_back({i, steps[i].accesses, steps[i].cold, steps[i].sum});
-        s.streams.push_back(std::move(ss));
-      }
-    }
-  }
+  Collect(a, &s);
   return s;
 }
 
