@@ -45,9 +45,10 @@
 #include <chrono>
 #include <cstdint>
 #include <functional>
+#include <limits>
 #include <string>
-#include <utility>
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 #include "core/access.h"
@@ -89,6 +90,18 @@ struct SmoothOptions {
 };
 inline constexpr int kSerialShares = 0;
 inline constexpr int kAccessGrain = -1;
+
+// Exactly `sweeps` sweeps, whatever the quality does (no tolerance stop): what traces, analyses
+// and simulations of k sweeps run.
+inline SmoothOptions ExactSweeps(int sweeps, int threads = 1,
+                                 UpdateMode mode = UpdateMode::kGaussSeidel) {
+  SmoothOptions o;
+  o.max_iters = sweeps;
+  o.tol = -std::numeric_limits<double>::infinity();
+  o.threads = threads;
+  o.mode = mode;
+  return o;
+}
 
 // Writes and reads `bytes` of a scratch buffer, one access per 64 bytes (see flush_bytes).
 void FlushCaches(uint64_t bytes);

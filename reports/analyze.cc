@@ -104,12 +104,7 @@ ProgressFn FileProgress(const Log& log) {
 }
 
 SmoothOptions AnalyzeSweeps(const AnalyzeConfig& cfg) {
-  SmoothOptions o;
-  o.max_iters = cfg.iterations;
-  o.tol = -std::numeric_limits<double>::infinity();  // exactly `iterations` sweeps
-  o.threads = cfg.threads;
-  o.mode = cfg.mode;
-  return o;
+  return ExactSweeps(cfg.iterations, cfg.threads, cfg.mode);
 }
 
 std::vector<double> ParseQuantiles(const std::string& list) {

@@ -417,6 +417,36 @@ void TraceOffsets(const std::string& path, uint64_t first, uint32_t line_bytes,
 
 }  // namespace
 
+// What every summary of one analysis shares besides the input: the analysis' options.
+void SetAnalysis(const AnalyzeConfig& cfg, Granularity g, SummaryFile* s) {
+  s->id.granularity = static_cast<uint32_t>(g);
+  s->id.line_bytes = cfg.line_bytes;
+  s->id.exact = !cfg.sample || cfg.sample_error;
+  s->id.sample = cfg.sample;
+  s->id.rate = cfg.sample ? cfg.shards.rate : 0;
+  s->id.seed = cfg.sample ? cfg.shards.seed : 0;
+}
+
+// Chunk r of P of `total` records (or bytes): [total r / P, total (r + 1) / P).
+void Cut(uint64_t total, uint32_t r, uint32_t p, SummaryFile* s) {
+  using U = unsigned __int128;
+  s->first = static_cast<uint64_t>(U{total} * r / p);
+  s->end = static_cast<uint64_t>(U{total} * (r + 1) / p);
+  s->total = total;
+}
+
+ReuseOptions ChunkOptions(const AnalyzeConfig& cfg, const SummaryFile& s) {
+  ReuseOptions o;
+  o.granularity = static_cast<Granularity>(s.id.granularity);
+  o.line_bytes = cfg.line_bytes;
+  o.profile = true;
+  o.chunk = true;
+  o.exact = s.id.exact;
+  o.sample = s.id.sample;
+  o.shards = cfg.shards;
+  return o;
+}
+
 // The chunk's summary entries from its analysis (the exact chunk and the sampled ids' chunk of
 // each stream).
 void Collect(ReuseAnalysis& a, SummaryFile* out) {
@@ -508,27 +538,10 @@ SummaryFile SummarizeMeshChunk(const AnalyzeConfig& cfg, uint32_t r, uint32_t p,
                 std::to_string(cfg.threads) + " " + UpdateModeName(cfg.mode) + " " +
                 TriangleOrderName(cfg.triangle_order);
   s.id.fingerprint = MeshFingerprint(m, &s.id.input_bytes);
-  s.id.line_bytes = cfg.line_bytes;
-  s.id.exact = !cfg.sample || cfg.sample_error;
-  s.id.sample = cfg.sample;
-  s.id.rate = cfg.sample ? cfg.shards.rate : 0;
-  s.id.seed = cfg.sample ? cfg.shards.seed : 0;
-  const Granularity g = cfg.granularity ? *cfg.granularity : Granularity::kBoth;
-  s.id.granularity = static_cast<uint32_t>(g);
+  SetAnalysis(cfg, cfg.granularity ? *cfg.granularity : Granularity::kBoth, &s);
   const uint64_t total = MeshStreamInfo(m, sweeps).records;
-  using U = unsigned __int128;
-  s.first = static_cast<uint64_t>(U{total} * r / p);
-  s.end = static_cast<uint64_t>(U{total} * (r + 1) / p);
-  s.total = total;
-  ReuseOptions o;
-  o.granularity = g;
-  o.line_bytes = cfg.line_bytes;
-  o.profile = true;
-  o.chunk = true;
-  o.exact = s.id.exact;
-  o.sample = s.id.sample;
-  o.shards = cfg.shards;
-  ReuseAnalysis a(o);
+  Cut(total, r, p, &s);
+  ReuseAnalysis a(ChunkOptions(cfg, s));
   RangeGate gate(a, s.first, s.end, cfg.line_bytes);
   log.Say("analysing chunk " + ChunkName(r, p) + " of " + in + " in " + ord + " order: records " +
           std::to_string(s.first) + ".." + std::to_string(s.end) + " of " + std::to_string(total) +
@@ -562,18 +575,13 @@ SummaryFile SummarizeChunk(const AnalyzeConfig& cfg, uint32_t r, uint32_t p, con
   s.id.chunks = p;
   s.id.format = fmt ? fmt->name : "";
   s.id.fingerprint = Fingerprint(in, &s.id.input_bytes);
-  s.id.line_bytes = cfg.line_bytes;
   s.id.instructions = cfg.instructions;
-  s.id.exact = !cfg.sample || cfg.sample_error;
-  s.id.sample = cfg.sample;
-  s.id.rate = cfg.sample ? cfg.shards.rate : 0;
-  s.id.seed = cfg.sample ? cfg.shards.seed : 0;
   Granularity g = Granularity::kBoth;
   if (cfg.granularity)
     g = *cfg.granularity;
   else if (fmt)
     g = fmt->addresses ? Granularity::kLine : Granularity::kElement;
-  s.id.granularity = static_cast<uint32_t>(g);
+  SetAnalysis(cfg, g, &s);
 
   uint64_t total;
   std::vector<uint64_t> eoff, loff;
@@ -588,10 +596,7 @@ SummaryFile SummarizeChunk(const AnalyzeConfig& cfg, uint32_t r, uint32_t p, con
     TraceReader tr(in);
     total = tr.header().records;
   }
-  using U = unsigned __int128;
-  s.first = static_cast<uint64_t>(U{total} * r / p);
-  s.end = static_cast<uint64_t>(U{total} * (r + 1) / p);
-  s.total = total;
+  Cut(total, r, p, &s);
   if (text) {
     eoff = loff = {0};  // no profile: a text trace's length is not known up front
   } else if (fmt) {
@@ -600,15 +605,7 @@ SummaryFile SummarizeChunk(const AnalyzeConfig& cfg, uint32_t r, uint32_t p, con
     TraceOffsets(in, s.first, cfg.line_bytes, &eoff, &loff);
   }
 
-  ReuseOptions o;
-  o.granularity = g;
-  o.line_bytes = cfg.line_bytes;
-  o.profile = true;
-  o.chunk = true;
-  o.exact = s.id.exact;
-  o.sample = s.id.sample;
-  o.shards = cfg.shards;
-  ReuseAnalysis a(o);
+  ReuseAnalysis a(ChunkOptions(cfg, s));
   a.SetStreamOffsets(eoff, loff);
   const RecordRange range{s.first, s.end};
   log.Say("analysing chunk " + ChunkName(r, p) + " of " + in + (text ? ": bytes " : ": records ") +

@@ -35,13 +35,6 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-SmoothOptions Sweeps(int k) {
-  SmoothOptions o;
-  o.max_iters = k;
-  o.tol = -std::numeric_limits<double>::infinity();  // exactly k sweeps
-  return o;
-}
-
 // An ordering spec for one mesh: "{mesh}" in it (file:perms/{mesh}.perm) becomes the mesh's
 // name, so one spec names a permutation file per mesh.
 std::string ForMesh(const std::string& spec, const std::string& mesh) {
@@ -153,7 +146,7 @@ void MeasureReuse(const ReportConfig& cfg, const ReportMesh& mr, const Mesh& bas
   if (profile) start = m.Clone();
   std::vector<uint32_t> series;
   FirstSweepConsumer first(mr.vertices, in_fig1 ? &series : nullptr);
-  StreamMesh(m, Sweeps(1), mr.name, label, first);
+  StreamMesh(m, ExactSweeps(1), mr.name, label, first);
   steps.Done(mr.weight * Steps::kAnalysis);
   if (in_fig1) d->fig1.push_back(BinFigure1(label, first.hist(), series, mr.vertices, cfg));
   if (profile) {
@@ -162,7 +155,7 @@ void MeasureReuse(const ReportConfig& cfg, const ReportMesh& mr, const Mesh& bas
     ReuseOptions o;
     o.granularity = Granularity::kElement;
     ReuseAnalysis a(o);
-    StreamMesh(start, Sweeps(cfg.profile_sweeps), mr.name, label, a);
+    StreamMesh(start, ExactSweeps(cfg.profile_sweeps), mr.name, label, a);
     a.AppendProfileRows(&d->profile);
     steps.Done(mr.weight * Steps::kAnalysis * cfg.profile_sweeps);
   }
@@ -212,7 +205,7 @@ void MeasureMachine(const ReportConfig& cfg, const ReportMesh& mr, const Mesh& b
 #pragma omp critical(meshreuse_report_steps)
         steps.Say("many-core simulation: " + mr.name + " " + label + ", " +
                   std::to_string(threads) + " thread(s) on " + machine.name);
-        SmoothOptions o = Sweeps(cfg.machine_sweeps);
+        SmoothOptions o = ExactSweeps(cfg.machine_sweeps);
         o.threads = threads;
         o.interleave = 1;
         MulticoreSimulation compact(machine, Placement::kCompact),

@@ -22,15 +22,6 @@ namespace meshreuse {
 
 namespace {
 
-SmoothOptions Sweeps(const ValidationConfig& cfg) {
-  SmoothOptions o;
-  o.max_iters = cfg.iterations;
-  o.tol = -std::numeric_limits<double>::infinity();  // exactly `iterations` sweeps
-  o.threads = cfg.threads;
-  o.mode = cfg.mode;
-  return o;
-}
-
 std::string Cap(uint64_t c, double scale = 1.0) {
   if (c == kInfiniteCapacity) return "inf";
   return scale == 1.0 ? std::to_string(c) : Fixed(static_cast<double>(c) * scale, 2);
@@ -63,7 +54,7 @@ std::vector<OrderingValidation> RunValidation(
   };
   if (cfg.cache.levels.empty()) throw std::invalid_argument("no cache levels");
   const std::vector<CacheLevel>& levels = cfg.cache.levels;
-  const SmoothOptions sweeps = Sweeps(cfg);
+  const SmoothOptions sweeps = ExactSweeps(cfg.iterations, cfg.threads, cfg.mode);
   std::vector<OrderingValidation> out;
   for (const std::string& ord : cfg.orderings) {
     say("validate: laying out " + cfg.mesh_name + " in " + ord + " order");
