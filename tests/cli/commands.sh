@@ -244,6 +244,10 @@ contains "analyze oracle" "record 1 (byte offset 24): the value 2^64-1 is reserv
 check "sample" 0 "$bin" analyze "$tmp/scan.u64" --format u64 --granularity element --sample-rate 0.5 --seed 7 --sample-error --json --quiet
 contains "sample" '"sampling":"fixed-rate","rate":0.5'
 contains "sample" '"seed":7,"accesses":60000'
+# At rate 1 the sample is the trace: the miss ratio error at every level's capacity is 0.
+check "sample rate 1" 0 "$bin" analyze "$tmp/scan.u64" --format u64 --granularity element --sample-rate 1 --sample-error --cache L1=64K,L2=512K --csv --quiet
+contains "sample rate 1" ",mrc_mae,L1_miss_ratio_error,L2_miss_ratio_error"
+contains "sample rate 1" ",0,0,0"
 check "sample size" 0 "$bin" analyze "$tmp/scan.u64" --format u64 --granularity element --sample-size 100 --csv --quiet
 contains "sample size" ",fixed-size,"
 check "sample both" 2 "$bin" analyze "$tmp/scan.u64" --format u64 --sample-size 100 --sample-rate 0.1
