@@ -24,6 +24,7 @@ while IFS=$'\t' read -r file line msg kind; do
     text|u32|u64|lackey|oracle|parda) cmds=("analyze %s --format $kind" "simulate %s --format $kind") ;;
     poly) command -v triangle >/dev/null || continue
       cmds=("mesh generate --poly %s --vertices 1000 -o $tmp/generated") ;;
+    summary) cmds=("analyze --merge %s") ;;
     perm) cmds=("smooth $data/two_interior.node --ordering file:%s" "reorder $data/two_interior.node -o $tmp/reordered --ordering file:%s") ;;
   esac
   for tmpl in "${cmds[@]}"; do
