@@ -68,7 +68,8 @@ std::unique_ptr<StreamAnalysis> ReuseAnalysis::NewStream(int t, Granularity g) {
   const uint64_t dense = element ? static_cast<uint64_t>(std::max<int64_t>(info_.vertices, 0)) : 0;
   auto s =
       std::make_unique<StreamAnalysis>(dense, opt_.exact, opt_.sample ? &opt_.shards : nullptr);
-  if (opt_.exact && dense) s->hist.Reserve(per_sweep.empty() ? dense : std::min(dense, records));
+  if (opt_.exact && dense && opt_.reserve)
+    s->hist.Reserve(per_sweep.empty() ? dense : std::min(dense, records));
   bool any = false;
   for (uint64_t n : lengths) any = any || n > 0;
   // Steps per sweep: the configured count, fewer (at least 1) so that one granularity's profiles

@@ -113,6 +113,9 @@ struct ReuseOptions {
   bool exact = true;
   bool sample = false;
   ShardsOptions shards;
+  // Histograms of vertex ids reserved up front from the input's vertex and sweep counts; off
+  // where those counts are a file's claims that no data backs yet (a summary merge).
+  bool reserve = true;
 };
 
 class ReuseAnalysis : public AccessConsumer {

@@ -274,7 +274,7 @@ SummaryFile ReadSummary(const std::string& path) {
   return DecodeSummary(path, b);
 }
 
-SummaryFile DecodeSummary(const std::string& path, const std::string& file) {
+SummaryFile DecodeSummary(const std::string& path, const std::string& file, bool from_rank) {
   const char* head = file.data();
   const size_t got = std::min<size_t>(file.size(), kHeaderBytes);
   if (got < 8 || std::memcmp(head, kMagic, 8) != 0)
@@ -338,6 +338,9 @@ SummaryFile DecodeSummary(const std::string& path, const std::string& file) {
     x.granularity = static_cast<Granularity>(g);
     const uint32_t resolved = r.Get<uint32_t>();
     if (resolved > 1) r.Fail("corrupt: a stream's flags");
+    // Resolved streams travel only between ranks: their distances reach back before the chunk,
+    // so nothing in a file bounds them (a file could claim any, and the merge allocate for it).
+    if (resolved && !from_rank) r.Fail("a rank's resolved message, not a chunk summary");
     x.resolved = resolved;
     const uint32_t sampled = r.Get<uint32_t>();
     if (sampled > 1 || (sampled && !s.id.sample) || (!sampled && !s.id.exact))
@@ -361,9 +364,10 @@ SummaryFile DecodeSummary(const std::string& path, const std::string& file) {
     uint64_t counted = f;
     for (uint64_t i = 0; i < h; ++i) {
       const uint64_t d = r.Get<uint64_t>(), c = r.Get<uint64_t>();
-      // Inside a chunk a distance is below its accesses; resolved, below the stream's accesses
-      // up to the chunk's end.
-      const uint64_t bound = x.resolved ? x.offset + x.accesses : x.accesses;
+      // Inside a chunk a distance is below its distinct ids (the first touches), so a corrupt
+      // distance cannot make the merge allocate beyond what the file holds; resolved, below the
+      // stream's accesses up to the chunk's end.
+      const uint64_t bound = x.resolved ? x.offset + x.accesses : f;
       if ((d >= bound && !(x.resolved && d == StackDistance::kCold)) || c > x.accesses - counted)
         r.Fail("corrupt: histogram entry");
       counted += c;
@@ -640,6 +644,7 @@ void SummaryMerger::Add(SummaryFile s, const std::string& name, size_t given) {
     o.sample = id_.sample;
     o.shards.rate = id_.sample ? id_.rate : 1;
     o.shards.seed = id_.seed;
+    o.reserve = false;  // the summary's vertex and sweep counts are claims, not yet data
     shards_ = o.shards;
     a_ = std::make_unique<ReuseAnalysis>(o);
     StreamInfo info = s.info;
@@ -870,7 +875,7 @@ AnalyzeResult RunDistributed(const AnalyzeConfig& cfg, ChunkTransport& tx, const
   std::vector<RankStats> all(1);
   for (int r = 1; r < ranks; ++r) {
     const std::string name = "rank " + std::to_string(r);
-    m.Add(DecodeSummary(name, tx.RecvBytes(r)), name, static_cast<size_t>(ranks));
+    m.Add(DecodeSummary(name, tx.RecvBytes(r), true), name, static_cast<size_t>(ranks));
     const std::string b = tx.RecvBytes(r);
     if (b.size() != sizeof(RankStats)) throw InputError(name, 0, "corrupt statistics message");
     all.emplace_back();

@@ -78,8 +78,10 @@ struct SummaryFile {
 };
 
 std::string EncodeSummary(const SummaryFile& s);  // the file's bytes
-// From bytes (a file's, or a rank's message); `name` names them in errors.
-SummaryFile DecodeSummary(const std::string& name, const std::string& bytes);
+// From bytes (a file's, or with from_rank a rank's message, which may hold resolved streams);
+// `name` names them in errors.
+SummaryFile DecodeSummary(const std::string& name, const std::string& bytes,
+                          bool from_rank = false);
 void WriteSummary(const std::string& path, const SummaryFile& s);
 // The checksum the header holds, of the payload bytes (for tests that edit a payload).
 uint64_t SummaryChecksum(const char* payload, size_t n);

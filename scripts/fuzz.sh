@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Fuzzes every reader with libFuzzer (clang, AddressSanitizer + UndefinedBehaviorSanitizer): the
 # Triangle pair, Gmsh, the binary trace, other tools' traces (text, u32, u64, parda, oracle,
-# lackey; plain or zstd, one frame or several, pzstd's too), permutation files and .poly outlines (harnesses in tests/fuzz/, each running everything
-# downstream of the reader on what it accepts).
+# lackey; plain or zstd, one frame or several, pzstd's too), permutation files, .poly outlines
+# and chunk summaries (harnesses in tests/fuzz/, each running everything downstream of the reader
+# on what it accepts).
 # Seeds come from tests/data; corpora grow in build/fuzz/corpus/ and are kept between runs.
 # Limits: 10 s per input, 512 MB of RSS (ASan's quarantine at 32 MB), no single allocation above
 # 64 MB (a header's count must never be trusted for memory). Fails (exit 1) on any finding;
@@ -20,7 +21,7 @@ CC=clang CXX=clang++ cmake -S . -B build/fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo 
 cmake --build build/fuzz -j"$(nproc 2>/dev/null || echo 2)" >build/fuzz.build.log 2>&1 ||
   { tail -n 40 build/fuzz.build.log; exit 1; }
 
-harnesses=(triangle gmsh trace external permutation poly)
+harnesses=(triangle gmsh trace external permutation poly summary)
 c=build/fuzz/corpus
 rm -rf build/fuzz/logs build/fuzz/artifacts
 mkdir -p build/fuzz/artifacts build/fuzz/logs
@@ -59,6 +60,14 @@ if command -v pzstd >/dev/null; then
 fi
 rm -f "$u64seed" "$u64seed.pz"
 /usr/bin/python3 -c 'print("\n".join(str(i) for i in range(336)))' >"$c/permutation/seed-identity"
+# Summaries: their payloads (the harness writes the header), from chunks of a mesh trace.
+if [[ -x build/release/cli/meshreuse && -s $c/trace/seed-two_interior.trace ]]; then
+  for k in 0/1 1/2; do
+    build/release/cli/meshreuse analyze "$c/trace/seed-two_interior.trace" --chunk $k \
+      --summary-out "$c/summary/whole" --quiet 2>/dev/null &&
+      tail -c +33 "$c/summary/whole" >"$c/summary/seed-${k/\//-of-}" && rm -f "$c/summary/whole"
+  done
+fi
 
 run() {  # run HARNESS: one libFuzzer session, its log and exit code
   local h=$1 rc=0

@@ -72,7 +72,9 @@ ReportPart ReportPredictedSpeedup(const ReportData& d) {
   part.table = t;
   std::string h;
   for (const auto& [ord, by_placement] : self)
-    for (const auto& [placement, s] : by_placement) {
+    for (const auto& [placement, by_threads] : by_placement) {
+      const auto& s = by_threads;  // a plain reference: lambdas cannot capture structured bindings
+                                   // before C++20 (clang refuses)
       auto ratio = [&](int a, int b) -> std::string {
         if (!s.count(a) || !s.count(b)) return "";
         return Num(s.at(b).first / s.at(a).first, 2) + "-" +

@@ -9,6 +9,8 @@
 #include <cstring>
 #include <fstream>
 #include <iterator>
+#include <string>
+#include <vector>
 
 #include "core/error.h"
 #include "tests/test_util.h"
@@ -93,6 +95,58 @@ TEST(ChunkSummary, EveryByteChangedIsReadOrRefusedCleanly) {
   b[40] ^= 1;
   std::ofstream(path, std::ios::binary | std::ios::trunc) << b;
   EXPECT_THROW(ReadSummary(path), InputError);
+}
+
+// A chunk's distances are bounded by its own distinct ids (what the merge may allocate for);
+// a resolved stream's reach back before the chunk, so only a rank's message may hold one.
+TEST(ChunkSummary, DistancesBoundedByTheFileAndResolvedOnlyFromRanks) {
+  testing::TempDir dir;
+  const std::string path = dir / "s";
+  SummaryFile s = Sample();
+  s.streams[0].hist = {{2, 10}, {3, 20}};  // 3 distinct ids: distance 3 cannot occur
+  WriteSummary(path, s);
+  EXPECT_THROW(ReadSummary(path), InputError);
+  s = Sample();
+  s.streams[0].resolved = true;
+  s.streams[0].chunk = ChunkSummary();
+  s.streams[0].hist = {{40, 33}};
+  const std::string bytes = EncodeSummary(s);
+  try {
+    DecodeSummary("f", bytes);
+    ADD_FAILURE() << "accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("resolved message"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(DecodeSummary("rank 1", bytes, true).streams[0].hist, s.streams[0].hist);
+}
+
+// The summaries in tests/data/broken (made by make_summaries.py, rows of kind "summary" in
+// EXPECTED): each refused with the file, place and problem EXPECTED names.
+TEST(ChunkSummary, BrokenFilesAreRefusedByName) {
+  std::ifstream in(testing::DataPath("broken/EXPECTED"));
+  int cases = 0;
+  for (std::string l; std::getline(in, l);) {
+    if (l.empty() || l[0] == '#') continue;
+    std::vector<std::string> f;
+    for (size_t a = 0, b; a <= l.size(); a = b + 1) {
+      b = l.find('\t', a);
+      if (b == std::string::npos) b = l.size();
+      f.push_back(l.substr(a, b - a));
+    }
+    if (f.size() < 4 || f[3] != "summary") continue;
+    ++cases;
+    const std::string path = testing::DataPath("broken/" + f[0]);
+    SCOPED_TRACE(path);
+    try {
+      ReadSummary(path);
+      ADD_FAILURE() << "accepted";
+    } catch (const InputError& e) {
+      EXPECT_EQ(e.file(), path) << e.what();
+      EXPECT_EQ(e.line(), std::stoll(f[1])) << e.what();
+      EXPECT_NE(e.problem().find(f[2]), std::string::npos) << e.what() << "\nexpected: " << f[2];
+    }
+  }
+  EXPECT_GE(cases, 5);
 }
 
 }  // namespace

@@ -1,0 +1,35 @@
+// libFuzzer harness: a chunk summary's payload (reports/chunk_summary.h) behind a header whose size
+// and checksum are made to match, so the fuzzer reaches the parser instead of the checksum; an
+// accepted summary of one chunk is then merged into a whole analysis and its tables built.
+#include <cstring>
+#include <string>
+
+#include "core/error.h"
+#include "reports/chunk_summary.h"
+
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
+  using namespace meshreuse;
+  std::string file(32, '\0');
+  std::memcpy(&file[0], "MRSUMRY", 8);
+  const uint32_t version = 1;
+  const uint64_t bytes = size;
+  const uint64_t sum = SummaryChecksum(reinterpret_cast<const char*>(data), size);
+  std::memcpy(&file[8], &version, 4);
+  std::memcpy(&file[16], &bytes, 8);
+  std::memcpy(&file[24], &sum, 8);
+  file.append(reinterpret_cast<const char*>(data), size);
+  try {
+    SummaryFile s = DecodeSummary("fuzz", file);
+    if (s.id.chunks != 1) return 0;
+    SummaryMerger m(true);
+    m.Add(std::move(s), "fuzz", 1);
+    AnalyzeConfig cfg;
+    const AnalyzeResult r = m.Finish();
+    AnalyzeTable(r, cfg, false);
+    HistogramTable(r);
+    ProfileTable(r);
+    MrcTable(r);
+  } catch (const InputError&) {
+  }
+  return 0;
+}
