@@ -11,6 +11,7 @@
 
 #include "analysis/papi_counters.h"
 #include "analysis/reuse_analysis.h"
+#include "analysis/sweep_footprint.h"
 #include "core/error.h"
 #include "core/orderings/registry.h"
 #include "core/schedule.h"
@@ -71,11 +72,12 @@ std::vector<OrderingValidation> RunValidation(
     ao.profile = false;
     ReuseAnalysis analysis(ao);
     CacheSimulation sim(cfg.cache, cfg.line_bytes);
+    SweepFootprint footprint(cfg.line_bytes);
     {
       say("validate: " + ord + ": " + std::to_string(cfg.iterations) +
           " traced sweep(s) into the analyzer and the simulator");
       Mesh m = laid.Clone();
-      FanOut both({&analysis, &sim});
+      FanOut both({&analysis, &sim, &footprint});
       StreamMesh(m, sweeps, cfg.mesh_name, v.ordering, both);
     }
     ReuseHistogram eh, lh;
@@ -85,6 +87,8 @@ std::vector<OrderingValidation> RunValidation(
     }
     v.element_accesses = eh.accesses(), v.line_accesses = lh.accesses();
     v.element_cold = eh.cold(), v.line_cold = lh.cold();
+    v.sweep_lines = footprint.lines();
+    const std::vector<uint64_t> floor = MissFloor(v.sweep_lines, cfg.cache, cfg.line_bytes);
     for (size_t s = 0; s < sim.sweeps(); ++s) {
       std::vector<std::vector<LevelStats>> per;
       for (int t = 0; t < cfg.threads; ++t) per.push_back(sim.SweepStats(t, s));
@@ -126,6 +130,7 @@ std::vector<OrderingValidation> RunValidation(
       l.level = levels[i];
       l.element_capacity = me[i].capacity, l.line_capacity = ml[i].capacity;
       l.model_element = me[i].misses, l.model_line = ml[i].misses;
+      l.floor = floor[i];
       for (int t = 0; t < cfg.threads; ++t) l.simulated += sim.Stats(t)[i];
       l.measured = counted[i] >= 0;
       l.counter = l.measured ? counted[i] : 0;
@@ -147,7 +152,7 @@ Table ValidationTable(const std::vector<OrderingValidation>& r) {
   Table t({"mesh", "ordering", "level", "size", "ways", "accesses", "model_element_misses",
            "model_line_misses", "simulated_misses", "simulated_cold", "simulated_excess",
            "counter_misses", "model_line/simulated", "simulated/counter", "local_miss_rate",
-           "global_miss_rate", "counters"});
+           "global_miss_rate", "counters", "floor_misses", "over_floor"});
   for (const OrderingValidation& v : r)
     for (const LevelValidation& l : v.levels) {
       const LevelStats& s = l.simulated;
@@ -160,7 +165,8 @@ Table ValidationTable(const std::vector<OrderingValidation>& r) {
                 l.measured ? Ratio(static_cast<double>(s.misses), l.counter) : "",
                 ExactNumber(s.MissRate()),
                 v.line_accesses ? ExactNumber(static_cast<double>(s.misses) / v.line_accesses) : "",
-                l.measured ? "measured" : "simulated"});
+                l.measured ? "measured" : "simulated", std::to_string(l.floor),
+                std::to_string(s.misses - std::min(s.misses, l.floor))});
     }
   return t;
 }

@@ -51,6 +51,9 @@ struct LevelValidation {
   // Table 3: the misses inverted (counter if measured, else simulated) and the capacities.
   uint64_t table3_misses = 0;
   uint64_t capacity_elements = 0, capacity_lines = 0;
+  // No ordering can miss less (analysis/sweep_footprint.h): the sweeps' lines less what levels
+  // 1..this one can hold between sweeps.
+  uint64_t floor = 0;
 };
 
 struct OrderingValidation {
@@ -58,6 +61,7 @@ struct OrderingValidation {
   int32_t vertices = 0;
   int iterations = 0, threads = 1;
   uint64_t element_accesses = 0, line_accesses = 0, element_cold = 0, line_cold = 0;
+  std::vector<std::vector<uint64_t>> sweep_lines;  // per thread, per sweep: distinct lines
   std::vector<LevelValidation> levels;
   std::vector<std::vector<std::vector<LevelStats>>> sweeps;  // simulated: [sweep][thread][level]
   // Equation 2 on the line model's and the simulator's misses; nullopt without latencies.
@@ -74,7 +78,8 @@ std::vector<OrderingValidation> RunValidation(
 
 // One row per ordering x level: accesses reaching the level, misses of the element model, the line
 // model, the simulator and the counters, cold misses, excess (simulated - cold), the ratios
-// model_line / simulated and simulated / counter, local and global miss rates.
+// model_line / simulated and simulated / counter, local and global miss rates; the
+// layout-independent floor on misses and the simulated misses above it.
 Table ValidationTable(const std::vector<OrderingValidation>& r);
 // Simulated misses per sweep: one row per ordering x sweep x level (sum over threads).
 Table ValidationSweepTable(const std::vector<OrderingValidation>& r);

@@ -2,7 +2,11 @@
 #include "core/orderings/common.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
+#include <stdexcept>
+
+#include "core/error.h"
 
 namespace meshreuse::orderings {
 
@@ -88,6 +92,32 @@ std::vector<int32_t> RowsByKey(const Mesh& m, const std::vector<double>& key) {
     }
   }
   return nbr;
+}
+
+uint64_t ParseCacheBytes(const std::string& arg, uint64_t dflt, const char* name) {
+  if (arg.empty()) return dflt;
+  size_t used = 0;
+  unsigned long long v = 0;
+  try {
+    v = std::stoull(arg, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (arg[0] == '-' || arg[0] == '+' || std::isspace(static_cast<unsigned char>(arg[0]))) used = 0;
+  uint64_t mult = 1;
+  if (used + 1 == arg.size() && (arg[used] == 'K' || arg[used] == 'k')) mult = 1024, ++used;
+  if (used + 1 == arg.size() && (arg[used] == 'M' || arg[used] == 'm')) mult = 1 << 20, ++used;
+  if (used != arg.size() || v == 0 || v > (uint64_t{1} << 40) / mult)
+    throw UsageError(std::string(name) +
+                     ":BYTES needs a positive size such as 262144 or 256K, not '" + arg + "'");
+  return v * mult;
+}
+
+double SweepBytesPerVertex(const Mesh& m) {
+  const double v = m.NumVertices(), t = m.NumTriangles();
+  const double bytes = 16 * v + 8 * (v + 1) + 4.0 * m.v2v.idx.size() + 8 * (v + 1) +
+                       4.0 * m.v2t.idx.size() + 12 * t + 16 * t + 4.0 * m.interior.size();
+  return v > 0 ? bytes / v : 0;
 }
 
 }  // namespace meshreuse::orderings

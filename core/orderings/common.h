@@ -29,8 +29,28 @@ std::vector<int32_t> RowsByKey(const Mesh& m, const std::vector<double>& key);
 // box (each axis scaled independently), ties by id: hilbert and morton.
 std::vector<int32_t> SortAlongCurve(const Mesh& m, uint64_t (*index)(uint32_t, uint32_t));
 
-// metis's argument: bytes per part, K/M suffixes; "" gives 256 KiB. Throws UsageError.
-uint64_t ParseMetisPartBytes(const std::string& arg);
-inline void CheckMetisPartBytes(const std::string& arg) { ParseMetisPartBytes(arg); }
+// A cache-sized argument in bytes (metis:BYTES, wave-blocks:BYTES), K/M suffixes; "" gives
+// `dflt`. Throws UsageError naming `name`.
+uint64_t ParseCacheBytes(const std::string& arg, uint64_t dflt, const char* name);
+inline void CheckMetisPartBytes(const std::string& arg) { ParseCacheBytes(arg, 1, "metis"); }
+inline void CheckMetisWaveBytes(const std::string& arg) { ParseCacheBytes(arg, 1, "metis-wave"); }
+inline void CheckWaveBlockBytes(const std::string& arg) { ParseCacheBytes(arg, 1, "wave-blocks"); }
+
+// What the sweep reads per vertex on average: coordinates, both adjacency rows and their offsets,
+// the triangles' corners, weights and qualities, the interior list (about 66 bytes on a 2D mesh).
+double SweepBytesPerVertex(const Mesh& m);
+
+// wave-blocks with its sizes in vertices (core/orderings/wave_blocks.cc defines it): new -> old.
+std::vector<int32_t> WaveBlocksOrder(const Mesh& m, int64_t block_vertices, int64_t band_vertices);
+
+// METIS k-way parts whose sweep data fit part_bytes (metis.cc): part[v] in [0, *parts), or empty
+// (and *parts = 1) when one part holds the mesh.
+std::vector<int32_t> CacheSizedParts(const Mesh& m, uint64_t part_bytes, uint64_t seed,
+                                     int32_t* parts);
+
+// Parts (part[v] in [0, parts)) laid out in BFS order over the part graph, each part's vertices
+// by a wavefront that continues from the parts placed before it (core/orderings/metis_wave.cc).
+std::vector<int32_t> WaveThroughParts(const Mesh& m, const std::vector<int32_t>& part,
+                                      int32_t parts);
 
 }  // namespace meshreuse::orderings

@@ -45,6 +45,17 @@ MESHREUSE_ORDERING(OrderMetis, "metis", kOptionalArgument, true, orderings::Chec
                    "METIS k-way parts sized to a cache (metis:BYTES, default 256K = L2), parts "
                    "by BFS over the part graph, BFS inside each part; seeded",
                    "Karypis and Kumar 1998 (METIS_PartGraphKway)")
+MESHREUSE_ORDERING(OrderMetisWave, "metis-wave", kOptionalArgument, true,
+                   orderings::CheckMetisWaveBytes,
+                   "metis's parts and part order (metis-wave:BYTES, default 256K), each part by a "
+                   "wavefront from its vertices next to the parts placed before it; seeded",
+                   "METIS_PartGraphKway; a multi-source BFS continuing the wave")
+MESHREUSE_ORDERING(OrderWaveBlocks, "wave-blocks", kOptionalArgument, false,
+                   orderings::CheckWaveBlockBytes,
+                   "BFS levels grouped into bands of 4 blocks, each band cut along the front into "
+                   "blocks of about BYTES (wave-blocks:BYTES, default 32K = L1), each block by a "
+                   "local BFS",
+                   "BFS (Strout and Hovland 2004) blocked for L1 inside an L2-sized wavefront")
 MESHREUSE_ORDERING(OrderNd, "nd", false, true, nullptr,
                    "METIS nested dissection (separators last, recursively); seeded",
                    "Karypis and Kumar 1998 (METIS_NodeND); George 1973")

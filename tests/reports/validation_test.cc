@@ -8,6 +8,7 @@
 
 #include <algorithm>
 
+#include "core/orderings/registry.h"
 #include "core/synthetic.h"
 
 namespace meshreuse {
@@ -81,6 +82,42 @@ TEST(Validation, InfiniteCapacityIsExplained) {
   r = RunValidation(m, cfg);
   EXPECT_NE(r[0].levels[1].capacity_lines, kInfiniteCapacity);
   EXPECT_EQ(Table3Notes(r, true).size(), 1u);
+}
+
+// The layout-independent floor (analysis/sweep_footprint.h) checked as a floor: in every ordering
+// at 1 and 2 threads no simulated level misses less, and a level that holds the whole sweep
+// misses exactly the floor (its cold misses).
+TEST(Validation, NoOrderingMissesLessThanTheFloor) {
+  SyntheticOptions so;
+  so.nx = 50, so.ny = 40, so.holes = 2, so.seed = 4;
+  const Mesh m = BuildMesh(MakeSyntheticMesh(so));
+  for (int threads : {1, 2}) {
+    ValidationConfig cfg;
+    cfg.mesh_name = "synthetic";
+    cfg.orderings.clear();
+    for (const OrderingInfo& o : Orderings())
+      if (!o.takes_argument()) cfg.orderings.push_back(o.name);
+    cfg.iterations = 3;
+    cfg.threads = threads;
+    // Small caches (the sweep is about 150 KiB) and one that holds it all.
+    cfg.cache.levels = {{"L1", 2048, 4}, {"L2", 16384, 8}, {"L3", 1 << 22, 16}};
+    const std::vector<OrderingValidation> r = RunValidation(m, cfg);
+    for (const OrderingValidation& v : r) {
+      SCOPED_TRACE(v.ordering + " threads " + std::to_string(threads));
+      ASSERT_EQ(v.sweep_lines.size(), static_cast<size_t>(threads));
+      uint64_t cold = 0;
+      for (const auto& t : v.sweep_lines) {
+        ASSERT_EQ(t.size(), 3u);
+        EXPECT_GT(t[1], (2048 + 16384) / 64u);  // each thread's sweep outgrows its L1 + L2
+        cold += t[0];
+      }
+      for (const LevelValidation& l : v.levels)
+        EXPECT_GE(l.simulated.misses, l.floor) << l.level.name;
+      EXPECT_GT(v.levels[1].floor, cold);  // warm sweeps add to the floor
+      EXPECT_EQ(v.levels[2].floor, cold);  // L3 holds it: the cold lines alone
+      EXPECT_EQ(v.levels[2].simulated.misses, v.levels[2].floor);
+    }
+  }
 }
 
 }  // namespace

@@ -1,0 +1,62 @@
+// The lines each sweep touches and the miss floor; see sweep_footprint.h.
+#include "analysis/sweep_footprint.h"
+
+#include <algorithm>
+
+#include "core/access.h"
+
+namespace meshreuse {
+
+void SweepFootprint::Begin(const StreamInfo& info) {
+  canonical_ = info.canonical;
+  sweep_ = 1;
+  threads_.assign(static_cast<size_t>(std::max(info.threads, 1)), Thread());
+  lines_.assign(threads_.size(), std::vector<uint64_t>(1, 0));
+}
+
+void SweepFootprint::BeginSweep(int sweep) {
+  if (sweep <= 1) return;  // the first sweep keeps what came before it
+  sweep_ = static_cast<uint32_t>(sweep);
+  for (auto& l : lines_) l.resize(static_cast<size_t>(sweep), 0);
+}
+
+void SweepFootprint::Consume(const Access* a, size_t n) {
+  const uint64_t base = AddressCanonicalizer::kCanonicalBase / line_bytes_;
+  for (size_t k = 0; k < n; ++k) {
+    const size_t t = a[k].thread;
+    if (t >= threads_.size()) {  // a stream announced with fewer threads: grow
+      threads_.resize(t + 1);
+      lines_.resize(t + 1, std::vector<uint64_t>(sweep_, 0));
+    }
+    Thread& th = threads_[t];
+    const uint64_t line = a[k].address / line_bytes_;
+    uint32_t* last;
+    if (canonical_ && line >= base && line - base < (uint64_t{1} << 32)) {
+      const uint64_t i = line - base;  // the smoother's arrays: dense from the canonical base
+      if (i >= th.dense.size()) th.dense.resize(std::max<uint64_t>(i + 1, th.dense.size() * 2), 0);
+      last = &th.dense[i];
+    } else {
+      last = &th.hashed[line];
+    }
+    if (*last != sweep_) {
+      *last = sweep_;
+      ++lines_[t][sweep_ - 1];
+    }
+  }
+}
+
+std::vector<uint64_t> MissFloor(const std::vector<std::vector<uint64_t>>& lines,
+                                const CacheSpec& cache, uint32_t line_bytes) {
+  std::vector<uint64_t> floor;
+  uint64_t held = 0;  // lines levels 1..i can hold
+  for (const CacheLevel& c : cache.levels) {
+    held += c.bytes / line_bytes;
+    uint64_t f = 0;
+    for (const std::vector<uint64_t>& t : lines)
+      for (size_t s = 0; s < t.size(); ++s) f += s == 0 ? t[s] : (t[s] > held ? t[s] - held : 0);
+    floor.push_back(f);
+  }
+  return floor;
+}
+
+}  // namespace meshreuse
