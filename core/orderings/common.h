@@ -3,6 +3,7 @@
 
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/mesh.h"
@@ -34,7 +35,10 @@ std::vector<int32_t> SortAlongCurve(const Mesh& m, uint64_t (*index)(uint32_t, u
 uint64_t ParseCacheBytes(const std::string& arg, uint64_t dflt, const char* name);
 inline void CheckMetisPartBytes(const std::string& arg) { ParseCacheBytes(arg, 1, "metis"); }
 inline void CheckMetisWaveBytes(const std::string& arg) { ParseCacheBytes(arg, 1, "metis-wave"); }
-inline void CheckWaveBlockBytes(const std::string& arg) { ParseCacheBytes(arg, 1, "wave-blocks"); }
+// wave-blocks's argument BLOCK[/BAND] in bytes: (32 KiB, 128 KiB) by default, BAND 4 x BLOCK
+// when not given. Throws UsageError.
+std::pair<uint64_t, uint64_t> ParseWaveBlocks(const std::string& arg);
+inline void CheckWaveBlockBytes(const std::string& arg) { ParseWaveBlocks(arg); }
 
 // What the sweep reads per vertex on average: coordinates, both adjacency rows and their offsets,
 // the triangles' corners, weights and qualities, the interior list (about 66 bytes on a 2D mesh).
@@ -47,6 +51,11 @@ std::vector<int32_t> WaveBlocksOrder(const Mesh& m, int64_t block_vertices, int6
 // (and *parts = 1) when one part holds the mesh.
 std::vector<int32_t> CacheSizedParts(const Mesh& m, uint64_t part_bytes, uint64_t seed,
                                      int32_t* parts);
+
+// The non-empty cells of a uniform grid whose cells hold about part_bytes of sweep data
+// (grid_wave.cc): part[v] in [0, *parts), or empty (and *parts = 1) when one cell would do.
+std::vector<int32_t> GridParts(const Mesh& m, uint64_t part_bytes, int32_t* parts);
+inline void CheckGridWaveBytes(const std::string& arg) { ParseCacheBytes(arg, 1, "grid-wave"); }
 
 // Parts (part[v] in [0, parts)) laid out in BFS order over the part graph, each part's vertices
 // by a wavefront that continues from the parts placed before it (core/orderings/metis_wave.cc).

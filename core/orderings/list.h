@@ -50,11 +50,17 @@ MESHREUSE_ORDERING(OrderMetisWave, "metis-wave", kOptionalArgument, true,
                    "metis's parts and part order (metis-wave:BYTES, default 256K), each part by a "
                    "wavefront from its vertices next to the parts placed before it; seeded",
                    "METIS_PartGraphKway; a multi-source BFS continuing the wave")
+MESHREUSE_ORDERING(OrderGridWave, "grid-wave", kOptionalArgument, false,
+                   orderings::CheckGridWaveBytes,
+                   "metis-wave's layout on the cells of a uniform grid holding about BYTES each "
+                   "(grid-wave:BYTES, default 256K): parts by BFS over the cell graph, each by a "
+                   "wavefront from its vertices next to the cells placed before it",
+                   "a multi-source BFS continuing the wave through grid cells")
 MESHREUSE_ORDERING(OrderWaveBlocks, "wave-blocks", kOptionalArgument, false,
                    orderings::CheckWaveBlockBytes,
-                   "BFS levels grouped into bands of 4 blocks, each band cut along the front into "
-                   "blocks of about BYTES (wave-blocks:BYTES, default 32K = L1), each block by a "
-                   "local BFS",
+                   "BFS levels grouped into bands of up to BAND bytes, each cut along the front "
+                   "into blocks of about BLOCK bytes, each block by a local BFS "
+                   "(wave-blocks:BLOCK[/BAND], default 32K/128K: L1, half the paper's L2)",
                    "BFS (Strout and Hovland 2004) blocked for L1 inside an L2-sized wavefront")
 MESHREUSE_ORDERING(OrderNd, "nd", false, true, nullptr,
                    "METIS nested dissection (separators last, recursively); seeded",

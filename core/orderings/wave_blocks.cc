@@ -7,9 +7,9 @@
 // parts have the L1 locality and lose the L2 floor. Here the wavefront is kept at the scale of L2
 // and blocked at the scale of L1.
 //
-// Definition (S = block vertices, B = band vertices; wave-blocks:BYTES gives S = BYTES / the
-// sweep's bytes per vertex, default 32 KiB = L1, and B = 4 S, so two bands fit the paper's 256 KiB
-// L2):
+// Definition (S = block vertices, B = band vertices; wave-blocks:BLOCK[/BAND] in bytes gives S =
+// BLOCK / the sweep's bytes per vertex, default 32 KiB = L1, and B = BAND / the same, default
+// 4 x BLOCK, so that two bands fit the paper's 256 KiB L2; a larger L2 takes a larger BAND):
 //  1. BFS exactly as `bfs` (from vertex 0, neighbours by increasing id, each further component
 //     from its lowest unvisited id); each vertex's parent is the vertex that enqueued it, its level
 //     its distance from its component's root. A level is a maximal run of the BFS order with one
@@ -25,7 +25,10 @@
 // band, a block; across bands, about a band (L2). With S >= n one band and one arc: plain BFS.
 #include <algorithm>
 #include <cmath>
+#include <string>
+#include <utility>
 
+#include "core/error.h"
 #include "core/orderings/common.h"
 #include "core/orderings/registry.h"
 
@@ -86,12 +89,25 @@ std::vector<int32_t> orderings::WaveBlocksOrder(const Mesh& m, int64_t block, in
   return order;
 }
 
+std::pair<uint64_t, uint64_t> orderings::ParseWaveBlocks(const std::string& arg) {
+  const size_t slash = arg.find('/');
+  const uint64_t block = ParseCacheBytes(arg.substr(0, slash), 32 * 1024, "wave-blocks");
+  if (slash == std::string::npos) return {block, 4 * block};
+  if (slash == 0) throw UsageError("wave-blocks:BLOCK/BAND needs BLOCK, not '" + arg + "'");
+  const uint64_t band = ParseCacheBytes(arg.substr(slash + 1), 0, "wave-blocks");
+  if (band == 0 || band < block)
+    throw UsageError("wave-blocks:BLOCK/BAND needs BAND at least BLOCK, not '" + arg + "'");
+  return {block, band};
+}
+
 Permutation OrderWaveBlocks(const Mesh& m, const OrderingContext& ctx) {
-  const double block_bytes =
-      static_cast<double>(orderings::ParseCacheBytes(ctx.argument, 32 * 1024, "wave-blocks"));
+  const auto [block_bytes, band_bytes] = orderings::ParseWaveBlocks(ctx.argument);
   const double per_vertex = std::max(orderings::SweepBytesPerVertex(m), 1.0);
-  const int64_t block = std::max<int64_t>(1, std::llround(block_bytes / per_vertex));
-  return Permutation::FromNewToOld(orderings::WaveBlocksOrder(m, block, 4 * block));
+  auto vertices = [&](uint64_t bytes) {
+    return std::max<int64_t>(1, std::llround(static_cast<double>(bytes) / per_vertex));
+  };
+  return Permutation::FromNewToOld(
+      orderings::WaveBlocksOrder(m, vertices(block_bytes), vertices(band_bytes)));
 }
 
 }  // namespace meshreuse

@@ -88,7 +88,7 @@ contains "generate without triangle" "triangle-bin"
 check "orderings" 0 "$bin" orderings
 contains "orderings" "rdr"
 contains "orderings" "Aupy, Park, Raghavan, Algorithm 2"
-for o in rdr-frontier rdr-wave morton "metis[:ARG]" nd "wave-blocks[:ARG]" "metis-wave[:ARG]"; do contains "orderings" "$o"; done
+for o in rdr-frontier rdr-wave morton "metis[:ARG]" nd "wave-blocks[:ARG]" "metis-wave[:ARG]" "grid-wave[:ARG]"; do contains "orderings" "$o"; done
 check "smooth lean" 0 "$bin" smooth "$data/two_interior.node" --quality per-sweep --max-iters 2 --tol -1 --out "$tmp/lean" --quiet
 contains "smooth lean" "sweeps 2"
 grep -q '"quality": "per-sweep"' "$tmp/lean/run.json" && pass=$((pass + 1)) || { fail=$((fail + 1)); echo "FAIL smooth lean: run.json lacks the quality mode"; }

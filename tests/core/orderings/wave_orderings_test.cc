@@ -1,4 +1,4 @@
-// wave-blocks and metis-wave (issue 24) against literal reference implementations of the
+// wave-blocks, metis-wave and grid-wave (issue 24) against literal reference implementations of the
 // definitions at the head of their files (explicit level lists, std::queue, std::stable_sort,
 // linear scans) on the mesh corpus at many sizes and partitions; hand-worked orders on the
 // two-interior mesh; the limits where they are plain BFS; and the references checked to be
@@ -6,6 +6,8 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
+#include <map>
 #include <queue>
 #include <set>
 
@@ -192,6 +194,12 @@ TEST(WaveBlocks, ArgumentIsBytes) {
   EXPECT_THROW(ParseOrderingSpec("wave-blocks:-4K"), UsageError);
   EXPECT_THROW(ParseOrderingSpec("wave-blocks:12Q"), UsageError);
   EXPECT_NO_THROW(ParseOrderingSpec("wave-blocks:48K"));
+  EXPECT_THROW(ParseOrderingSpec("wave-blocks:32K/16K"), UsageError);  // a band below a block
+  EXPECT_THROW(ParseOrderingSpec("wave-blocks:/64K"), UsageError);
+  EXPECT_THROW(ParseOrderingSpec("wave-blocks:32K/"), UsageError);
+  EXPECT_EQ(orderings::ParseWaveBlocks(""), std::make_pair(uint64_t{32768}, uint64_t{131072}));
+  EXPECT_EQ(orderings::ParseWaveBlocks("8K"), std::make_pair(uint64_t{8192}, uint64_t{32768}));
+  EXPECT_EQ(orderings::ParseWaveBlocks("8K/1M"), std::make_pair(uint64_t{8192}, uint64_t{1 << 20}));
   SyntheticOptions o;
   o.nx = 80, o.ny = 60, o.seed = 3;
   const Mesh m = BuildMesh(MakeSyntheticMesh(o));
@@ -200,6 +208,8 @@ TEST(WaveBlocks, ArgumentIsBytes) {
   EXPECT_EQ(ComputeOrdering("wave-blocks:8K", m).new_to_old(),
             orderings::WaveBlocksOrder(m, block, 4 * block));
   EXPECT_NE(ComputeOrdering("wave-blocks:8K", m).new_to_old(), orderings::BfsVisitOrder(m));
+  EXPECT_EQ(ComputeOrdering("wave-blocks:8K/64K", m).new_to_old(),
+            orderings::WaveBlocksOrder(m, block, std::llround(65536 / bpv)));
 }
 
 TEST(MetisWave, MatchesItsDefinitionAndContinuingTheWaveMatters) {
@@ -256,6 +266,74 @@ TEST(MetisWave, HandWorkedAndMetisPartsReused) {
   int64_t span = 0;
   for (int32_t q = 0; q < parts; ++q) span += last[q] - first[q] + 1;
   EXPECT_EQ(span, big.NumVertices());
+}
+
+// GridParts as written: the cell of each vertex by the formula, the non-empty cells renumbered in
+// row-major order by a std::map.
+std::vector<int32_t> ReferenceGridParts(const Mesh& m, uint64_t bytes, int32_t* parts) {
+  const int32_t n = m.NumVertices();
+  const double wanted = n * orderings::SweepBytesPerVertex(m) / static_cast<double>(bytes);
+  *parts = 1;
+  if (wanted <= 1 || n < 4) return {};
+  double xlo = 1e300, xhi = -1e300, ylo = 1e300, yhi = -1e300;
+  for (int32_t v = 0; v < n; ++v) {
+    xlo = std::min(xlo, m.xy[2 * v]), xhi = std::max(xhi, m.xy[2 * v]);
+    ylo = std::min(ylo, m.xy[2 * v + 1]), yhi = std::max(yhi, m.xy[2 * v + 1]);
+  }
+  const double cells = std::min<double>(std::ceil(wanted), n);
+  const int64_t gx =
+      std::max<int64_t>(1, std::llround(std::sqrt(cells * (xhi - xlo) / (yhi - ylo))));
+  const int64_t gy = std::max<int64_t>(1, static_cast<int64_t>(std::ceil(cells / gx)));
+  std::map<int64_t, int32_t> number;
+  std::vector<int64_t> cell(n);
+  for (int32_t v = 0; v < n; ++v) {
+    const int64_t cx =
+        std::min<int64_t>(gx - 1, static_cast<int64_t>((m.xy[2 * v] - xlo) / (xhi - xlo) * gx));
+    const int64_t cy =
+        std::min<int64_t>(gy - 1, static_cast<int64_t>((m.xy[2 * v + 1] - ylo) / (yhi - ylo) * gy));
+    cell[v] = cy * gx + cx;
+    number[cell[v]] = 0;
+  }
+  int32_t k = 0;
+  for (auto& e : number) e.second = k++;
+  *parts = k;
+  if (k <= 1) return {};
+  std::vector<int32_t> part(n);
+  for (int32_t v = 0; v < n; ++v) part[v] = number[cell[v]];
+  return part;
+}
+
+TEST(GridWave, CellsMatchTheirDefinitionAndTheOrderIsTheWave) {
+  int cases = 0;
+  for (const Mesh& m : testing::MeshCorpus())
+    for (uint64_t bytes : {512, 2048, 8192, 1 << 20}) {
+      int32_t parts = 0, want_parts = 0;
+      const std::vector<int32_t> got = orderings::GridParts(m, bytes, &parts);
+      ASSERT_EQ(got, ReferenceGridParts(m, bytes, &want_parts)) << cases;
+      ASSERT_EQ(parts, want_parts);
+      const std::vector<int32_t> order =
+          ComputeOrdering("grid-wave:" + std::to_string(bytes), m).new_to_old();
+      if (got.empty()) {
+        EXPECT_EQ(order, orderings::BfsVisitOrder(m));
+      } else {
+        EXPECT_EQ(order, ReferenceWaveThroughParts(m, got, parts));
+        ++cases;
+      }
+    }
+  EXPECT_GT(cases, 40);
+}
+
+TEST(GridWave, HandWorked) {
+  // The unit square's four corners with 1-byte parts: min(4 cells wanted, 4 vertices) = 4, so a
+  // 2 x 2 grid, one vertex a cell: (0,0) cell 0, (1,0) cell 1, (0,1) cell 2, (1,1) cell 3.
+  const Mesh m = testing::UnitSquare();
+  int32_t parts = 0;
+  EXPECT_EQ(orderings::GridParts(m, 1, &parts), (std::vector<int32_t>{0, 1, 2, 3}));
+  EXPECT_EQ(parts, 4);
+  // Cells by BFS over the cell graph from vertex 0's: 0, then 1, 2, 3 (edges 0-1, 0-3, 0-2, 1-3,
+  // 2-3); each a single vertex.
+  EXPECT_EQ(ComputeOrdering("grid-wave:1", m).new_to_old(), (std::vector<int32_t>{0, 1, 2, 3}));
+  EXPECT_THROW(ParseOrderingSpec("grid-wave:0"), UsageError);
 }
 
 }  // namespace
