@@ -120,4 +120,37 @@ double SweepBytesPerVertex(const Mesh& m) {
   return v > 0 ? bytes / v : 0;
 }
 
+PartLayout LayOutParts(const Mesh& m, const std::vector<int32_t>& part, int32_t parts) {
+  const int32_t n = m.NumVertices();
+  PartLayout l;
+  l.first.assign(static_cast<size_t>(parts) + 1, 0);
+  for (int32_t v = 0; v < n; ++v) ++l.first[part[v] + 1];
+  for (int32_t p = 0; p < parts; ++p) l.first[p + 1] += l.first[p];
+  l.members.resize(n);
+  {
+    std::vector<int64_t> at(l.first.begin(), l.first.end() - 1);
+    for (int32_t v = 0; v < n; ++v) l.members[at[part[v]]++] = v;
+  }
+  std::vector<std::vector<int32_t>> pnbr(parts);
+  for (int32_t v = 0; v < n; ++v)
+    for (const int32_t* q = m.v2v.RowBegin(v); q != m.v2v.RowEnd(v); ++q)
+      if (part[*q] != part[v]) pnbr[part[v]].push_back(part[*q]);
+  for (auto& r : pnbr) {
+    std::sort(r.begin(), r.end());
+    r.erase(std::unique(r.begin(), r.end()), r.end());
+  }
+  std::vector<uint8_t> seen(parts, 0);
+  auto bfs = [&](int32_t s) {
+    seen[s] = 1;
+    l.order.push_back(s);
+    for (size_t h = l.order.size() - 1; h < l.order.size(); ++h)
+      for (int32_t q : pnbr[l.order[h]])
+        if (!seen[q]) seen[q] = 1, l.order.push_back(q);
+  };
+  if (n > 0) bfs(part[0]);
+  for (int32_t p = 0; p < parts; ++p)
+    if (!seen[p]) bfs(p);
+  return l;
+}
+
 }  // namespace meshreuse::orderings

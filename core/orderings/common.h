@@ -57,6 +57,15 @@ std::vector<int32_t> CacheSizedParts(const Mesh& m, uint64_t part_bytes, uint64_
 std::vector<int32_t> GridParts(const Mesh& m, uint64_t part_bytes, int32_t* parts);
 inline void CheckGridWaveBytes(const std::string& arg) { ParseCacheBytes(arg, 1, "grid-wave"); }
 
+// Parts (part[v] in [0, parts)): their members (part p's are members[first[p], first[p + 1]), by
+// ascending id) and their order, a BFS over the part graph from vertex 0's part, neighbour parts by
+// increasing number, further components from the lowest unvisited part (metis, metis-wave).
+struct PartLayout {
+  std::vector<int64_t> first;
+  std::vector<int32_t> members, order;
+};
+PartLayout LayOutParts(const Mesh& m, const std::vector<int32_t>& part, int32_t parts);
+
 // Parts (part[v] in [0, parts)) laid out in BFS order over the part graph, each part's vertices
 // by a wavefront that continues from the parts placed before it (core/orderings/metis_wave.cc).
 std::vector<int32_t> WaveThroughParts(const Mesh& m, const std::vector<int32_t>& part,

@@ -50,43 +50,14 @@ Permutation OrderMetis(const Mesh& m, const OrderingContext& ctx) {
   const std::vector<int32_t> part = orderings::CacheSizedParts(
       m, orderings::ParseCacheBytes(ctx.argument, 256 * 1024, "metis"), ctx.seed, &nparts);
   if (part.empty()) return Permutation::FromNewToOld(orderings::BfsVisitOrder(m));
-  // Vertices by part (ascending id within each), and the part graph's neighbour sets.
-  std::vector<int64_t> first(nparts + 1, 0);
-  for (int32_t v = 0; v < n; ++v) ++first[part[v] + 1];
-  for (int32_t p = 0; p < nparts; ++p) first[p + 1] += first[p];
-  std::vector<int32_t> members(n);
-  {
-    std::vector<int64_t> at(first.begin(), first.end() - 1);
-    for (int32_t v = 0; v < n; ++v) members[at[part[v]]++] = v;
-  }
-  std::vector<std::vector<int32_t>> pnbr(nparts);
-  for (int32_t v = 0; v < n; ++v)
-    for (const int32_t* q = m.v2v.RowBegin(v); q != m.v2v.RowEnd(v); ++q)
-      if (part[*q] != part[v]) pnbr[part[v]].push_back(part[*q]);
-  for (auto& r : pnbr) {
-    std::sort(r.begin(), r.end());
-    r.erase(std::unique(r.begin(), r.end()), r.end());
-  }
-  // Parts in BFS order over the part graph.
-  std::vector<int32_t> porder;
-  std::vector<uint8_t> pseen(nparts, 0);
-  auto part_bfs = [&](int32_t s) {
-    pseen[s] = 1;
-    porder.push_back(s);
-    for (size_t h = porder.size() - 1; h < porder.size(); ++h)
-      for (int32_t q : pnbr[porder[h]])
-        if (!pseen[q]) pseen[q] = 1, porder.push_back(q);
-  };
-  part_bfs(part[0]);
-  for (int32_t p = 0; p < nparts; ++p)
-    if (!pseen[p]) part_bfs(p);
+  const orderings::PartLayout l = orderings::LayOutParts(m, part, nparts);
   // Vertices: a BFS inside each part.
   std::vector<int32_t> order;
   order.reserve(n);
   std::vector<uint8_t> seen(n, 0);
-  for (int32_t p : porder)
-    for (int64_t i = first[p]; i < first[p + 1]; ++i) {
-      const int32_t s = members[i];
+  for (int32_t p : l.order)
+    for (int64_t i = l.first[p]; i < l.first[p + 1]; ++i) {
+      const int32_t s = l.members[i];
       if (seen[s]) continue;
       seen[s] = 1;
       order.push_back(s);

@@ -24,34 +24,9 @@ namespace meshreuse {
 std::vector<int32_t> orderings::WaveThroughParts(const Mesh& m, const std::vector<int32_t>& part,
                                                  int32_t parts) {
   const int32_t n = m.NumVertices();
-  std::vector<int64_t> first(static_cast<size_t>(parts) + 1, 0);
-  for (int32_t v = 0; v < n; ++v) ++first[part[v] + 1];
-  for (int32_t p = 0; p < parts; ++p) first[p + 1] += first[p];
-  std::vector<int32_t> members(n);  // by part, ascending id within each
-  {
-    std::vector<int64_t> at(first.begin(), first.end() - 1);
-    for (int32_t v = 0; v < n; ++v) members[at[part[v]]++] = v;
-  }
-  std::vector<std::vector<int32_t>> pnbr(parts);
-  for (int32_t v = 0; v < n; ++v)
-    for (const int32_t* q = m.v2v.RowBegin(v); q != m.v2v.RowEnd(v); ++q)
-      if (part[*q] != part[v]) pnbr[part[v]].push_back(part[*q]);
-  for (auto& r : pnbr) {
-    std::sort(r.begin(), r.end());
-    r.erase(std::unique(r.begin(), r.end()), r.end());
-  }
-  std::vector<int32_t> porder;
-  std::vector<uint8_t> pseen(parts, 0);
-  auto part_bfs = [&](int32_t s) {
-    pseen[s] = 1;
-    porder.push_back(s);
-    for (size_t h = porder.size() - 1; h < porder.size(); ++h)
-      for (int32_t q : pnbr[porder[h]])
-        if (!pseen[q]) pseen[q] = 1, porder.push_back(q);
-  };
-  if (n > 0) part_bfs(part[0]);
-  for (int32_t p = 0; p < parts; ++p)
-    if (!pseen[p]) part_bfs(p);
+  const PartLayout l = LayOutParts(m, part, parts);
+  const std::vector<int64_t>& first = l.first;
+  const std::vector<int32_t>& members = l.members;
 
   std::vector<int32_t> order;
   order.reserve(n);
@@ -66,7 +41,7 @@ std::vector<int32_t> orderings::WaveThroughParts(const Mesh& m, const std::vecto
       for (const int32_t* q = m.v2v.RowBegin(order[head]); q != m.v2v.RowEnd(order[head]); ++q)
         if (pos[*q] < 0 && part[*q] == p) place(*q);
   };
-  for (int32_t p : porder) {
+  for (int32_t p : l.order) {
     seeds.clear();
     for (int64_t i = first[p]; i < first[p + 1]; ++i) {
       const int32_t v = members[i];
