@@ -18,6 +18,7 @@ using Args = std::vector<std::string>;  // the arguments after the subcommand's 
 int MeshInfo(const Args& args);
 int MeshGenerate(const Args& args);
 int MeshConvert(const Args& args);
+int MeshRefine(const Args& args);
 int SmoothCommand(const Args& args);
 int OrderingsCommand(const Args& args);
 int ReorderCommand(const Args& args);

@@ -29,6 +29,7 @@ const Command kCommands[] = {
     {"mesh info", "vertices, triangles, boundary and quality of a mesh", MeshInfo},
     {"mesh generate", "mesh one of the nine shapes (or a .poly) with Triangle", MeshGenerate},
     {"mesh convert", "read any supported mesh, write .node/.ele or .vtk", MeshConvert},
+    {"mesh refine", "each triangle into 4^K, ids computable anywhere", MeshRefine},
     {"orderings", "list the vertex orderings", OrderingsCommand},
     {"reorder", "reorder a mesh's vertices, write the mesh and the permutation", ReorderCommand},
     {"smooth", "Laplacian smoothing, per-sweep quality and time", SmoothCommand},

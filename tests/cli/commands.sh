@@ -12,7 +12,7 @@ contains "no arguments" "usage: meshreuse <command>"
 check "--help" 0 "$bin" --help
 check "unknown command" 2 "$bin" frobnicate
 contains "unknown command" "unknown command 'frobnicate'"
-for c in "mesh info" "mesh generate" "mesh convert" "smooth" "orderings" "reorder" "compare" "trace" "analyze" "simulate" "validate"; do
+for c in "mesh info" "mesh generate" "mesh convert" "mesh refine" "smooth" "orderings" "reorder" "compare" "trace" "analyze" "simulate" "validate"; do
   check "$c --help" 0 "$bin" $c --help
   contains "$c --help" "usage: meshreuse $c"
 done
@@ -52,6 +52,18 @@ check "convert vtk" 0 "$bin" mesh convert "$data/two_interior41.msh" -o "$tmp/m.
 check "convert node" 0 "$bin" mesh convert "$data/two_interior41.msh" -o "$tmp/conv" --quiet
 check "read converted" 0 "$bin" mesh info "$tmp/conv" --quiet
 contains "read converted" "triangles          8"
+
+check "refine" 0 "$bin" mesh refine "$data/two_interior.node" --levels 2 --jitter 0.3 -o "$tmp/ref" --quiet
+contains "refine" "refined    77 vertices, 128 triangles"
+grep '^hash' "$tmp/out" >"$tmp/refine.hash"
+check "refine again" 0 "$bin" mesh refine "$data/two_interior.node" --levels 2 --jitter 0.3 -o "$tmp/ref2" --quiet
+contains "refine again" "$(cat "$tmp/refine.hash")"  # the same mesh, bit for bit
+check "read refined" 0 "$bin" mesh info "$tmp/ref" --quiet
+contains "read refined" "triangles          128"
+check "refine bad levels" 2 "$bin" mesh refine "$data/two_interior.node" --levels 16 -o "$tmp/ref3" --quiet
+check "refine too large" 2 "$bin" mesh refine "$data/two_interior.node" --levels 15 -o "$tmp/ref3" --quiet
+contains "refine too large" "more than 32-bit ids hold"
+check "refine bad jitter" 2 "$bin" mesh refine "$data/two_interior.node" --jitter 0.9 -o "$tmp/ref3" --quiet
 
 check "smooth" 0 "$bin" smooth "$data/two_interior.node" --max-iters 3 --tol -1 -o "$tmp/s.vtk" --out "$tmp/res" --quiet
 contains "smooth" "sweeps 3 (max-iters reached)"
