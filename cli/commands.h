@@ -19,6 +19,7 @@ int MeshInfo(const Args& args);
 int MeshGenerate(const Args& args);
 int MeshConvert(const Args& args);
 int MeshRefine(const Args& args);
+int MeshPartition(const Args& args);
 int SmoothCommand(const Args& args);
 int OrderingsCommand(const Args& args);
 int ReorderCommand(const Args& args);

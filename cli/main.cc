@@ -30,6 +30,7 @@ const Command kCommands[] = {
     {"mesh generate", "mesh one of the nine shapes (or a .poly) with Triangle", MeshGenerate},
     {"mesh convert", "read any supported mesh, write .node/.ele or .vtk", MeshConvert},
     {"mesh refine", "each triangle into 4^K, ids computable anywhere", MeshRefine},
+    {"mesh partition", "parts for smoothing across ranks, and what they cost", MeshPartition},
     {"orderings", "list the vertex orderings", OrderingsCommand},
     {"reorder", "reorder a mesh's vertices, write the mesh and the permutation", ReorderCommand},
     {"smooth", "Laplacian smoothing, per-sweep quality and time", SmoothCommand},
@@ -93,7 +94,7 @@ int Main(int argc, char** argv) {
       std::FILE* out = help ? stdout : stderr;
       if (!help && args.size() > 1)
         std::fprintf(stderr, "meshreuse: unknown command 'mesh %s'\n\n", args[1].c_str());
-      std::fprintf(out, "usage: meshreuse mesh info|generate|convert [options]\n\n");
+      std::fprintf(out, "usage: meshreuse mesh info|generate|convert|refine|partition [options]\n\n");
       for (const Command& c : kCommands)
         if (std::strncmp(c.name, "mesh ", 5) == 0)
           std::fprintf(out, "  %-16s %s\n", c.name, c.summary);

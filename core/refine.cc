@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <stdexcept>
 #include <string>
 
 #include "core/error.h"
@@ -141,6 +142,15 @@ class Lattice {
     }
   }
 
+  // The coarse vertex whose part fine vertex `id` inherits: itself, its edge's lower-id end, its
+  // triangle's smallest corner.
+  int32_t Responsible(int32_t id) const {
+    if (id < edge_base_) return id;
+    if (id < tri_base_) return lo_[(id - edge_base_) / (n_ - 1)];
+    const int32_t* c = &m_.tri[3 * ((id - tri_base_) / interior_)];
+    return std::min({c[0], c[1], c[2]});
+  }
+
   // Fine triangles of coarse triangle t, by lattice row: up (j,k) (j+1,k) (j,k+1), then down
   // (j+1,k) (j+1,k+1) (j,k+1); both keep the coarse orientation.
   template <typename F>
@@ -210,6 +220,17 @@ RawMesh RefineMesh(const Mesh& coarse, const RefineOptions& o) {
       r.tri[at++] = a, r.tri[at++] = b, r.tri[at++] = c;
     });
   return r;
+}
+
+std::vector<int32_t> InheritParts(const Mesh& coarse, const RefineOptions& o,
+                                  const std::vector<int32_t>& coarse_part) {
+  if (static_cast<int64_t>(coarse_part.size()) != coarse.NumVertices())
+    throw std::invalid_argument("InheritParts: one part per coarse vertex");
+  const Lattice l(coarse, o);
+  std::vector<int32_t> part(static_cast<size_t>(l.vertices()));
+  for (int64_t v = 0; v < l.vertices(); ++v)
+    part[v] = coarse_part[l.Responsible(static_cast<int32_t>(v))];
+  return part;
 }
 
 uint64_t MeshContentHash(const AlignedVector<double>& xy, const AlignedVector<int32_t>& tri) {

@@ -49,6 +49,12 @@ RefinedPiece RefinePiece(const Mesh& coarse, const RefineOptions& o, int32_t tri
 // The whole fine mesh (every vertex is used by some fine triangle).
 RawMesh RefineMesh(const Mesh& coarse, const RefineOptions& o);
 
+// A partition of the coarse vertices inherited by the fine ones, computed locally (../shared/
+// scale-out.md 3c): a coarse vertex keeps its part, a point of a coarse edge takes the part of the
+// edge's lower-id end, an interior point that of its triangle's smallest corner.
+std::vector<int32_t> InheritParts(const Mesh& coarse, const RefineOptions& o,
+                                  const std::vector<int32_t>& coarse_part);
+
 // A content hash of coordinates and triangles (bit patterns), for "the same mesh bit for bit".
 uint64_t MeshContentHash(const AlignedVector<double>& xy, const AlignedVector<int32_t>& tri);
 

@@ -12,7 +12,7 @@ contains "no arguments" "usage: meshreuse <command>"
 check "--help" 0 "$bin" --help
 check "unknown command" 2 "$bin" frobnicate
 contains "unknown command" "unknown command 'frobnicate'"
-for c in "mesh info" "mesh generate" "mesh convert" "mesh refine" "smooth" "orderings" "reorder" "compare" "trace" "analyze" "simulate" "validate"; do
+for c in "mesh info" "mesh generate" "mesh convert" "mesh refine" "mesh partition" "smooth" "orderings" "reorder" "compare" "trace" "analyze" "simulate" "validate"; do
   check "$c --help" 0 "$bin" $c --help
   contains "$c --help" "usage: meshreuse $c"
 done
@@ -64,6 +64,14 @@ check "refine bad levels" 2 "$bin" mesh refine "$data/two_interior.node" --level
 check "refine too large" 2 "$bin" mesh refine "$data/two_interior.node" --levels 15 -o "$tmp/ref3" --quiet
 contains "refine too large" "more than 32-bit ids hold"
 check "refine bad jitter" 2 "$bin" mesh refine "$data/two_interior.node" --jitter 0.9 -o "$tmp/ref3" --quiet
+
+check "partition" 0 "$bin" mesh partition "$data/two_interior.node" --parts 2 -o "$tmp/p.txt" --quiet
+contains "partition" "parts 2 (hilbert)"
+[[ $(grep -vc '^#' "$tmp/p.txt") == 8 ]] && pass=$((pass + 1)) || { fail=$((fail + 1)); echo "FAIL partition: not 8 parts in p.txt"; }
+check "partition inherited" 0 "$bin" mesh partition "$data/two_interior.node" --parts 3 --method metis --levels 2 --quiet
+contains "partition inherited" "vertices 77, parts 3 (metis, inherited through 2 levels)"
+check "partition bad method" 2 "$bin" mesh partition "$data/two_interior.node" --method scotch --quiet
+check "partition too many" 2 "$bin" mesh partition "$data/two_interior.node" --parts 9 --quiet
 
 check "smooth" 0 "$bin" smooth "$data/two_interior.node" --max-iters 3 --tol -1 -o "$tmp/s.vtk" --out "$tmp/res" --quiet
 contains "smooth" "sweeps 3 (max-iters reached)"

@@ -1,0 +1,112 @@
+// Vertex partitions and their cost; see partition.h.
+#include "core/partition.h"
+
+#include <algorithm>
+
+#include "core/error.h"
+#include "core/orderings/metis_graph.h"
+#include "core/orderings/registry.h"
+#include "core/stdout_guard.h"
+
+namespace meshreuse {
+
+namespace {
+void CheckParts(const Mesh& m, int32_t parts) {
+  if (parts < 1 || parts > std::max(m.NumVertices(), 1))
+    throw UsageError("--parts must be 1.." + std::to_string(std::max(m.NumVertices(), 1)));
+}
+}  // namespace
+
+std::vector<int32_t> HilbertRangeParts(const Mesh& m, int32_t parts) {
+  CheckParts(m, parts);
+  const int64_t n = m.NumVertices();
+  const Permutation h = ComputeOrdering("hilbert", m);
+  std::vector<int32_t> part(n);
+  for (int64_t i = 0; i < n; ++i)
+    part[h.OldOf(static_cast<int32_t>(i))] = static_cast<int32_t>(i * parts / n);
+  return part;
+}
+
+std::vector<int32_t> MetisParts(const Mesh& m, int32_t parts, uint64_t seed) {
+  CheckParts(m, parts);
+  const int32_t n = m.NumVertices();
+  if (parts == 1) return std::vector<int32_t>(n, 0);
+  orderings::MetisGraph g = orderings::ToMetis(m);
+  idx_t ncon = 1, np = parts, cut = 0;
+  idx_t options[METIS_NOPTIONS];
+  METIS_SetDefaultOptions(options);
+  options[METIS_OPTION_SEED] = static_cast<idx_t>(seed & 0x7FFFFFFF);
+  options[METIS_OPTION_NUMBERING] = 0;
+  std::vector<idx_t> p(n);
+  {
+    const StdoutToStderr quiet;  // METIS may printf: stdout holds only results
+    orderings::MetisCheck(
+        METIS_PartGraphKway(&g.n, &ncon, g.xadj.data(), g.adjncy.data(), nullptr, nullptr, nullptr,
+                            &np, nullptr, nullptr, options, &cut, p.data()),
+        "METIS_PartGraphKway");
+  }
+  return std::vector<int32_t>(p.begin(), p.end());
+}
+
+double PartitionStats::imbalance() const {
+  if (owned.empty()) return 0;
+  int64_t sum = 0, mx = 0;
+  for (int64_t o : owned) sum += o, mx = std::max(mx, o);
+  return sum ? static_cast<double>(mx) * static_cast<double>(owned.size()) /
+                   static_cast<double>(sum)
+             : 0;
+}
+
+PartitionStats MeasurePartition(const Mesh& m, const std::vector<int32_t>& part, int32_t parts,
+                                const std::string& name) {
+  const int32_t n = m.NumVertices();
+  if (static_cast<int64_t>(part.size()) != n)
+    throw InputError(name, 0,
+                     std::to_string(part.size()) + " parts for " + std::to_string(n) + " vertices");
+  for (int32_t v = 0; v < n; ++v)
+    if (part[v] < 0 || part[v] >= parts)
+      throw InputError(
+          name, v + 1,
+          "part " + std::to_string(part[v]) + " outside 0.." + std::to_string(parts - 1));
+  PartitionStats s;
+  s.parts = parts;
+  s.owned.assign(parts, 0);
+  s.ghosts.assign(parts, 0);
+  s.cut_owned.assign(parts, 0);
+  std::vector<std::vector<int32_t>> pnbr(parts);
+  // A vertex is one part's ghost once however many of its vertices it neighbours: mark it with
+  // the last part that counted it, per vertex (neighbours of one vertex come in one row).
+  std::vector<std::vector<int32_t>> ghost_of(parts);
+  for (int32_t v = 0; v < n; ++v) {
+    ++s.owned[part[v]];
+    bool cut = false;
+    for (const int32_t* q = m.v2v.RowBegin(v); q != m.v2v.RowEnd(v); ++q)
+      if (part[*q] != part[v]) {
+        cut = true;
+        s.cut_edges += *q > v;
+        pnbr[part[v]].push_back(part[*q]);
+        ghost_of[part[v]].push_back(*q);
+      }
+    s.cut_owned[part[v]] += cut;
+  }
+  for (int32_t p = 0; p < parts; ++p) {
+    auto& g = ghost_of[p];
+    std::sort(g.begin(), g.end());
+    s.ghosts[p] = std::unique(g.begin(), g.end()) - g.begin();
+    std::sort(pnbr[p].begin(), pnbr[p].end());
+    pnbr[p].erase(std::unique(pnbr[p].begin(), pnbr[p].end()), pnbr[p].end());
+  }
+  s.colour.assign(parts, -1);
+  for (int32_t p = 0; p < parts; ++p) {
+    std::vector<uint8_t> used(pnbr[p].size() + 1, 0);
+    for (int32_t q : pnbr[p])
+      if (q < p && s.colour[q] < static_cast<int32_t>(used.size())) used[s.colour[q]] = 1;
+    int32_t c = 0;
+    while (used[c]) ++c;
+    s.colour[p] = c;
+    s.colours = std::max(s.colours, c + 1);
+  }
+  return s;
+}
+
+}  // namespace meshreuse

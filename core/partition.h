@@ -1,0 +1,35 @@
+// Vertex partitions for smoothing across ranks (issue 23, ../shared/scale-out.md section 3b):
+// contiguous ranges of the Hilbert order (the default: no dependency, balanced to one vertex, one
+// file for any P), METIS k-way (better cuts, one node), and what a partition costs a distributed
+// sweep: cut edges, ghosts per part, balance, and the greedy colouring of the part graph that
+// orders the cut vertices' rounds. Parts inherited through refinement: core/refine.h.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "core/mesh.h"
+
+namespace meshreuse {
+
+// Part p holds Hilbert positions [n p / P, n (p + 1) / P). P in 1..n (UsageError otherwise).
+std::vector<int32_t> HilbertRangeParts(const Mesh& m, int32_t parts);
+// METIS_PartGraphKway into `parts` parts, seeded (one part: all zero).
+std::vector<int32_t> MetisParts(const Mesh& m, int32_t parts, uint64_t seed);
+
+struct PartitionStats {
+  int32_t parts = 0;
+  int64_t cut_edges = 0;           // edges whose ends lie in two parts
+  std::vector<int64_t> owned;      // vertices per part
+  std::vector<int64_t> ghosts;     // per part: distinct vertices of other parts next to its own
+  std::vector<int64_t> cut_owned;  // per part: its vertices with a neighbour elsewhere
+  std::vector<int32_t> colour;     // greedy colouring of the part graph, parts in id order
+  int32_t colours = 0;
+  double imbalance() const;  // max owned / mean owned
+};
+// Throws InputError(name, 0, ...) for a part outside [0, parts).
+PartitionStats MeasurePartition(const Mesh& m, const std::vector<int32_t>& part, int32_t parts,
+                                const std::string& name = "partition");
+
+}  // namespace meshreuse
