@@ -10,11 +10,9 @@
 #include <algorithm>
 #include <string>
 
-#include "core/error.h"
 #include "core/orderings/common.h"
-#include "core/orderings/metis_graph.h"
 #include "core/orderings/registry.h"
-#include "core/stdout_guard.h"
+#include "core/partition.h"
 
 namespace meshreuse {
 
@@ -25,23 +23,8 @@ std::vector<int32_t> orderings::CacheSizedParts(const Mesh& m, uint64_t part_byt
       n * orderings::SweepBytesPerVertex(m) / static_cast<double>(part_bytes);
   *parts = 1;
   if (parts_wanted <= 1 || n < 4) return {};
-  orderings::MetisGraph g = orderings::ToMetis(m);
-  idx_t ncon = 1, nparts = static_cast<idx_t>(std::min<double>(parts_wanted + 0.999999, n / 2));
-  idx_t cut = 0;
-  idx_t options[METIS_NOPTIONS];
-  METIS_SetDefaultOptions(options);
-  options[METIS_OPTION_SEED] = static_cast<idx_t>(seed & 0x7FFFFFFF);
-  options[METIS_OPTION_NUMBERING] = 0;
-  std::vector<idx_t> part(n);
-  {
-    const StdoutToStderr quiet;  // METIS may printf: stdout holds only results
-    orderings::MetisCheck(
-        METIS_PartGraphKway(&g.n, &ncon, g.xadj.data(), g.adjncy.data(), nullptr, nullptr, nullptr,
-                            &nparts, nullptr, nullptr, options, &cut, part.data()),
-        "METIS_PartGraphKway");
-  }
-  *parts = static_cast<int32_t>(nparts);
-  return std::vector<int32_t>(part.begin(), part.end());
+  *parts = static_cast<int32_t>(std::min<double>(parts_wanted + 0.999999, n / 2));
+  return MetisParts(m, *parts, seed);
 }
 
 Permutation OrderMetis(const Mesh& m, const OrderingContext& ctx) {
