@@ -3,7 +3,7 @@
 // The race (reports/docs/results.md, issue 24) found that METIS's cache-sized parts, laid out by
 // a wave that continues from the parts before them (metis-wave), are as fast as BFS on every
 // mesh, where the same parts with a BFS from each part's lowest id (metis) are 5-22% slower; but
-// METIS costs about 16 ORI sweeps. Here the parts are grid cells:
+// METIS costs about 12 of the paper's ORI sweeps on carabiner. Here the parts are grid cells:
 //  1. A grid over the bounding box, gx x gy cells of equal size, as near square as the box allows,
 //     with gx * gy = ceil(n * bytes per vertex / BYTES) (grid-wave:BYTES, default 256 KiB = the
 //     paper's L2): a cell holds about BYTES of sweep data where the mesh is uniform. A vertex's
