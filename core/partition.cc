@@ -74,8 +74,8 @@ PartitionStats MeasurePartition(const Mesh& m, const std::vector<int32_t>& part,
   s.ghosts.assign(parts, 0);
   s.cut_owned.assign(parts, 0);
   std::vector<std::vector<int32_t>> pnbr(parts);
-  // A vertex is one part's ghost once however many of its vertices it neighbours: mark it with
-  // the last part that counted it, per vertex (neighbours of one vertex come in one row).
+  // A vertex is one part's ghost once however many of its vertices it neighbours: each part's
+  // list of ghost sightings is made unique below.
   std::vector<std::vector<int32_t>> ghost_of(parts);
   for (int32_t v = 0; v < n; ++v) {
     ++s.owned[part[v]];

@@ -9,11 +9,12 @@ namespace meshreuse {
 
 namespace orderings {
 
-std::vector<int32_t> BfsVisitOrder(const Mesh& m) {
+std::vector<int32_t> BfsVisitOrder(const Mesh& m, std::vector<int32_t>* parent) {
   const int32_t n = m.NumVertices();
   std::vector<int32_t> order;
   order.reserve(n);
   std::vector<uint8_t> seen(n, 0);
+  if (parent) parent->assign(n, -1);
   for (int32_t s = 0; s < n; ++s) {
     if (seen[s]) continue;
     seen[s] = 1;
@@ -23,6 +24,7 @@ std::vector<int32_t> BfsVisitOrder(const Mesh& m) {
       for (const int32_t* p = m.v2v.RowBegin(v); p != m.v2v.RowEnd(v); ++p)
         if (!seen[*p]) {
           seen[*p] = 1;
+          if (parent) (*parent)[*p] = v;
           order.push_back(*p);
         }
     }

@@ -11,8 +11,9 @@
 namespace meshreuse::orderings {
 
 // Breadth-first visit order over all vertices: from vertex 0, neighbours in increasing id, each
-// further component from its lowest unvisited id. Used by bfs and rbfs.
-std::vector<int32_t> BfsVisitOrder(const Mesh& m);
+// further component from its lowest unvisited id. Used by bfs, rbfs and wave-blocks; `parent`, if
+// given, gets each vertex's enqueuer (-1 for a component's root).
+std::vector<int32_t> BfsVisitOrder(const Mesh& m, std::vector<int32_t>* parent = nullptr);
 
 // `ids` stably sorted by key[id] (finite keys). One counting-sort pass into n/8 buckets by
 // floor((k - min) / (max - min) * (n/8 - 1)) -- monotone in k, because IEEE operations round

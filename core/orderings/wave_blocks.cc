@@ -38,25 +38,11 @@ std::vector<int32_t> orderings::WaveBlocksOrder(const Mesh& m, int64_t block, in
   const int32_t n = m.NumVertices();
   block = std::max<int64_t>(block, 1);
   band = std::max<int64_t>(band, 1);
-  // 1. BFS with parents and levels.
-  std::vector<int32_t> bfs, parent(n, -1), depth(n, 0);
-  bfs.reserve(n);
-  std::vector<uint8_t> seen(n, 0);
-  for (int32_t s = 0; s < n; ++s) {
-    if (seen[s]) continue;
-    seen[s] = 1;
-    bfs.push_back(s);
-    for (size_t head = bfs.size() - 1; head < bfs.size(); ++head) {
-      const int32_t v = bfs[head];
-      for (const int32_t* p = m.v2v.RowBegin(v); p != m.v2v.RowEnd(v); ++p)
-        if (!seen[*p]) {
-          seen[*p] = 1;
-          parent[*p] = v;
-          depth[*p] = depth[v] + 1;
-          bfs.push_back(*p);
-        }
-    }
-  }
+  // 1. BFS with parents; a vertex's level is its parent's plus one (parents come first).
+  std::vector<int32_t> parent, depth(n, 0);
+  const std::vector<int32_t> bfs = BfsVisitOrder(m, &parent);
+  for (int32_t v : bfs)
+    if (parent[v] >= 0) depth[v] = depth[parent[v]] + 1;
   // Level starts in the BFS order (a root, or a change of depth), and n at the end.
   std::vector<int64_t> level;
   for (int32_t i = 0; i < n; ++i)
