@@ -35,7 +35,11 @@ int SmoothCommand(const Args& args) {
       "per-sweep: once per sweep by one pass over the triangles (the lean sweep)")(
       "output,o", po::value(&cfg.output),
       "write the smoothed mesh (PATH.vtk or a .node/.ele prefix)")(
-      "out", po::value(&out_dir), "write summary.csv, summary.md, sweeps.csv and run.json here")(
+      "visit-order", po::value(&cfg.visit_order),
+      "visit the interior vertices in this file's order (one 0-based id per line, every interior "
+      "vertex once), storage unchanged: the serial sweep `meshreuse-mpi smooth --pi-out` "
+      "writes")("out", po::value(&out_dir),
+                "write summary.csv, summary.md, sweeps.csv and run.json here")(
       "counters", po::value(&counters)->implicit_value("default"),
       "hardware counters (PAPI) around the sweeps, per thread and summed: a comma list of PAPI "
       "events, or none for PAPI_L1_DCM,PAPI_L2_DCM,PAPI_L3_TCM,PAPI_TOT_CYC,PAPI_TOT_INS; events "

@@ -9,7 +9,8 @@
 
 namespace meshreuse {
 class ChunkTransport;
-}
+class HaloTransport;
+}  // namespace meshreuse
 
 namespace meshreuse::cli {
 
@@ -28,6 +29,8 @@ int TraceCommand(const Args& args);
 int AnalyzeCommand(const Args& args);
 // With a transport: one rank of a distributed analysis (cli/mpi_main.cc); rank 0 prints and writes.
 int AnalyzeCommand(const Args& args, ChunkTransport* transport);
+// One rank of the distributed smoother (cli/mpi_main.cc); rank 0 prints and writes.
+int DistSmoothCommand(const Args& args, HaloTransport& transport);
 int SimulateCommand(const Args& args);
 int ValidateCommand(const Args& args);
 int ReportCommand(const Args& args);

@@ -2,11 +2,13 @@
 // analysis of one trace file or mesh across P ranks (reports/chunk_summary.h, RunDistributed):
 // rank r reads (or, for a mesh, regenerates) only its own records, the LRU stacks stream rank to
 // rank in blocks of 64 Ki ids, rank 0 prints and writes exactly what `meshreuse analyze INPUT`
-// would. This file only moves bytes; the
-// libraries stay MPI-free. A rank that fails prints "meshreuse-mpi: rank R: error: ..." and aborts
-// the whole job with the error's exit status (2 bad input, 3 environment, 1 a bug), never a hang.
-// For tests, MESHREUSE_MPI_KILL_RANK=R makes rank R kill itself (SIGKILL) after analysing its
-// chunk: the job must end, non-zero, naming the rank.
+// would. `mpirun -np P meshreuse-mpi smooth MESH [smooth's options]`: the distributed Laplacian
+// smoother (reports/distributed_smooth.h), ghosts exchanged between neighbouring ranks. This file
+// only moves bytes; the libraries stay MPI-free. A rank that fails prints "meshreuse-mpi: rank R:
+// error: ..." and aborts the whole job with the error's exit status (2 bad input, 3 environment, 1
+// a bug), never a hang. For tests, MESHREUSE_MPI_KILL_RANK=R makes rank R kill itself (SIGKILL)
+// after analysing its chunk, or in smooth's first sweep: the job must end, non-zero, naming the
+// rank.
 #include <mpi.h>
 #include <signal.h>
 
@@ -19,6 +21,7 @@
 
 #include "cli/commands.h"
 #include "core/error.h"
+#include "core/halo_smoother.h"
 #include "reports/chunk_summary.h"
 
 namespace meshreuse::cli {
@@ -81,6 +84,81 @@ class MpiTransport : public ChunkTransport {
   int rank_ = 0, size_ = 1;
 };
 
+// The distributed smoother's messages: ghost values to and from neighbouring ranks (one message per
+// neighbour per sweep and direction, in order: MPI does not overtake on one tag and communicator),
+// the 128-bit quality sum through a user-defined reduction, the gather to rank 0.
+constexpr int kTagHalo = 4, kTagGather = 5;
+
+void SumFixed(void* in, void* inout, int* len, MPI_Datatype*) {
+  const uint64_t* a = static_cast<const uint64_t*>(in);
+  uint64_t* b = static_cast<uint64_t*>(inout);
+  for (int i = 0; i < *len; ++i) {
+    meshreuse::FixedSum s = meshreuse::FixedSum::FromWords(b + 2 * i);
+    s.Add(meshreuse::FixedSum::FromWords(a + 2 * i));
+    s.ToWords(b + 2 * i);
+  }
+}
+
+class MpiHalo : public HaloTransport {
+ public:
+  // kill: the tests' fault injection, this rank dies (SIGKILL) in its second reduction.
+  explicit MpiHalo(bool kill) : kill_(kill) {
+    MPI_Comm_rank(MPI_COMM_WORLD, &rank_);
+    MPI_Comm_size(MPI_COMM_WORLD, &size_);
+    MPI_Type_contiguous(2, MPI_UINT64_T, &fixed_);
+    MPI_Type_commit(&fixed_);
+    MPI_Op_create(&SumFixed, /*commute=*/1, &sum_);
+  }
+  ~MpiHalo() override {
+    MPI_Op_free(&sum_);
+    MPI_Type_free(&fixed_);
+  }
+  int32_t rank() const override { return rank_; }
+  int32_t size() const override { return size_; }
+  void Send(int32_t to, const double* data, size_t n) override {
+    requests_.emplace_back();
+    MPI_Isend(data, Count(n), MPI_DOUBLE, to, kTagHalo, MPI_COMM_WORLD, &requests_.back());
+  }
+  void Recv(int32_t from, double* data, size_t n) override {
+    MPI_Recv(data, Count(n), MPI_DOUBLE, from, kTagHalo, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+  }
+  void Flush() override {
+    MPI_Waitall(static_cast<int>(requests_.size()), requests_.data(), MPI_STATUSES_IGNORE);
+    requests_.clear();
+  }
+  meshreuse::FixedSum SumAll(const meshreuse::FixedSum& mine) override {
+    if (kill_ && ++reductions_ == 2) raise(SIGKILL);
+    uint64_t in[2], out[2];
+    mine.ToWords(in);
+    MPI_Allreduce(in, out, 1, fixed_, sum_, MPI_COMM_WORLD);
+    return meshreuse::FixedSum::FromWords(out);
+  }
+  std::vector<std::string> Gather(const std::string& mine) override {
+    if (rank_ != 0) {
+      tx_.SendBytes(0, mine);
+      return {};
+    }
+    std::vector<std::string> all(size_);
+    all[0] = mine;
+    for (int r = 1; r < size_; ++r) all[r] = tx_.RecvBytes(r);
+    return all;
+  }
+
+ private:
+  static int Count(size_t n) {
+    if (n > static_cast<size_t>(INT_MAX))  // MPI 3.1 counts are int
+      throw std::length_error("a ghost message of more than 2^31 values");
+    return static_cast<int>(n);
+  }
+  int rank_ = 0, size_ = 1;
+  bool kill_;
+  int reductions_ = 0;
+  MPI_Datatype fixed_;
+  MPI_Op sum_;
+  std::vector<MPI_Request> requests_;
+  MpiTransport tx_;  // its byte messages for the gather
+};
+
 // The fault-injection hook of the tests: the transport of a rank that dies after its chunk.
 class KillingTransport : public MpiTransport {
  public:
@@ -104,7 +182,12 @@ void Usage(std::FILE* out) {
                "the lines that begin in its bytes); of a mesh, rank r regenerates its part of the "
                "traced smoother's stream (no file). Rank 0 prints and writes what `meshreuse "
                "analyze` would. --rank-stats FILE: each rank's CPU seconds per phase, bytes sent "
-               "and peak memory.\n");
+               "and peak memory.\n\n       mpirun -np P meshreuse-mpi smooth MESH [--partition "
+               "hilbert|metis] [--ordering NAME] [--mode ordered|jacobi|hybrid] [-o OUT] [--pi-out "
+               "FILE]\n\nLaplacian smoothing across P ranks (every rank reads MESH and keeps its "
+               "part): ordered Gauss-Seidel equals the serial sweep along the order --pi-out "
+               "writes, bit for bit; jacobi the serial Jacobi. `meshreuse-mpi smooth --help` for "
+               "every option.\n");
 }
 
 }  // namespace
@@ -117,17 +200,25 @@ int main(int argc, char** argv) {
   const std::vector<std::string> args(argv + 1, argv + argc);
   int rank = 0;
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);
-  if (args.empty() || args[0] != "analyze") {
+  if (args.empty() || (args[0] != "analyze" && args[0] != "smooth")) {
     const bool help = !args.empty() && (args[0] == "--help" || args[0] == "-h");
     if (rank == 0) Usage(help ? stdout : stderr);
     MPI_Finalize();
     return help ? 0 : meshreuse::kExitBadInput;
   }
   const char* kill = std::getenv("MESHREUSE_MPI_KILL_RANK");
-  KillingTransport tx(kill && std::atoi(kill) == rank);
   const std::string who = "meshreuse-mpi: rank " + std::to_string(rank);
-  const int rc = RunReportingErrors(
-      "analyze", [&] { return AnalyzeCommand(Args(args.begin() + 1, args.end()), &tx); }, who);
+  const Args rest(args.begin() + 1, args.end());
+  int rc;
+  if (args[0] == "smooth") {
+    MpiHalo halo(kill && std::atoi(kill) == rank);
+    rc = RunReportingErrors(
+        "smooth", [&] { return DistSmoothCommand(rest, halo); }, who);
+  } else {
+    KillingTransport tx(kill && std::atoi(kill) == rank);
+    rc = RunReportingErrors(
+        "analyze", [&] { return AnalyzeCommand(rest, &tx); }, who);
+  }
   if (rc != 0) MPI_Abort(MPI_COMM_WORLD, rc);  // ends every rank: a failure never hangs the job
   MPI_Finalize();
   return 0;

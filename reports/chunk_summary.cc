@@ -1,8 +1,6 @@
 // Chunk summaries, their file format, the chunk run and the merge; see chunk_summary.h.
 #include "reports/chunk_summary.h"
 
-#include <sys/resource.h>
-
 #include <algorithm>
 #include <cerrno>
 #include <chrono>
@@ -19,6 +17,7 @@
 #include "core/output_file.h"
 #include "core/smoother.h"
 #include "reports/inputs.h"
+#include "reports/run_info.h"
 #include "tracer/trace_formats.h"
 #include "tracer/trace_reader.h"
 
@@ -740,14 +739,6 @@ AnalyzeResult MergeSummaries(const AnalyzeConfig& cfg, const Log& log) {
   }
   return m.Finish();
 }
-
-namespace {
-uint64_t PeakRssBytes() {
-  rusage u{};
-  getrusage(RUSAGE_SELF, &u);
-  return static_cast<uint64_t>(u.ru_maxrss) * 1024;  // Linux: kilobytes
-}
-}  // namespace
 
 AnalyzeResult RunDistributed(const AnalyzeConfig& cfg, ChunkTransport& tx, const Log& log) {
   const int rank = tx.rank(), ranks = tx.size();

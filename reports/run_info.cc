@@ -1,6 +1,7 @@
 // run.json helpers; see run_info.h.
 #include "reports/run_info.h"
 
+#include <sys/resource.h>
 #include <sys/utsname.h>
 #include <unistd.h>
 
@@ -74,6 +75,12 @@ Json BuildJson() {
   j["build_type"] = MESHREUSE_BUILD_TYPE;
   j["flags"] = MESHREUSE_CXX_FLAGS;
   return j;
+}
+
+uint64_t PeakRssBytes() {
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  return static_cast<uint64_t>(u.ru_maxrss) * 1024;  // Linux: kilobytes
 }
 
 std::string UtcTimestamp() {

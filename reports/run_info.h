@@ -5,6 +5,7 @@
 // has the same top-level fields.
 #pragma once
 
+#include <cstdint>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -24,6 +25,8 @@ std::string VersionString();
 Json BuildJson();
 // {label: seed} of the seeded orderings among `specs` (run.json's "ordering_seeds").
 Json OrderingSeedsJson(const std::vector<std::string>& specs, uint64_t seed);
+// This process's peak resident memory (getrusage), bytes.
+uint64_t PeakRssBytes();
 std::string UtcTimestamp();  // 2026-11-22T10:00:00Z
 
 // The whole run.json: {"tool", "command", "git_revision", "build", "time_utc", "machine",

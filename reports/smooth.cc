@@ -10,6 +10,7 @@
 #include "core/mesh_io.h"
 #include "core/orderings/registry.h"
 #include "core/schedule.h"
+#include "core/visit_order.h"
 #include "reports/compare.h"
 #include "reports/inputs.h"
 #include "reports/run_info.h"
@@ -28,6 +29,10 @@ void CheckSmoothConfig(const SmoothConfig& cfg) {
     throw UsageError("-o takes a single input mesh");
   if (!cfg.counter_events.empty() && cfg.meshes.size() != 1)
     throw UsageError("--counters takes a single input mesh");
+  if (!cfg.visit_order.empty() && cfg.meshes.size() != 1)
+    throw UsageError("--visit-order takes a single input mesh");
+  if (!cfg.visit_order.empty() && ParseOrderingSpec(cfg.ordering).name != "ori")
+    throw UsageError("--visit-order names vertices by the mesh's own ids: it takes --ordering ori");
 }
 
 std::vector<SmoothRun> RunSmooth(const SmoothConfig& cfg, const Log& log,
@@ -55,6 +60,7 @@ std::vector<SmoothRun> RunSmooth(const SmoothConfig& cfg, const Log& log,
       run.reorder_seconds =
           std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     }
+    if (!cfg.visit_order.empty()) m.interior = ReadVisitOrder(cfg.visit_order, m);
     run.vertices = m.NumVertices(), run.triangles = m.NumTriangles();
     if (hooks.start) hooks.start(run);
     log.Say("smoothing " + path);

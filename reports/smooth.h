@@ -25,6 +25,9 @@ struct SmoothConfig {
   SmoothOptions smooth;                     // region is set by the runner (counters)
   std::vector<std::string> counter_events;  // PAPI events around the sweeps; empty: none
   std::string output;                       // write the smoothed mesh here (one mesh only)
+  // Visit the interior vertices in this file's order (core/visit_order.h), storage unchanged:
+  // the serial sweep a distributed ordered run equals. Ordering ori, one mesh.
+  std::string visit_order;
 };
 
 struct SmoothRun {

@@ -1,0 +1,48 @@
+// An exact sum of non-negative doubles below 2^6 in 128-bit fixed point (units of 2^-120): each
+// term is truncated to the unit once, then the integer sum is exact, so the result does not depend
+// on the order of the terms or on how they are split among ranks (../shared/scale-out.md 3b: the
+// distributed smoother's global quality, identical for every P). Q = sum_t w_t q_t <= 1, so 2^6
+// leaves room for any partial sum; a term of 2^-120 or less (none in a mesh of fewer than 10^30
+// triangles) counts as zero.
+#pragma once
+
+#include <cmath>
+#include <cstdint>
+#include <stdexcept>
+
+namespace meshreuse {
+
+class FixedSum {
+ public:
+  static constexpr int kFractionBits = 120;
+  FixedSum() = default;
+  // x in [0, 2^6); a negative or non-finite term is a caller's bug (std::logic_error).
+  void Add(double x) {
+    if (!(x >= 0.0 && x < 64.0)) throw std::logic_error("FixedSum: term outside [0, 64)");
+    v_ += static_cast<unsigned __int128>(std::ldexp(x, kFractionBits));  // exact, then truncated
+  }
+  void Add(const FixedSum& o) { v_ += o.v_; }
+  double ToDouble() const { return std::ldexp(static_cast<double>(v_), -kFractionBits); }
+  // (this - o) as a double: the improvement of a sweep, rounded once.
+  double Minus(const FixedSum& o) const {
+    const __int128 d = static_cast<__int128>(v_) - static_cast<__int128>(o.v_);
+    return std::ldexp(static_cast<double>(d), -kFractionBits);
+  }
+  bool operator==(const FixedSum& o) const { return v_ == o.v_; }
+  bool operator!=(const FixedSum& o) const { return v_ != o.v_; }
+  // Two 64-bit words (low, high) for a transport that reduces them (MPI user-defined op).
+  void ToWords(uint64_t w[2]) const {
+    w[0] = static_cast<uint64_t>(v_);
+    w[1] = static_cast<uint64_t>(v_ >> 64);
+  }
+  static FixedSum FromWords(const uint64_t w[2]) {
+    FixedSum s;
+    s.v_ = (static_cast<unsigned __int128>(w[1]) << 64) | w[0];
+    return s;
+  }
+
+ private:
+  unsigned __int128 v_ = 0;
+};
+
+}  // namespace meshreuse

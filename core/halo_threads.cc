@@ -1,0 +1,105 @@
+// HaloThreads: mailboxes under one mutex; collectives counted in rounds (halo_threads.h).
+#include "core/halo_threads.h"
+
+#include <exception>
+#include <stdexcept>
+#include <thread>
+
+namespace meshreuse {
+
+class HaloThreads::Endpoint : public HaloTransport {
+ public:
+  Endpoint(HaloThreads& net, int32_t rank) : net_(net), rank_(rank) {}
+  int32_t rank() const override { return rank_; }
+  int32_t size() const override { return net_.size_; }
+  void Send(int32_t to, const double* data, size_t n) override {
+    std::lock_guard<std::mutex> lock(net_.mu_);
+    net_.box_[{rank_, to}].emplace_back(data, data + n);
+    net_.cv_.notify_all();
+  }
+  void Recv(int32_t from, double* data, size_t n) override {
+    std::unique_lock<std::mutex> lock(net_.mu_);
+    auto& box = net_.box_[{from, rank_}];
+    net_.Wait(lock, [&] { return !box.empty(); });
+    if (box.front().size() != n) throw std::logic_error("HaloThreads: message size mismatch");
+    std::copy(box.front().begin(), box.front().end(), data);
+    box.pop_front();
+  }
+  void Flush() override {}  // Send copies
+  FixedSum SumAll(const FixedSum& mine) override {
+    std::unique_lock<std::mutex> lock(net_.mu_);
+    const uint64_t round = net_.round_;
+    net_.acc_.Add(mine);
+    if (++net_.arrived_ == net_.size_) {
+      net_.sum_ = net_.acc_;
+      net_.acc_ = FixedSum();
+      Complete();
+    }
+    net_.Wait(lock, [&] { return net_.round_ != round; });
+    return net_.sum_;
+  }
+  std::vector<std::string> Gather(const std::string& mine) override {
+    std::unique_lock<std::mutex> lock(net_.mu_);
+    const uint64_t round = net_.round_;
+    net_.slots_.resize(net_.size_);
+    net_.slots_[rank_] = mine;
+    if (++net_.arrived_ == net_.size_) {
+      net_.gathered_ = std::move(net_.slots_);
+      net_.slots_.clear();
+      Complete();
+    }
+    net_.Wait(lock, [&] { return net_.round_ != round; });
+    return rank_ == 0 ? net_.gathered_ : std::vector<std::string>();
+  }
+
+ private:
+  void Complete() {
+    net_.arrived_ = 0;
+    ++net_.round_;
+    net_.cv_.notify_all();
+  }
+  HaloThreads& net_;
+  int32_t rank_;
+};
+
+template <class Ready>
+void HaloThreads::Wait(std::unique_lock<std::mutex>& lock, Ready ready) {
+  cv_.wait(lock, [&] { return failed_ || ready(); });
+  if (failed_) throw std::runtime_error("another rank failed");
+}
+
+void HaloThreads::Fail() {
+  std::lock_guard<std::mutex> lock(mu_);
+  failed_ = true;
+  cv_.notify_all();
+}
+
+void HaloThreads::Run(int32_t size, const std::function<void(HaloTransport&)>& body) {
+  HaloThreads net(size);
+  std::vector<std::exception_ptr> error(size);
+  std::vector<std::thread> threads;
+  for (int32_t r = 0; r < size; ++r)
+    threads.emplace_back([&, r] {
+      Endpoint e(net, r);
+      try {
+        body(e);
+      } catch (...) {
+        error[r] = std::current_exception();
+        net.Fail();
+      }
+    });
+  for (std::thread& t : threads) t.join();
+  // The first failure, not a rank that only saw it: "another rank failed" comes last.
+  for (int pass = 0; pass < 2; ++pass)
+    for (int32_t r = 0; r < size; ++r)
+      if (error[r]) {
+        try {
+          std::rethrow_exception(error[r]);
+        } catch (const std::runtime_error& e) {
+          if (pass == 0 && std::string(e.what()) == "another rank failed") continue;
+          throw;
+        }
+      }
+}
+
+}  // namespace meshreuse

@@ -1,0 +1,158 @@
+// One rank's part: the layout and the lists of rank_part.h, computed from the whole mesh.
+#include "core/rank_part.h"
+
+#include <algorithm>
+#include <map>
+#include <numeric>
+#include <stdexcept>
+
+#include "core/orderings/registry.h"
+#include "core/quality.h"
+
+namespace meshreuse {
+
+RankPart BuildRankPart(const Mesh& m, const std::vector<int32_t>& part, int32_t parts,
+                       const std::vector<int32_t>& colour, int32_t rank,
+                       const std::string& ordering, uint64_t seed) {
+  const int32_t n = m.NumVertices();
+  if (static_cast<int64_t>(part.size()) != n || static_cast<int32_t>(colour.size()) != parts ||
+      rank < 0 || rank >= parts)
+    throw std::invalid_argument("BuildRankPart: partition, colouring and rank disagree");
+  const OrderingSpec spec = ParseOrderingSpec(ordering);
+  RankPart p;
+  p.rank = rank, p.parts = parts, p.colour = colour[rank];
+  p.colours = parts ? *std::max_element(colour.begin(), colour.end()) + 1 : 1;
+
+  // The vertices here, by global id: owned, then the ghost ring.
+  std::vector<int32_t> local(n, -1);
+  std::vector<int32_t> mine;  // owned and ghosts, increasing global id
+  for (int32_t v = 0; v < n; ++v)
+    if (part[v] == rank) {
+      local[v] = 0;
+      for (const int32_t* u = m.v2v.RowBegin(v); u != m.v2v.RowEnd(v); ++u)
+        if (part[*u] != rank) local[*u] = 0;
+    }
+  for (int32_t v = 0; v < n; ++v)
+    if (local[v] == 0) mine.push_back(v);
+
+  // The position of each in the rank's ordering: `ori` keeps global ids; any other ordering runs
+  // on the part with its ghost ring and every triangle with an owned corner, a mesh of its own.
+  std::vector<int64_t> pos(mine.size());
+  std::vector<int32_t> tris;  // global ids of the triangles with an owned corner
+  for (int32_t v : mine)
+    if (part[v] == rank)
+      for (const int32_t* t = m.v2t.RowBegin(v); t != m.v2t.RowEnd(v); ++t) tris.push_back(*t);
+  std::sort(tris.begin(), tris.end());
+  tris.erase(std::unique(tris.begin(), tris.end()), tris.end());
+  for (size_t i = 0; i < mine.size(); ++i) local[mine[i]] = static_cast<int32_t>(i);
+  if (spec.name == "ori" || mine.empty()) {
+    for (size_t i = 0; i < mine.size(); ++i) pos[i] = mine[i];
+  } else {
+    RawMesh raw;
+    raw.xy.resize(2 * mine.size());
+    for (size_t i = 0; i < mine.size(); ++i) {
+      raw.xy[2 * i] = m.xy[2 * int64_t{mine[i]}];
+      raw.xy[2 * i + 1] = m.xy[2 * int64_t{mine[i]} + 1];
+    }
+    raw.tri.reserve(3 * tris.size());
+    for (int32_t t : tris)
+      for (int k = 0; k < 3; ++k) raw.tri.push_back(local[m.tri[3 * int64_t{t} + k]]);
+    raw.vertex_file = raw.triangle_file = "rank " + std::to_string(rank) + "'s part";
+    BuildReport report;
+    const Mesh sub = BuildMesh(std::move(raw), &report);
+    if (!report.kept.empty())  // every ghost shares an edge, hence a triangle, with an owned one
+      throw std::logic_error("BuildRankPart: a vertex of the part lies in no triangle");
+    const Permutation perm = ComputeOrdering(ordering, sub, seed);
+    for (size_t i = 0; i < mine.size(); ++i) pos[i] = perm.NewOf(static_cast<int32_t>(i));
+  }
+
+  // Groups: 0 non-cut interior, 1 cut interior, 2 owned boundary, 3 ghost; each by position.
+  std::vector<int8_t> group(mine.size());
+  for (size_t i = 0; i < mine.size(); ++i) {
+    const int32_t v = mine[i];
+    if (part[v] != rank) {
+      group[i] = 3;
+    } else if (m.boundary[v]) {
+      group[i] = 2;
+    } else {
+      group[i] = 0;
+      for (const int32_t* u = m.v2v.RowBegin(v); u != m.v2v.RowEnd(v); ++u)
+        if (part[*u] != rank) group[i] = 1;
+    }
+  }
+  std::vector<int32_t> at(mine.size());
+  std::iota(at.begin(), at.end(), 0);
+  std::sort(at.begin(), at.end(), [&](int32_t a, int32_t b) {
+    return group[a] != group[b] ? group[a] < group[b] : pos[a] < pos[b];
+  });
+  p.total = static_cast<int32_t>(mine.size());
+  p.gid.resize(mine.size());
+  p.xy.resize(2 * mine.size());
+  int32_t ends[4] = {0, 0, 0, 0};
+  for (int32_t k = 0; k < p.total; ++k) {
+    const int32_t v = mine[at[k]];
+    p.gid[k] = v;
+    p.xy[2 * int64_t{k}] = m.xy[2 * int64_t{v}];
+    p.xy[2 * int64_t{k} + 1] = m.xy[2 * int64_t{v} + 1];
+    local[v] = k;
+    ++ends[group[at[k]]];
+  }
+  p.noncut = ends[0];
+  p.movable = ends[0] + ends[1];
+  p.owned = p.movable + ends[2];
+
+  // Neighbour rows of the movable vertices, in the serial mesh's (increasing global id) order.
+  p.v2v.off.assign(p.movable + 1, 0);
+  for (int32_t k = 0; k < p.movable; ++k) {
+    const int32_t v = static_cast<int32_t>(p.gid[k]);
+    for (const int32_t* u = m.v2v.RowBegin(v); u != m.v2v.RowEnd(v); ++u)
+      p.v2v.idx.push_back(local[*u]);
+    p.v2v.off[k + 1] = static_cast<int64_t>(p.v2v.idx.size());
+  }
+  // Triangles owned here: those whose smallest corner (global id) is owned.
+  for (int32_t t : tris) {
+    const int32_t* c = &m.tri[3 * int64_t{t}];
+    if (part[std::min(c[0], std::min(c[1], c[2]))] != rank) continue;
+    for (int k = 0; k < 3; ++k) p.tri.push_back(local[c[k]]);
+    p.weight.push_back(GlobalQualityWeight(m, t));
+  }
+  // Links, both lists by increasing global id (`mine` is).
+  std::map<int32_t, RankLink> links;
+  for (int32_t v : mine) {
+    const int32_t k = local[v];
+    if (part[v] == rank && k < p.movable) {
+      int32_t last = -1;  // rows are sorted by id, not by part: collect the distinct parts
+      std::vector<int32_t> to;
+      for (const int32_t* u = m.v2v.RowBegin(v); u != m.v2v.RowEnd(v); ++u)
+        if (part[*u] != rank && part[*u] != last) to.push_back(last = part[*u]);
+      std::sort(to.begin(), to.end());
+      to.erase(std::unique(to.begin(), to.end()), to.end());
+      for (int32_t q : to) links[q].send.push_back(k);
+    } else if (part[v] != rank && !m.boundary[v]) {
+      links[part[v]].recv.push_back(k);
+    }
+  }
+  for (auto& [q, l] : links) {
+    l.rank = q;
+    l.colour = colour[q];
+    if (l.colour == p.colour)
+      throw std::invalid_argument("BuildRankPart: neighbouring parts " + std::to_string(rank) +
+                                  " and " + std::to_string(q) + " share colour " +
+                                  std::to_string(l.colour));
+    p.links.push_back(std::move(l));
+  }
+  return p;
+}
+
+std::vector<int64_t> GatheredVisitOrder(const std::vector<RankPart>& parts) {
+  std::vector<int64_t> pi;
+  for (const RankPart& p : parts) pi.insert(pi.end(), p.gid.begin(), p.gid.begin() + p.noncut);
+  int32_t colours = 0;
+  for (const RankPart& p : parts) colours = std::max(colours, p.colour + 1);
+  for (int32_t c = 0; c < colours; ++c)
+    for (const RankPart& p : parts)
+      if (p.colour == c) pi.insert(pi.end(), p.gid.begin() + p.noncut, p.gid.begin() + p.movable);
+  return pi;
+}
+
+}  // namespace meshreuse

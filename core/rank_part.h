@@ -1,0 +1,63 @@
+// One rank's part of a vertex-partitioned mesh, laid out for the distributed smoother
+// (core/halo_smoother.h; ../shared/scale-out.md 3b). The rank owns the vertices of its part and
+// keeps one ring of ghosts: every vertex of another part next to one of its own, so every triangle
+// with an owned corner is whole. Local ids come in four groups:
+//   [0, noncut)                 owned interior vertices whose neighbours are all owned;
+//   [noncut, movable)           owned interior vertices with a neighbour elsewhere (cut);
+//   [movable, owned)            owned boundary vertices (fixed);
+//   [owned, owned + ghosts)     ghosts;
+// each group in the rank's ordering (any registered ordering, computed on the part with its ghost
+// ring and triangles as a mesh of its own; `ori`: increasing global id). Storage order is visit
+// order, as in the paper. Rows of v2v list the neighbours of the movable vertices **by increasing
+// global id**, so each sum of neighbour coordinates is added in the serial mesh's order: what
+// bit-equality with the serial smoother needs. Non-cut vertices are never anyone's ghost (their
+// neighbours are all here); a ghost is a cut or boundary vertex of its owner.
+// Triangles: those whose smallest-global-id corner is owned here (each triangle on exactly one
+// rank), with their weight in the global quality computed from the whole mesh (quality.h).
+// Links: per neighbouring rank, the movable owned vertices it ghosts (sent) and the movable ghosts
+// it owns (received), both by increasing global id, so the two ends agree without a handshake.
+// Everything here is computed identically on every rank from the whole mesh and the partition.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "core/aligned.h"
+#include "core/mesh.h"
+
+namespace meshreuse {
+
+struct RankLink {
+  int32_t rank = 0, colour = 0;
+  std::vector<int32_t> send;  // local ids of owned movable vertices `rank` ghosts
+  std::vector<int32_t> recv;  // local ids of ghosts that `rank` owns and moves
+};
+
+struct RankPart {
+  int32_t rank = 0, parts = 1;
+  int32_t colour = 0, colours = 1;  // of the part graph's greedy colouring (partition.h)
+  int32_t noncut = 0, movable = 0, owned = 0, total = 0;  // group ends, see above
+  std::vector<int64_t> gid;                               // local -> global id
+  AlignedVector<double> xy;                               // local coordinates, 2 per vertex
+  Csr v2v;                                                // rows [0, movable), by global id
+  std::vector<int32_t> tri;                               // owned triangles, local corners
+  std::vector<double> weight;                             // their global quality weights
+  std::vector<RankLink> links;                            // by rank; non-empty send or recv
+  int32_t cut() const { return movable - noncut; }
+  int32_t ghosts() const { return total - owned; }
+};
+
+// `part[v]` in [0, parts) for every vertex of `m`; `colour` a proper colouring of the part graph
+// (MeasurePartition's). `ordering` is a registry spec (seeded ones take `seed`). A part may be
+// empty. Throws UsageError for a bad ordering spec, std::invalid_argument for inconsistent sizes.
+RankPart BuildRankPart(const Mesh& m, const std::vector<int32_t>& part, int32_t parts,
+                       const std::vector<int32_t>& colour, int32_t rank,
+                       const std::string& ordering = "ori", uint64_t seed = 1);
+
+// The serial order a distributed ordered Gauss-Seidel sweep equals (halo_smoother.h):
+// every rank's non-cut vertices (ranks in turn, each in local order), then the cut vertices of the
+// ranks of colour 0, of colour 1, ... (ranks in turn, each in local order). Global ids.
+std::vector<int64_t> GatheredVisitOrder(const std::vector<RankPart>& parts);
+
+}  // namespace meshreuse

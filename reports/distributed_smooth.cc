@@ -1,0 +1,218 @@
+// RunDistributedSmooth (distributed_smooth.h): read, partition, lay out, smooth, gather.
+#include "reports/distributed_smooth.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cstring>
+#include <stdexcept>
+
+#include "core/error.h"
+#include "core/mesh_io.h"
+#include "core/orderings/registry.h"
+#include "core/output_file.h"
+#include "core/partition.h"
+#include "core/permutation.h"
+#include "core/rank_part.h"
+#include "reports/inputs.h"
+
+namespace meshreuse {
+
+void CheckDistSmoothConfig(const DistSmoothConfig& cfg) {
+  if (cfg.mesh.empty()) throw UsageError("no mesh given");
+  if (cfg.partition != "hilbert" && cfg.partition != "metis")
+    throw UsageError("--partition must be hilbert or metis, not '" + cfg.partition + "'");
+  CheckOrderingSpec(cfg.ordering);
+  if (cfg.smooth.max_iters < 1) throw UsageError("--max-iters must be at least 1");
+  if (std::isnan(cfg.smooth.tol))
+    throw UsageError("--tol must be a number (negative: never stop early)");
+  if (!cfg.pi_out.empty() && cfg.smooth.mode != HaloMode::kOrdered)
+    throw UsageError(
+        "--pi-out needs --mode ordered (jacobi equals serial Jacobi, hybrid no order)");
+}
+
+namespace {
+
+// Little byte packer for the gather: what each rank sends rank 0.
+class Packer {
+ public:
+  template <class T>
+  void Put(const T& v) {
+    b_.append(reinterpret_cast<const char*>(&v), sizeof v);
+  }
+  template <class T>
+  void PutVector(const T* p, size_t n) {
+    Put<uint64_t>(n);
+    b_.append(reinterpret_cast<const char*>(p), n * sizeof(T));
+  }
+  std::string Take() { return std::move(b_); }
+
+ private:
+  std::string b_;
+};
+
+class Unpacker {
+ public:
+  explicit Unpacker(const std::string& b) : b_(b) {}
+  template <class T>
+  T Get() {
+    T v;
+    Need(sizeof v);
+    std::memcpy(&v, b_.data() + at_, sizeof v);
+    at_ += sizeof v;
+    return v;
+  }
+  template <class T>
+  std::vector<T> GetVector() {
+    const uint64_t n = Get<uint64_t>();
+    Need(n * sizeof(T));
+    std::vector<T> v(n);
+    std::memcpy(v.data(), b_.data() + at_, n * sizeof(T));
+    at_ += n * sizeof(T);
+    return v;
+  }
+
+ private:
+  void Need(uint64_t n) const {
+    if (n > b_.size() - at_) throw std::logic_error("distributed smooth: short gather message");
+  }
+  const std::string& b_;
+  size_t at_ = 0;
+};
+
+double Since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+}  // namespace
+
+DistSmoothResult RunDistributedSmooth(const DistSmoothConfig& cfg, HaloTransport& tx,
+                                      const Log& log,
+                                      const std::function<void(const DistSmoothResult&)>& on_setup,
+                                      const std::function<void(const HaloSweep&)>& on_sweep) {
+  CheckDistSmoothConfig(cfg);
+  const auto t0 = std::chrono::steady_clock::now();
+  const int32_t parts = tx.size(), rank = tx.rank();
+  Mesh m = LoadMesh(cfg.mesh, log);
+  // The serial `smooth`'s default layout (ori, triangles sorted by their smallest corner): vertex
+  // ids unchanged, so -o writes what `meshreuse smooth MESH -o` writes.
+  ApplyPermutationInPlace(&m, Permutation::Identity(m.NumVertices()), TriangleOrder::kSorted);
+  if (parts > m.NumVertices())
+    throw UsageError(std::to_string(parts) + " ranks for a mesh of " +
+                     std::to_string(m.NumVertices()) + " vertices: at most one rank per vertex");
+  log.Say("partitioning " + std::to_string(m.NumVertices()) + " vertices into " +
+          std::to_string(parts) + " parts (" + cfg.partition + ")");
+  const std::vector<int32_t> part =
+      cfg.partition == "metis" ? MetisParts(m, parts, cfg.seed) : HilbertRangeParts(m, parts);
+  const PartitionStats ps = MeasurePartition(m, part, parts);
+  RankPart p = BuildRankPart(m, part, parts, ps.colour, rank, cfg.ordering, cfg.seed);
+  DistSmoothResult res;
+  res.vertices = m.NumVertices(), res.triangles = m.NumTriangles();
+  res.parts = parts, res.colours = ps.colours, res.cut_edges = ps.cut_edges;
+  RankStats st;
+  st.rank = rank, st.colour = p.colour;
+  st.owned = p.owned, st.noncut = p.noncut, st.cut = p.cut(), st.boundary = p.owned - p.movable;
+  st.ghosts = p.ghosts(), st.triangles = static_cast<int64_t>(p.weight.size());
+  st.links = static_cast<int64_t>(p.links.size());
+  st.setup_seconds = Since(t0);
+  if (on_setup) on_setup(res);
+  log.Say("smoothing (" + std::string(HaloModeName(cfg.smooth.mode)) + ")");
+  res.result = SmoothRankPart(p, cfg.smooth, tx, on_sweep);
+  for (const HaloSweep& s : res.result.sweeps) {
+    st.smooth_seconds += s.seconds;
+    st.cpu_seconds += s.cpu_seconds;
+    st.wait_seconds += s.wait_seconds;
+  }
+  st.messages = res.result.messages;
+  st.bytes_sent = res.result.values_sent * sizeof(double);
+  st.peak_rss_bytes = PeakRssBytes();
+
+  // Rank 0 gathers the moved vertices (boundary ones never move), pi's pieces and the stats.
+  Packer out;
+  out.Put(st);
+  out.Put(p.colour);
+  out.PutVector(p.gid.data(), static_cast<size_t>(p.movable));
+  out.PutVector(p.xy.data(), 2 * static_cast<size_t>(p.movable));
+  out.Put<int64_t>(p.noncut);
+  const std::vector<std::string> all = tx.Gather(out.Take());
+  if (rank != 0) return res;
+  std::vector<std::vector<int64_t>> gids(parts);
+  std::vector<int32_t> colour(parts);
+  std::vector<int64_t> noncut(parts);
+  for (int32_t r = 0; r < parts; ++r) {
+    Unpacker in(all[r]);
+    res.ranks.push_back(in.Get<RankStats>());
+    colour[r] = in.Get<int32_t>();
+    gids[r] = in.GetVector<int64_t>();
+    const std::vector<double> xy = in.GetVector<double>();
+    noncut[r] = in.Get<int64_t>();
+    for (size_t k = 0; k < gids[r].size(); ++k) {
+      m.xy[2 * gids[r][k]] = xy[2 * k];
+      m.xy[2 * gids[r][k] + 1] = xy[2 * k + 1];
+    }
+  }
+  if (!cfg.output.empty())
+    for (const std::string& f : WriteMesh(m, cfg.output)) {
+      log.Say("wrote " + f);
+      res.written.push_back(f);
+    }
+  if (!cfg.pi_out.empty()) {
+    // As GatheredVisitOrder (rank_part.h): every rank's non-cut vertices, then cut ones by colour.
+    WriteAtomically(cfg.pi_out, [&](std::FILE* f) {
+      std::fprintf(f,
+                   "# the serial Gauss-Seidel visit order of `meshreuse-mpi smooth %s` on %d "
+                   "ranks (ordered mode): meshreuse smooth MESH --visit-order THIS\n",
+                   cfg.mesh.c_str(), parts);
+      for (int32_t r = 0; r < parts; ++r)
+        for (int64_t k = 0; k < noncut[r]; ++k) std::fprintf(f, "%lld\n", (long long)gids[r][k]);
+      for (int32_t c = 0; c < ps.colours; ++c)
+        for (int32_t r = 0; r < parts; ++r)
+          if (colour[r] == c)
+            for (size_t k = static_cast<size_t>(noncut[r]); k < gids[r].size(); ++k)
+              std::fprintf(f, "%lld\n", (long long)gids[r][k]);
+    });
+    log.Say("wrote " + cfg.pi_out);
+    res.written.push_back(cfg.pi_out);
+  }
+  return res;
+}
+
+Table RankStatsTable(const std::vector<RankStats>& ranks) {
+  Table t({"rank", "colour", "owned", "noncut", "cut", "boundary", "ghosts", "triangles", "links",
+           "setup_s", "smooth_s", "cpu_s", "wait_s", "messages", "bytes_sent", "peak_rss_mb",
+           "rss_bytes_per_owned"});
+  for (const RankStats& s : ranks)
+    t.AddRow({std::to_string(s.rank), std::to_string(s.colour), std::to_string(s.owned),
+              std::to_string(s.noncut), std::to_string(s.cut), std::to_string(s.boundary),
+              std::to_string(s.ghosts), std::to_string(s.triangles), std::to_string(s.links),
+              Fixed(s.setup_seconds, 3), Fixed(s.smooth_seconds, 3), Fixed(s.cpu_seconds, 3),
+              Fixed(s.wait_seconds, 3), std::to_string(s.messages), std::to_string(s.bytes_sent),
+              Fixed(s.peak_rss_bytes / 1048576.0, 1),
+              s.owned ? Fixed(static_cast<double>(s.peak_rss_bytes) / s.owned, 0) : "-"});
+  return t;
+}
+
+Json DistSmoothJson(const DistSmoothConfig& cfg, const DistSmoothResult& r) {
+  Json sweeps = Json::array();
+  for (const HaloSweep& s : r.result.sweeps)
+    sweeps.push_back({{"sweep", s.sweep},
+                      {"quality", s.quality},
+                      {"improvement", s.improvement},
+                      {"seconds", s.seconds}});
+  return {{"mesh", cfg.mesh},
+          {"partition", cfg.partition},
+          {"ordering", cfg.ordering},
+          {"seed", cfg.seed},
+          {"mode", HaloModeName(cfg.smooth.mode)},
+          {"ranks", r.parts},
+          {"colours", r.colours},
+          {"cut_edges", r.cut_edges},
+          {"vertices", r.vertices},
+          {"triangles", r.triangles},
+          {"converged", r.result.converged},
+          {"quality_before", r.result.quality_before.ToDouble()},
+          {"quality_after", r.result.quality_after.ToDouble()},
+          {"sweeps", sweeps},
+          {"per_rank", RankStatsTable(r.ranks).JsonValue()}};
+}
+
+}  // namespace meshreuse

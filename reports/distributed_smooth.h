@@ -1,0 +1,60 @@
+// The runner behind `mpirun -np P meshreuse-mpi smooth MESH` (issue 23; ../shared/scale-out.md
+// 3b): every rank reads the mesh (a mesh that fits one node), computes the same partition
+// (Hilbert ranges or METIS, seeded) and colouring, keeps its part (core/rank_part.h) and smooths it
+// with the ghost exchanges of core/halo_smoother.h; rank 0 gathers the moved vertices, writes the
+// smoothed mesh (equal to the serial smoother's output: bit for bit at -np 1, and along the
+// gathered order pi at any P), pi itself, and a table per rank. The transport moves the bytes
+// (MPI in cli/mpi_main.cc, threads in core/halo_threads.h).
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "core/halo_smoother.h"
+#include "core/table.h"
+#include "reports/log.h"
+#include "reports/run_info.h"
+
+namespace meshreuse {
+
+struct DistSmoothConfig {
+  std::string mesh;
+  std::string partition = "hilbert";  // hilbert | metis
+  std::string ordering = "ori";       // each rank's layout of its part (registry spec)
+  uint64_t seed = 1;                  // METIS and seeded orderings
+  HaloOptions smooth;
+  std::string output;  // the smoothed mesh (rank 0 writes it)
+  std::string pi_out;  // the serial visit order the run equals (ordered mode)
+};
+
+struct RankStats {
+  int32_t rank = 0, colour = 0;
+  int64_t owned = 0, noncut = 0, cut = 0, boundary = 0, ghosts = 0, triangles = 0, links = 0;
+  double setup_seconds = 0;   // read, partition and layout
+  double smooth_seconds = 0;  // wall time of the sweeps
+  double cpu_seconds = 0;     // thread CPU time moving, packing and summing quality
+  double wait_seconds = 0;    // blocked receiving ghosts
+  uint64_t messages = 0, bytes_sent = 0, peak_rss_bytes = 0;
+};
+
+struct DistSmoothResult {
+  int32_t vertices = 0, triangles = 0, parts = 0, colours = 0;
+  int64_t cut_edges = 0;
+  HaloResult result;             // this rank's (sweeps and qualities are the same on every rank)
+  std::vector<RankStats> ranks;  // rank 0: every rank's; others: empty
+  std::vector<std::string> written;
+};
+
+void CheckDistSmoothConfig(const DistSmoothConfig& cfg);  // UsageError
+// Every rank calls it with the same configuration. `on_sweep` runs on every rank after each sweep;
+// `on_setup` once the partition is known (rank 0 prints the header from it).
+DistSmoothResult RunDistributedSmooth(
+    const DistSmoothConfig& cfg, HaloTransport& tx, const Log& log,
+    const std::function<void(const DistSmoothResult&)>& on_setup = {},
+    const std::function<void(const HaloSweep&)>& on_sweep = {});
+Table RankStatsTable(const std::vector<RankStats>& ranks);
+Json DistSmoothJson(const DistSmoothConfig& cfg, const DistSmoothResult& r);
+
+}  // namespace meshreuse

@@ -1,0 +1,100 @@
+#!/usr/bin/env bash
+# meshreuse-mpi smooth (reports/distributed_smooth.h) at -np 1..4 against the serial smoother, by
+# comparing the written meshes byte for byte:
+#   -np 1, ordered, ori       == meshreuse smooth (today's smoother) on a Gmsh file and a refined mesh;
+#   -np P, ordered            == meshreuse smooth --visit-order PI, PI written by the run (--pi-out),
+#                                Hilbert and METIS partitions, orderings inside the parts;
+#   -np P, jacobi             == meshreuse smooth --mode jacobi, and the same quality and sweep
+#                                count for every P (stopped by --tol);
+# and that the comparison can fail (ordered at -np 2 differs from the storage-order sweep).
+# A scale smoke test at -np 2 on about 10^6 vertices (refined, no Triangle needed) with its memory
+# per rank checked; a rank killed mid-run ends the job naming the rank; bad input exits 2 naming
+# the file on every rank; never a hang (each run under `timeout`).
+# Usage: mpi_smooth.sh MESHREUSE MESHREUSE_MPI MPIEXEC DATA
+set -u
+bin=$1 mpi=$2 mpiexec=$3 data=$4
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+if [[ $(id -u) -eq 0 ]]; then export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1; fi
+export OMPI_MCA_mpi_yield_when_idle=1 OMPI_MCA_rmaps_base_oversubscribe=1
+export ASAN_OPTIONS=${ASAN_OPTIONS:+$ASAN_OPTIONS:}detect_leaks=0  # Open MPI's own allocations
+run() { timeout 120 "$mpiexec" --oversubscribe -np "$@"; }
+source "$(dirname "$0")/../cli/lib.sh"
+equal() {  # equal NAME A B : two written meshes identical, A not empty
+  if [[ -s "$2" ]] && cmp -s "$2" "$3"; then pass=$((pass + 1)); else
+    fail=$((fail + 1)); echo "FAIL $1: $2 and $3 differ"; sed 's/^/    /' "$tmp/out" | head -20; fi
+}
+
+plate=$data/plate41.msh
+check "refine" 0 "$bin" mesh refine "$plate" --levels 2 --jitter 0.3 -o "$tmp/fine" --quiet
+fine=$tmp/fine.node  # 15,000 vertices
+
+for mesh in "$plate" "$fine"; do
+  n=$(basename "$mesh")
+  check "serial $n" 0 "$bin" smooth "$mesh" --max-iters 6 --tol -1 -o "$tmp/serial.vtk" --quiet
+  check "np 1 $n" 0 run 1 "$mpi" smooth "$mesh" --max-iters 6 --tol -1 -o "$tmp/np1.vtk" --quiet
+  equal "np 1 == serial ($n)" "$tmp/serial.vtk" "$tmp/np1.vtk"
+  for np in 2 3 4; do
+    for layout in "--partition hilbert --ordering ori" "--partition metis --ordering bfs" \
+                  "--partition hilbert --ordering grid-wave"; do
+      check "np $np $layout $n" 0 run $np "$mpi" smooth "$mesh" $layout --max-iters 6 --tol -1 \
+        -o "$tmp/np.vtk" --pi-out "$tmp/pi" --quiet
+      check "serial along pi" 0 "$bin" smooth "$mesh" --visit-order "$tmp/pi" --max-iters 6 \
+        --tol -1 -o "$tmp/along.vtk" --quiet
+      equal "np $np $layout == serial along pi ($n)" "$tmp/along.vtk" "$tmp/np.vtk"
+    done
+  done
+  # The reference can tell: the storage-order sweep is another order, other bits.
+  if cmp -s "$tmp/serial.vtk" "$tmp/np.vtk"; then fail=$((fail + 1)); echo "FAIL ordered np 4 equals the storage-order sweep"; else pass=$((pass + 1)); fi
+done
+
+# Jacobi: the serial Jacobi for every P, stopped by the tolerance at the same sweep with the same
+# exact quality.
+check "serial jacobi" 0 "$bin" smooth "$fine" --mode jacobi --max-iters 6 --tol -1 -o "$tmp/serial.vtk" --quiet
+for np in 1 2 3 4; do
+  check "jacobi np $np" 0 run $np "$mpi" smooth "$fine" --mode jacobi --partition metis --max-iters 6 \
+    --tol -1 -o "$tmp/np.vtk" --quiet
+  equal "jacobi np $np == serial jacobi" "$tmp/serial.vtk" "$tmp/np.vtk"
+  check "jacobi np $np to tol" 0 run $np "$mpi" smooth "$fine" --mode jacobi --tol 2e-4 \
+    --out "$tmp/j$np" --quiet
+  cut -d, -f1-3 "$tmp/j$np/sweeps.csv" >"$tmp/sweeps.$np"  # sweep, exact quality, improvement
+  if [[ $np -gt 1 ]] && ! cmp -s "$tmp/sweeps.1" "$tmp/sweeps.$np"; then
+    fail=$((fail + 1)); echo "FAIL jacobi np $np: other sweeps or quality"; diff "$tmp/sweeps.1" "$tmp/sweeps.$np" | head; else pass=$((pass + 1)); fi
+done
+[[ $(wc -l <"$tmp/sweeps.1") -gt 5 && $(wc -l <"$tmp/sweeps.1") -lt 100 ]] && pass=$((pass + 1)) || { fail=$((fail + 1)); echo "FAIL jacobi stopped by tol"; }
+check "hybrid" 0 run 2 "$mpi" smooth "$fine" --mode hybrid --max-iters 3 --out "$tmp/hyb" --quiet
+[[ -s "$tmp/hyb/ranks.csv" && -s "$tmp/hyb/run.json" ]] && pass=$((pass + 1)) || { fail=$((fail + 1)); echo "FAIL --out"; }
+
+# Scale smoke test: about 10^6 vertices at -np 2; each rank reads the whole mesh (the distributed
+# input is not built yet), so a rank's peak memory is checked against the serial smoother's.
+check "refine 10^6" 0 "$bin" mesh refine "$plate" --levels 5 --jitter 0.3 -o "$tmp/big" --quiet
+check "serial 10^6" 0 /usr/bin/time -f "rss %M" "$bin" smooth "$tmp/big.node" --max-iters 3 --quiet
+serial_kb=$(awk '/^rss /{print $2}' "$tmp/out")
+check "np 2 10^6" 0 run 2 "$mpi" smooth "$tmp/big.node" --max-iters 3 --quiet
+contains "np 2 10^6" "946,464 vertices"
+awk -v s="$serial_kb" '$1 ~ /^[01]$/ && NF == 17 {n++; if ($16 * 1024 > 1.5 * s) bad = 1; if ($17 > 600) bad = 1}
+  END {exit !(n == 2 && !bad)}' "$tmp/out" && pass=$((pass + 1)) || {
+  fail=$((fail + 1)); echo "FAIL np 2 memory: serial ${serial_kb} kB"; cat "$tmp/out"; }
+
+# Failures: a killed rank ends the job naming it; bad input exits 2 on every rank, file named.
+MESHREUSE_MPI_KILL_RANK=1 run 3 "$mpi" smooth "$fine" --quiet >"$tmp/out" 2>&1
+rc=$?
+if [[ $rc -ne 0 && $rc -ne 124 ]] && grep -q "rank 1" "$tmp/out"; then pass=$((pass + 1)); else
+  fail=$((fail + 1)); echo "FAIL killed rank: exit $rc"; head -20 "$tmp/out"; fi
+check "missing mesh" 2 run 2 "$mpi" smooth "$tmp/missing.node" --quiet
+contains "missing mesh" "meshreuse-mpi: rank 0: error: $tmp/missing.node"
+check "broken mesh" 2 run 2 "$mpi" smooth "$data/broken/degenerate.node" --quiet
+contains "broken mesh" "degenerate.ele:10"
+printf '3 2 0 0\n1 0 0\n2 1 0\n3 0 1\n' >"$tmp/tri.node"
+printf '1 3 0\n1 1 2 3\n' >"$tmp/tri.ele"
+check "more ranks than vertices" 2 run 4 "$mpi" smooth "$tmp/tri.node" --quiet
+contains "more ranks than vertices" "4 ranks for a mesh of 3 vertices"
+check "one triangle, no interior" 0 run 3 "$mpi" smooth "$tmp/tri.node" --quiet
+check "bad mode" 2 run 2 "$mpi" smooth "$fine" --mode gs --quiet
+contains "bad mode" "unknown distributed mode 'gs'"
+check "pi needs ordered" 2 run 1 "$mpi" smooth "$fine" --mode jacobi --pi-out "$tmp/pi2" --quiet
+check "serial visit order of another mesh" 2 "$bin" smooth "$plate" --visit-order "$tmp/pi" --quiet
+contains "serial visit order of another mesh" "$tmp/pi:"
+
+echo "mpi_smooth: $pass passed, $fail failed"
+((fail == 0))
