@@ -1,12 +1,15 @@
 // `meshreuse-mpi smooth`: one rank of the distributed smoother (reports/distributed_smooth.h),
-// over whatever transport moves its bytes (MPI in cli/mpi_main.cc). Every rank parses and checks
-// the same options; rank 0 alone prints and writes.
+// over whatever transport moves its bytes (MPI in cli/mpi_main.cc); `meshreuse smooth-ranks
+// --ranks P`: the same P ranks as threads of one process (core/halo_threads.h), for a machine
+// without MPI or a shared-memory scaling study. Every rank parses and checks the same options;
+// rank 0 alone prints and writes.
 #include <cstdio>
 #include <string>
 
 #include "cli/commands.h"
 #include "cli/common.h"
 #include "core/error.h"
+#include "core/halo_threads.h"
 #include "core/mesh_io.h"
 #include "core/orderings/registry.h"
 #include "core/output_file.h"
@@ -97,6 +100,37 @@ int DistSmoothCommand(const Args& args, HaloTransport& tx) {
     WriteRunJson(out_dir, "meshreuse-mpi smooth", DistSmoothJson(cfg, r));
     progress.Say("wrote " + out_dir + "/{sweeps.csv,ranks.csv,run.json}");
   }
+  return 0;
+}
+
+int DistSmoothThreads(const Args& args) {
+  Args rest;
+  std::string ranks_text = "2";
+  bool help = false;
+  for (size_t i = 0; i < args.size(); ++i) {
+    if (args[i] == "--ranks" || args[i] == "-P") {
+      if (i + 1 == args.size()) throw UsageError("--ranks needs a number");
+      ranks_text = args[++i];
+    } else if (args[i].rfind("--ranks=", 0) == 0) {
+      ranks_text = args[i].substr(8);
+    } else {
+      help = help || args[i] == "--help" || args[i] == "-h";
+      rest.push_back(args[i]);
+    }
+  }
+  if (help) {
+    std::printf(
+        "usage: meshreuse smooth-ranks MESH --ranks P [the options of meshreuse-mpi smooth]\n\n"
+        "The distributed smoother of `mpirun -np P meshreuse-mpi smooth` with its P ranks as P "
+        "threads of this process (messages through memory): the same parts, schedule, output "
+        "and pi, bit for bit. In ranks.csv, peak_rss_mb is the whole process's peak (all "
+        "ranks together).\n\n");
+    HaloThreads::Run(1, [&](HaloTransport& tx) { DistSmoothCommand(rest, tx); });
+    return 0;
+  }
+  // Every rank holds a copy of the mesh; a thread per rank beyond a few thousand is a mistake.
+  const auto ranks = static_cast<int32_t>(ParseCount(ranks_text, "--ranks", 1, 4096));
+  HaloThreads::Run(ranks, [&](HaloTransport& tx) { DistSmoothCommand(rest, tx); });
   return 0;
 }
 

@@ -31,6 +31,8 @@ int AnalyzeCommand(const Args& args);
 int AnalyzeCommand(const Args& args, ChunkTransport* transport);
 // One rank of the distributed smoother (cli/mpi_main.cc); rank 0 prints and writes.
 int DistSmoothCommand(const Args& args, HaloTransport& transport);
+// The same ranks as threads of this process (core/halo_threads.h): `meshreuse smooth-ranks`.
+int DistSmoothThreads(const Args& args);
 int SimulateCommand(const Args& args);
 int ValidateCommand(const Args& args);
 int ReportCommand(const Args& args);

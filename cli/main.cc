@@ -34,6 +34,8 @@ const Command kCommands[] = {
     {"orderings", "list the vertex orderings", OrderingsCommand},
     {"reorder", "reorder a mesh's vertices, write the mesh and the permutation", ReorderCommand},
     {"smooth", "Laplacian smoothing, per-sweep quality and time", SmoothCommand},
+    {"smooth-ranks", "the MPI smoother's P ranks as threads of one process, bit for bit",
+     DistSmoothThreads},
     {"compare", "time the smoother under several orderings and thread counts", CompareCommand},
     {"trace", "write the smoother's access trace to a binary file", TraceCommand},
     {"analyze", "reuse distances, quantiles, histograms, profiles and modelled misses",
@@ -94,7 +96,8 @@ int Main(int argc, char** argv) {
       std::FILE* out = help ? stdout : stderr;
       if (!help && args.size() > 1)
         std::fprintf(stderr, "meshreuse: unknown command 'mesh %s'\n\n", args[1].c_str());
-      std::fprintf(out, "usage: meshreuse mesh info|generate|convert|refine|partition [options]\n\n");
+      std::fprintf(out,
+                   "usage: meshreuse mesh info|generate|convert|refine|partition [options]\n\n");
       for (const Command& c : kCommands)
         if (std::strncmp(c.name, "mesh ", 5) == 0)
           std::fprintf(out, "  %-16s %s\n", c.name, c.summary);

@@ -114,6 +114,9 @@ DistSmoothResult RunDistributedSmooth(const DistSmoothConfig& cfg, HaloTransport
   st.ghosts = p.ghosts(), st.triangles = static_cast<int64_t>(p.weight.size());
   st.links = static_cast<int64_t>(p.links.size());
   st.setup_seconds = Since(t0);
+  // A barrier: with ranks as threads (`smooth-ranks`) stdout is shared, and a rank still inside
+  // METIS has it redirected (core/stdout_guard.h); rank 0 prints only once every rank is past.
+  tx.SumAll(FixedSum());
   if (on_setup) on_setup(res);
   log.Say("smoothing (" + std::string(HaloModeName(cfg.smooth.mode)) + ")");
   res.result = SmoothRankPart(p, cfg.smooth, tx, on_sweep);

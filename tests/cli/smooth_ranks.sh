@@ -1,0 +1,65 @@
+#!/usr/bin/env bash
+# meshreuse smooth-ranks: the distributed smoother's P ranks as threads of one process
+# (core/halo_threads.h), compared byte for byte with the serial smoother, as tests/mpi/mpi_smooth.sh
+# does for MPI ranks (this one runs where MPI is not built):
+#   --ranks 1            == meshreuse smooth (ordered Gauss-Seidel and Jacobi);
+#   --ranks P, ordered   == meshreuse smooth --visit-order PI (PI from --pi-out), Hilbert and METIS
+#                           partitions, METIS inside the parts too (METIS keeps global state: its
+#                           calls from rank threads must not interleave), repeated: the same bytes;
+#   --ranks P, jacobi    == meshreuse smooth --mode jacobi;
+# and refusals: --ranks 0, --ranks without a value, more ranks than vertices, a missing mesh.
+# Usage: smooth_ranks.sh MESHREUSE DATA
+set -u
+bin=$1 data=$2
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+source "$(dirname "$0")/lib.sh"
+equal() {  # equal NAME A B : two written meshes identical, A not empty
+  if [[ -s "$2" ]] && cmp -s "$2" "$3"; then pass=$((pass + 1)); else
+    fail=$((fail + 1)); echo "FAIL $1: $2 and $3 differ"; sed 's/^/    /' "$tmp/out" | head -20; fi
+}
+
+check "refine" 0 "$bin" mesh refine "$data/plate41.msh" --levels 2 --jitter 0.3 -o "$tmp/fine" --quiet
+fine=$tmp/fine.node
+
+for mode in ordered jacobi; do
+  serial_mode=()
+  [[ $mode == jacobi ]] && serial_mode=(--mode jacobi)
+  check "serial $mode" 0 "$bin" smooth "$fine" "${serial_mode[@]}" --max-iters 5 --tol -1 -o "$tmp/serial.vtk" --quiet
+  check "ranks 1 $mode" 0 "$bin" smooth-ranks "$fine" --ranks 1 --mode $mode --max-iters 5 --tol -1 -o "$tmp/r1.vtk" --quiet
+  equal "ranks 1 == serial ($mode)" "$tmp/serial.vtk" "$tmp/r1.vtk"
+done
+check "jacobi ranks 5" 0 "$bin" smooth-ranks "$fine" --ranks 5 --mode jacobi --partition metis --max-iters 5 --tol -1 -o "$tmp/r5.vtk" --quiet
+equal "jacobi ranks 5 == serial jacobi" "$tmp/serial.vtk" "$tmp/r5.vtk"
+
+for ranks in 2 3 6; do
+  for layout in "--partition hilbert --ordering ori" "--partition metis --ordering metis" \
+                "--partition hilbert --ordering grid-wave"; do
+    for k in 1 2; do
+      check "ranks $ranks $layout ($k)" 0 "$bin" smooth-ranks "$fine" --ranks $ranks $layout --max-iters 4 --tol -1 \
+        -o "$tmp/r$k.vtk" --pi-out "$tmp/pi$k" --out "$tmp/d$k" --quiet
+    done
+    equal "ranks $ranks $layout: repeatable" "$tmp/r1.vtk" "$tmp/r2.vtk"
+    check "serial along pi" 0 "$bin" smooth "$fine" --visit-order "$tmp/pi1" --max-iters 4 --tol -1 -o "$tmp/along.vtk" --quiet
+    equal "ranks $ranks $layout == serial along pi" "$tmp/along.vtk" "$tmp/r1.vtk"
+    rows=$(($(wc -l <"$tmp/d1/ranks.csv") - 1))
+    if [[ $rows -eq $ranks ]]; then pass=$((pass + 1)); else fail=$((fail + 1)); echo "FAIL ranks.csv has $rows rows for $ranks ranks"; fi
+  done
+done
+# stdout holds the table only, whatever METIS does meanwhile on other ranks' threads
+check "stdout" 0 "$bin" smooth-ranks "$fine" --ranks 4 --partition metis --ordering metis --max-iters 2 --quiet
+contains "stdout: sweep table" "     2    0."
+contains "stdout: rank table" "rss_bytes_per_owned"
+
+check "ranks 0" 2 "$bin" smooth-ranks "$fine" --ranks 0
+contains "ranks 0 named" "--ranks"
+check "ranks without a value" 2 "$bin" smooth-ranks "$fine" --ranks
+check "more ranks than vertices" 2 "$bin" smooth-ranks "$data/plate41.msh" --ranks 4000 --quiet
+contains "more ranks than vertices: said" "at most one rank per vertex"
+check "missing mesh" 2 "$bin" smooth-ranks "$tmp/none.node" --ranks 3 --quiet
+contains "missing mesh named" "none.node"
+check "help" 0 "$bin" smooth-ranks --help
+contains "help" "as P threads"
+
+echo "smooth_ranks.sh: $pass passed, $fail failed"
+((fail == 0))
