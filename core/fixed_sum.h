@@ -8,6 +8,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <stdexcept>
 
 namespace meshreuse {
@@ -17,9 +18,22 @@ class FixedSum {
   static constexpr int kFractionBits = 120;
   FixedSum() = default;
   // x in [0, 2^6); a negative or non-finite term is a caller's bug (std::logic_error).
+  // Equal to adding (unsigned __int128)ldexp(x, 120) (exact scaling, then truncation), but
+  // from the bits: mantissa shifted by the exponent, with no call into libgcc's conversion (a
+  // sweep adds one term per triangle, so this is on the distributed smoother's hot path).
   void Add(double x) {
-    if (!(x >= 0.0 && x < 64.0)) throw std::logic_error("FixedSum: term outside [0, 64)");
-    v_ += static_cast<unsigned __int128>(std::ldexp(x, kFractionBits));  // exact, then truncated
+    if (__builtin_expect(!(x >= 0.0 && x < 64.0), 0))
+      throw std::logic_error("FixedSum: term outside [0, 64)");
+    uint64_t bits;
+    std::memcpy(&bits, &x, sizeof bits);
+    const int e = static_cast<int>(bits >> 52);  // biased exponent (the sign bit is 0)
+    if (e == 0) return;                          // zero or subnormal: far below the unit
+    const uint64_t m = (bits & ((uint64_t{1} << 52) - 1)) | (uint64_t{1} << 52);
+    const int shift = e - 1075 + kFractionBits;  // x = m 2^(e-1075); units of 2^-120
+    if (shift >= 0)
+      v_ += static_cast<unsigned __int128>(m) << shift;  // shift <= 73: below 2^126
+    else if (shift > -64)
+      v_ += m >> -shift;
   }
   void Add(const FixedSum& o) { v_ += o.v_; }
   double ToDouble() const { return std::ldexp(static_cast<double>(v_), -kFractionBits); }

@@ -12,8 +12,11 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstring>
+#include <limits>
 #include <map>
+#include <random>
 #include <set>
 
 #include "core/halo_threads.h"
@@ -286,6 +289,37 @@ TEST(HaloSmoother, AFailingRankEndsEveryRank) {
                                   tx.Recv(1, &x, 1);  // would wait forever
                                 }),
                std::invalid_argument);
+}
+
+// Add works from the double's bits; the reference scales exactly with ldexp and lets the compiler
+// convert (truncating), one term at a time, on terms of every binade in [0, 64), subnormals,
+// values just below 64 and the unit's neighbourhood.
+TEST(FixedSum, AddFromBitsEqualsScaleAndTruncate) {
+  std::mt19937_64 rng(5);
+  std::vector<double> xs = {0.0,
+                            std::nextafter(64.0, 0.0),
+                            1.0,
+                            0.5,
+                            std::ldexp(1.0, -120),
+                            std::ldexp(1.0, -121),
+                            std::ldexp(1.5, -120),
+                            std::ldexp(3.0, -122),
+                            std::numeric_limits<double>::denorm_min(),
+                            std::numeric_limits<double>::min(),
+                            std::ldexp(1.0, -68),
+                            std::ldexp(1.0 + std::ldexp(1.0, -52), -68)};
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  std::uniform_int_distribution<int> binade(-130, 5);
+  for (int i = 0; i < 200000; ++i) xs.push_back(std::ldexp(unit(rng), binade(rng)));
+  for (double x : xs) {
+    FixedSum fast;
+    fast.Add(x);
+    const unsigned __int128 ref = static_cast<unsigned __int128>(std::ldexp(x, 120));
+    uint64_t w[2];
+    fast.ToWords(w);
+    ASSERT_EQ(w[0], static_cast<uint64_t>(ref)) << x;
+    ASSERT_EQ(w[1], static_cast<uint64_t>(ref >> 64)) << x;
+  }
 }
 
 TEST(FixedSum, ExactWhateverTheOrderAndCloseToTheFloatingSum) {
