@@ -42,7 +42,7 @@ class Packer {
   template <class T>
   void PutVector(const T* p, size_t n) {
     Put<uint64_t>(n);
-    b_.append(reinterpret_cast<const char*>(p), n * sizeof(T));
+    if (n) b_.append(reinterpret_cast<const char*>(p), n * sizeof(T));  // p may be null when n is 0
   }
   std::string Take() { return std::move(b_); }
 
@@ -64,9 +64,10 @@ class Unpacker {
   template <class T>
   std::vector<T> GetVector() {
     const uint64_t n = Get<uint64_t>();
-    Need(n * sizeof(T));
+    if (n > (b_.size() - at_) / sizeof(T))
+      throw std::logic_error("distributed smooth: short gather message");
     std::vector<T> v(n);
-    std::memcpy(v.data(), b_.data() + at_, n * sizeof(T));
+    if (n) std::memcpy(v.data(), b_.data() + at_, n * sizeof(T));  // v.data() is null when n is 0
     at_ += n * sizeof(T);
     return v;
   }
@@ -108,7 +109,7 @@ DistSmoothResult RunDistributedSmooth(const DistSmoothConfig& cfg, HaloTransport
   DistSmoothResult res;
   res.vertices = m.NumVertices(), res.triangles = m.NumTriangles();
   res.parts = parts, res.colours = ps.colours, res.cut_edges = ps.cut_edges;
-  RankStats st;
+  SmoothRankStats st;
   st.rank = rank, st.colour = p.colour;
   st.owned = p.owned, st.noncut = p.noncut, st.cut = p.cut(), st.boundary = p.owned - p.movable;
   st.ghosts = p.ghosts(), st.triangles = static_cast<int64_t>(p.weight.size());
@@ -143,7 +144,7 @@ DistSmoothResult RunDistributedSmooth(const DistSmoothConfig& cfg, HaloTransport
   std::vector<int64_t> noncut(parts);
   for (int32_t r = 0; r < parts; ++r) {
     Unpacker in(all[r]);
-    res.ranks.push_back(in.Get<RankStats>());
+    res.ranks.push_back(in.Get<SmoothRankStats>());
     colour[r] = in.Get<int32_t>();
     gids[r] = in.GetVector<int64_t>();
     const std::vector<double> xy = in.GetVector<double>();
@@ -179,11 +180,11 @@ DistSmoothResult RunDistributedSmooth(const DistSmoothConfig& cfg, HaloTransport
   return res;
 }
 
-Table RankStatsTable(const std::vector<RankStats>& ranks) {
+Table RankStatsTable(const std::vector<SmoothRankStats>& ranks) {
   Table t({"rank", "colour", "owned", "noncut", "cut", "boundary", "ghosts", "triangles", "links",
            "setup_s", "smooth_s", "cpu_s", "wait_s", "messages", "bytes_sent", "peak_rss_mb",
            "rss_bytes_per_owned"});
-  for (const RankStats& s : ranks)
+  for (const SmoothRankStats& s : ranks)
     t.AddRow({std::to_string(s.rank), std::to_string(s.colour), std::to_string(s.owned),
               std::to_string(s.noncut), std::to_string(s.cut), std::to_string(s.boundary),
               std::to_string(s.ghosts), std::to_string(s.triangles), std::to_string(s.links),

@@ -29,7 +29,7 @@ struct DistSmoothConfig {
   std::string pi_out;  // the serial visit order the run equals (ordered mode)
 };
 
-struct RankStats {
+struct SmoothRankStats {
   int32_t rank = 0, colour = 0;
   int64_t owned = 0, noncut = 0, cut = 0, boundary = 0, ghosts = 0, triangles = 0, links = 0;
   double setup_seconds = 0;   // read, partition and layout
@@ -42,8 +42,8 @@ struct RankStats {
 struct DistSmoothResult {
   int32_t vertices = 0, triangles = 0, parts = 0, colours = 0;
   int64_t cut_edges = 0;
-  HaloResult result;             // this rank's (sweeps and qualities are the same on every rank)
-  std::vector<RankStats> ranks;  // rank 0: every rank's; others: empty
+  HaloResult result;  // this rank's (sweeps and qualities are the same on every rank)
+  std::vector<SmoothRankStats> ranks;  // rank 0: every rank's; others: empty
   std::vector<std::string> written;
 };
 
@@ -54,7 +54,7 @@ DistSmoothResult RunDistributedSmooth(
     const DistSmoothConfig& cfg, HaloTransport& tx, const Log& log,
     const std::function<void(const DistSmoothResult&)>& on_setup = {},
     const std::function<void(const HaloSweep&)>& on_sweep = {});
-Table RankStatsTable(const std::vector<RankStats>& ranks);
+Table RankStatsTable(const std::vector<SmoothRankStats>& ranks);
 Json DistSmoothJson(const DistSmoothConfig& cfg, const DistSmoothResult& r);
 
 }  // namespace meshreuse

@@ -45,7 +45,7 @@ done
 mpi=${MESHREUSE_MPI_BIN:-build/release/cli/meshreuse-mpi}
 [[ -x $mpi ]] || die "no $mpi: build Release with MPI (scripts/setup.sh installs Open MPI)"
 command -v mpirun >/dev/null || die "no mpirun (apt-get install openmpi-bin)"
-cores=$(nproc)
+cores=$(env -u OMP_NUM_THREADS -u OMP_THREAD_LIMIT nproc)  # nproc obeys OMP_NUM_THREADS
 [[ -n $max_np ]] || max_np=$((cores > 2 ? cores : 2))
 mkdir -p "$out"
 if [[ -z $trace ]]; then

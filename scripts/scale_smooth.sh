@@ -62,7 +62,7 @@ if [[ $transport == mpi ]]; then
 fi
 py=/usr/bin/python3
 [[ -x $py ]] || py=python3
-cores=$(nproc)
+cores=$(env -u OMP_NUM_THREADS -u OMP_THREAD_LIMIT nproc)  # nproc obeys OMP_NUM_THREADS
 [[ -n $max_ranks ]] || max_ranks=$((cores > 2 ? cores : 2))
 mkdir -p "$out"
 refined() {  # refined K : plate41 refined K times with jitter, written once
