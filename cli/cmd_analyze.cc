@@ -21,7 +21,8 @@ int AnalyzeCommand(const Args& args, ChunkTransport* transport) {
   AnalyzeConfig cfg;
   std::string orderings = "ori", granularity, quantiles = "50,75,90,100", cache = "westmere-ex",
               mode = "gauss-seidel", hist_csv, prof_csv, mrc_csv, out_dir, measured, triangle_order,
-              seed = "1", sample_size, element_bytes = "66", line_bytes = "64", chunk, rank_stats;
+              seed = "1", sample_size, element_bytes = "66", line_bytes = "64", chunk, rank_stats,
+              ranks;
   double sample_rate = 0;
   desc.add_options()(
       "input", po::value(&cfg.inputs)->required()->multitoken(),
@@ -80,6 +81,11 @@ int AnalyzeCommand(const Args& args, ChunkTransport* transport) {
       "merge",
       "the inputs are the summaries of chunks 0..P-1, in order: merge them into exactly the "
       "serial analysis (every table and output below)")(
+      "ranks", po::value(&ranks),
+      "meshes: analyse each of P ranks' parts as the distributed smoother lays it out and sweeps "
+      "it (owned non-cut, cut, boundary, ghosts; --orderings inside each part): one row per rank")(
+      "partition", po::value(&cfg.partition)->default_value("hilbert"),
+      "with --ranks: hilbert or metis")(
       "rank-stats", po::value(&rank_stats),
       "meshreuse-mpi: write each rank's CPU seconds per phase, wall seconds, records, distinct "
       "ids, stack ids received and sent, bytes sent and peak memory (JSON) to this file")(
@@ -99,6 +105,7 @@ int AnalyzeCommand(const Args& args, ChunkTransport* transport) {
                     desc, pos, vm))
     return 0;
   cfg.orderings = SplitList(orderings);
+  if (!ranks.empty()) cfg.ranks = static_cast<int32_t>(ParseCount(ranks, "--ranks", 1, 65536));
   cfg.seed = ParseCount(seed, "--seed", 0, UINT64_MAX >> 1);
   cfg.mode = ParseUpdateMode(mode);
   cfg.triangle_order = ParseTriangleOrder(triangle_order);

@@ -48,6 +48,17 @@ std::vector<int32_t> MetisParts(const Mesh& m, int32_t parts, uint64_t seed) {
   return std::vector<int32_t>(p.begin(), p.end());
 }
 
+void CheckPartitionMethod(const std::string& method) {
+  if (method != "hilbert" && method != "metis")
+    throw UsageError("--partition must be hilbert or metis, not '" + method + "'");
+}
+
+std::vector<int32_t> PartsByMethod(const Mesh& m, const std::string& method, int32_t parts,
+                                   uint64_t seed) {
+  CheckPartitionMethod(method);
+  return method == "metis" ? MetisParts(m, parts, seed) : HilbertRangeParts(m, parts);
+}
+
 double PartitionStats::imbalance() const {
   if (owned.empty()) return 0;
   int64_t sum = 0, mx = 0;

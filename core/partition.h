@@ -18,6 +18,11 @@ std::vector<int32_t> HilbertRangeParts(const Mesh& m, int32_t parts);
 // METIS_PartGraphKway into `parts` parts, seeded (one part: all zero).
 std::vector<int32_t> MetisParts(const Mesh& m, int32_t parts, uint64_t seed);
 
+// "hilbert" or "metis" (UsageError naming --partition otherwise).
+void CheckPartitionMethod(const std::string& method);
+std::vector<int32_t> PartsByMethod(const Mesh& m, const std::string& method, int32_t parts,
+                                   uint64_t seed);
+
 struct PartitionStats {
   int32_t parts = 0;
   int64_t cut_edges = 0;           // edges whose ends lie in two parts

@@ -55,6 +55,16 @@ RankPart BuildRankPart(const Mesh& m, const std::vector<int32_t>& part, int32_t 
                        const std::vector<int32_t>& colour, int32_t rank,
                        const std::string& ordering = "ori", uint64_t seed = 1);
 
+// The part as a Mesh of its own in local ids, for running the serial smoother's traced sweep on it
+// (per-rank locality, reports/rank_locality.h): the owned vertices' and ghosts' coordinates, the
+// owned triangles, the movable vertices' rows as the rank sweeps them (by global id, so unlike
+// BuildMesh's not in increasing local id) and empty rows for the rest, v2t from the owned
+// triangles, `interior` = the movable vertices in local order and every other vertex a boundary
+// one. A per-sweep Gauss-Seidel sweep of it (QualityMode::kPerSweep) makes the rank's moves in the
+// rank's order reading the rank's rows, then one pass over the owned triangles: the rank's own
+// accesses, but for the interior list's reads, the quality pass's stores and the ghost messages.
+Mesh RankMesh(const RankPart& p);
+
 // The serial order a distributed ordered Gauss-Seidel sweep equals (halo_smoother.h):
 // every rank's non-cut vertices (ranks in turn, each in local order), then the cut vertices of the
 // ranks of colour 0, of colour 1, ... (ranks in turn, each in local order). Global ids.

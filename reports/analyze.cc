@@ -14,9 +14,11 @@
 #include "core/error.h"
 #include "core/mesh_io.h"
 #include "core/orderings/registry.h"
+#include "core/partition.h"
 #include "core/schedule.h"
 #include "reports/chunk_summary.h"
 #include "reports/inputs.h"
+#include "reports/rank_locality.h"
 #include "reports/run_info.h"
 #include "tracer/access_stream.h"
 #include "tracer/trace_formats.h"
@@ -144,6 +146,18 @@ void CheckAnalyzeConfig(const AnalyzeConfig& cfg) {
         "--merge: the analysis was chosen by the chunk runs (no --sample-*, --vtk "
         "or --granularity here)");
   if (!cfg.format.empty()) ParseTraceFormat(cfg.format);
+  if (cfg.ranks < 0 || cfg.ranks > 65536) throw UsageError("--ranks must be 1..65536");
+  if (cfg.ranks > 0) {
+    CheckPartitionMethod(cfg.partition);
+    if (cfg.chunk || cfg.merge || cfg.transport || !cfg.format.empty() || !cfg.vtk.empty() ||
+        cfg.threads != 1)
+      throw UsageError(
+          "--ranks analyses each rank's part of a mesh (one stream per rank): no --chunk, "
+          "--merge, --format, --vtk or --threads with it");
+    for (const std::string& in : cfg.inputs)
+      if (ClassifyInput(in) != InputKind::kMesh)
+        throw UsageError("--ranks: " + in + " is not a mesh (each rank's part is a mesh's)");
+  }
   if (cfg.orderings.empty()) throw UsageError("no ordering given");
   for (const std::string& o : cfg.orderings) CheckOrderingSpec(o);
   if (cfg.iterations < 1 || cfg.iterations > kMaxStreamSweeps)
@@ -186,6 +200,15 @@ AnalyzeResult RunAnalyze(const AnalyzeConfig& cfg, const Log& log) {
   const ReuseOptions opt = Options(cfg, r.granularity);
   for (const std::string& in : cfg.inputs) {
     const InputKind kind = fmt ? InputKind::kText : ClassifyInput(in);
+    if (kind == InputKind::kMesh && cfg.ranks > 0) {
+      for (const std::string& ord : cfg.orderings) {
+        RankLocalityConfig rc;
+        rc.mesh = in, rc.ranks = cfg.ranks, rc.partition = cfg.partition, rc.ordering = ord;
+        rc.seed = cfg.seed, rc.sweeps = AnalyzeSweeps(cfg);
+        for (auto& a : AnalyzeRankParts(rc, opt, log)) r.runs.push_back(std::move(a));
+      }
+      continue;
+    }
     if (kind == InputKind::kMesh) {
       for (const std::string& ord : cfg.orderings) {
         Mesh m = LayOut(in, ord, cfg.seed, cfg.triangle_order, log);

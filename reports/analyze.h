@@ -55,6 +55,10 @@ struct AnalyzeConfig {
   std::optional<std::pair<uint32_t, uint32_t>> chunk;
   std::string summary_out;
   bool merge = false;
+  // Meshes: analyse each of `ranks` parts as a rank of the distributed smoother lays it out and
+  // sweeps it (reports/rank_locality.h; the orderings apply inside each part), 0: the whole mesh.
+  int32_t ranks = 0;
+  std::string partition = "hilbert";
   // A distributed run (one trace, chunk = rank of size ranks; reports/chunk_summary.h): the
   // message layer, or nullptr.
   ChunkTransport* transport = nullptr;

@@ -19,8 +19,7 @@ namespace meshreuse {
 
 void CheckDistSmoothConfig(const DistSmoothConfig& cfg) {
   if (cfg.mesh.empty()) throw UsageError("no mesh given");
-  if (cfg.partition != "hilbert" && cfg.partition != "metis")
-    throw UsageError("--partition must be hilbert or metis, not '" + cfg.partition + "'");
+  CheckPartitionMethod(cfg.partition);
   CheckOrderingSpec(cfg.ordering);
   if (cfg.smooth.max_iters < 1) throw UsageError("--max-iters must be at least 1");
   if (std::isnan(cfg.smooth.tol))
@@ -86,6 +85,17 @@ double Since(std::chrono::steady_clock::time_point t0) {
 
 }  // namespace
 
+Mesh LoadForRanks(const std::string& path, int32_t parts, const Log& log) {
+  Mesh m = LoadMesh(path, log);
+  // The serial `smooth`'s default layout (ori, triangles sorted by their smallest corner): vertex
+  // ids unchanged, so -o writes what `meshreuse smooth MESH -o` writes.
+  ApplyPermutationInPlace(&m, Permutation::Identity(m.NumVertices()), TriangleOrder::kSorted);
+  if (parts > m.NumVertices())
+    throw UsageError(std::to_string(parts) + " ranks for a mesh of " +
+                     std::to_string(m.NumVertices()) + " vertices: at most one rank per vertex");
+  return m;
+}
+
 DistSmoothResult RunDistributedSmooth(const DistSmoothConfig& cfg, HaloTransport& tx,
                                       const Log& log,
                                       const std::function<void(const DistSmoothResult&)>& on_setup,
@@ -93,17 +103,10 @@ DistSmoothResult RunDistributedSmooth(const DistSmoothConfig& cfg, HaloTransport
   CheckDistSmoothConfig(cfg);
   const auto t0 = std::chrono::steady_clock::now();
   const int32_t parts = tx.size(), rank = tx.rank();
-  Mesh m = LoadMesh(cfg.mesh, log);
-  // The serial `smooth`'s default layout (ori, triangles sorted by their smallest corner): vertex
-  // ids unchanged, so -o writes what `meshreuse smooth MESH -o` writes.
-  ApplyPermutationInPlace(&m, Permutation::Identity(m.NumVertices()), TriangleOrder::kSorted);
-  if (parts > m.NumVertices())
-    throw UsageError(std::to_string(parts) + " ranks for a mesh of " +
-                     std::to_string(m.NumVertices()) + " vertices: at most one rank per vertex");
+  Mesh m = LoadForRanks(cfg.mesh, parts, log);
   log.Say("partitioning " + std::to_string(m.NumVertices()) + " vertices into " +
           std::to_string(parts) + " parts (" + cfg.partition + ")");
-  const std::vector<int32_t> part =
-      cfg.partition == "metis" ? MetisParts(m, parts, cfg.seed) : HilbertRangeParts(m, parts);
+  const std::vector<int32_t> part = PartsByMethod(m, cfg.partition, parts, cfg.seed);
   const PartitionStats ps = MeasurePartition(m, part, parts);
   RankPart p = BuildRankPart(m, part, parts, ps.colour, rank, cfg.ordering, cfg.seed);
   DistSmoothResult res;

@@ -48,6 +48,9 @@ struct DistSmoothResult {
 };
 
 void CheckDistSmoothConfig(const DistSmoothConfig& cfg);  // UsageError
+// MESH as every rank reads it: the serial smoother's default layout (vertex ids unchanged,
+// triangles sorted by their smallest corner); UsageError when `parts` exceeds its vertices.
+Mesh LoadForRanks(const std::string& path, int32_t parts, const Log& log);
 // Every rank calls it with the same configuration. `on_sweep` runs on every rank after each sweep;
 // `on_setup` once the partition is known (rank 0 prints the header from it).
 DistSmoothResult RunDistributedSmooth(

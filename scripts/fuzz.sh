@@ -2,7 +2,7 @@
 # Fuzzes every reader with libFuzzer (clang, AddressSanitizer + UndefinedBehaviorSanitizer): the
 # Triangle pair, Gmsh, the binary trace, other tools' traces (text, u32, u64, parda, oracle,
 # lackey; plain or zstd, one frame or several, pzstd's too), permutation files, .poly outlines
-# and chunk summaries (harnesses in tests/fuzz/, each running everything downstream of the reader
+# chunk summaries and visit orders (harnesses in tests/fuzz/, each running everything downstream of the reader
 # on what it accepts).
 # Seeds come from tests/data; corpora grow in build/fuzz/corpus/ and are kept between runs.
 # Limits: 10 s per input, 512 MB of RSS (ASan's quarantine at 32 MB), no single allocation above
@@ -21,7 +21,7 @@ CC=clang CXX=clang++ cmake -S . -B build/fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo 
 cmake --build build/fuzz -j"$(nproc 2>/dev/null || echo 2)" >build/fuzz.build.log 2>&1 ||
   { tail -n 40 build/fuzz.build.log; exit 1; }
 
-harnesses=(triangle gmsh trace external permutation poly summary)
+harnesses=(triangle gmsh trace external permutation poly summary visit_order)
 c=build/fuzz/corpus
 rm -rf build/fuzz/logs build/fuzz/artifacts
 mkdir -p build/fuzz/artifacts build/fuzz/logs
@@ -60,6 +60,10 @@ if command -v pzstd >/dev/null; then
 fi
 rm -f "$u64seed" "$u64seed.pz"
 /usr/bin/python3 -c 'print("\n".join(str(i) for i in range(336)))' >"$c/permutation/seed-identity"
+# Visit orders: the 21 x 16 grid's inner points row by row (the synthetic mesh's interior if its
+# ids are row-major; a near miss otherwise, which the fuzzer mends), with a comment.
+/usr/bin/python3 -c 'print("# pi\n" + "\n".join(str(j * 21 + i) for j in range(1, 15) for i in range(1, 20)))' >"$c/visit_order/seed-rows"
+printf '0\n1\n1\n' >"$c/visit_order/seed-repeat"
 # Summaries: their payloads (the harness writes the header), from chunks of a mesh trace.
 if [[ -x build/release/cli/meshreuse && -s $c/trace/seed-two_interior.trace ]]; then
   for k in 0/1 1/2; do

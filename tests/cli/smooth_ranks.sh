@@ -7,6 +7,7 @@
 #                           partitions, METIS inside the parts too (METIS keeps global state: its
 #                           calls from rank threads must not interleave), repeated: the same bytes;
 #   --ranks P, jacobi    == meshreuse smooth --mode jacobi;
+# `analyze MESH --ranks P` (per-rank locality: one stream per rank's part);
 # and refusals: --ranks 0, --ranks without a value, more ranks than vertices, a missing mesh.
 # Usage: smooth_ranks.sh MESHREUSE DATA
 set -u
@@ -50,6 +51,18 @@ done
 check "stdout" 0 "$bin" smooth-ranks "$fine" --ranks 4 --partition metis --ordering metis --max-iters 2 --quiet
 contains "stdout: sweep table" "     2    0."
 contains "stdout: rank table" "rss_bytes_per_owned"
+
+# Per-rank locality: `analyze MESH --ranks P` gives one row per rank, ordering and granularity, and
+# the moves of the ranks add up to the whole mesh's interior moves.
+check "analyze --ranks" 0 "$bin" analyze "$fine" --ranks 3 --orderings ori,random -k 2 --csv --quiet
+rows=$(grep -c '\[rank [0-2] of 3\]' "$tmp/out")
+if [[ $rows -eq 12 ]]; then pass=$((pass + 1)); else fail=$((fail + 1)); echo "FAIL analyze --ranks: $rows rows, expected 12"; cat "$tmp/out"; fi
+check "analyze --ranks metis" 0 "$bin" analyze "$fine" --ranks 2 --partition metis --csv --quiet
+check "analyze --ranks of a trace" 2 "$bin" analyze "$tmp/r1.vtk" --ranks 2
+check "analyze --ranks with threads" 2 "$bin" analyze "$fine" --ranks 2 --threads 2
+contains "analyze --ranks with threads: said" "--ranks"
+check "analyze bad partition" 2 "$bin" analyze "$fine" --ranks 2 --partition scotch
+contains "analyze bad partition: said" "--partition"
 
 check "ranks 0" 2 "$bin" smooth-ranks "$fine" --ranks 0
 contains "ranks 0 named" "--ranks"

@@ -1,0 +1,36 @@
+// Per-rank locality (issue 23): each rank's part of a distributed smoothing run
+// (reports/distributed_smooth.h) laid out as that rank lays it out (core/rank_part.h: non-cut,
+// cut, boundary, ghosts, each group in the rank's ordering) and swept by the serial smoother's
+// traced per-sweep Gauss-Seidel (core/rank_part.h RankMesh): the accesses a rank makes, as one
+// stream per rank for the reuse-distance analyzer. Ranks are analysed one after another in one
+// process (a rank's part, not the whole mesh, is what is held per analysis). Not in the stream:
+// the ghost messages' pack and unpack buffers (a few thousand values a sweep against the part's
+// moves).
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "analysis/reuse_analysis.h"
+#include "core/smoother.h"
+#include "reports/log.h"
+
+namespace meshreuse {
+
+struct RankLocalityConfig {
+  std::string mesh;
+  int32_t ranks = 2;
+  std::string partition = "hilbert";  // hilbert or metis
+  std::string ordering = "ori";       // inside each part
+  uint64_t seed = 1;
+  SmoothOptions sweeps;  // exact sweeps; Gauss-Seidel runs per sweep (the rank's quality pass)
+};
+
+// One analysis per rank (with the caller's options), labelled "MESH [rank r of P]" and the
+// ordering. UsageError: more ranks than vertices, an unknown partition or ordering.
+std::vector<std::unique_ptr<ReuseAnalysis>> AnalyzeRankParts(const RankLocalityConfig& cfg,
+                                                             const ReuseOptions& opt,
+                                                             const Log& log);
+
+}  // namespace meshreuse
