@@ -14,7 +14,8 @@ int SimulateCommand(const Args& args) {
   po::options_description desc("options");
   SimulateConfig cfg;
   std::string orderings = "ori", cache = "westmere-ex", mode = "gauss-seidel", triangle_order,
-              seed = "1", line_bytes = "64", out_dir, placement = "compact", interleave = "1";
+              seed = "1", line_bytes = "64", out_dir, placement = "compact", interleave = "1",
+              ranks;
   desc.add_options()("input", po::value(&cfg.inputs)->required()->multitoken(),
                      "mesh(es) (the smoother streams into the simulator), a trace file from "
                      "`meshreuse trace`, or another tool's trace with --format ('-': stdin)")(
@@ -51,7 +52,12 @@ int SimulateCommand(const Args& args) {
       "prefetch", po::value(&cfg.prefetch),
       "with --machine: levels with a next-line prefetcher, e.g. L1,L2 (none: off)")(
       "warm", "with --machine: rows of the last sweep only (caches warm from those before)")(
-      "out", po::value(&out_dir), "write simulate.{csv,json} and run.json here")(
+      "ranks", po::value(&ranks),
+      "meshes, private caches: simulate each of P ranks' parts as the distributed smoother lays "
+      "it out and sweeps it (--orderings inside each part): one row per rank and level")(
+      "partition", po::value(&cfg.partition)->default_value("hilbert"),
+      "with --ranks: hilbert or metis")("out", po::value(&out_dir),
+                                        "write simulate.{csv,json} and run.json here")(
       "quiet,q", "no progress on stderr");
   AddFormatOptions(desc);
   AddTriangleOrderOption(desc, &triangle_order);
@@ -75,6 +81,7 @@ int SimulateCommand(const Args& args) {
   cfg.cache = ParseCacheSpec(cache);
   cfg.instructions = vm.count("instructions") > 0;
   cfg.placement = ParsePlacement(placement);
+  if (!ranks.empty()) cfg.ranks = static_cast<int32_t>(ParseCount(ranks, "--ranks", 1, 65536));
   cfg.interleave = ParseInterleave(interleave);
   if (!cfg.machine.empty() && !vm["cache"].defaulted())
     throw UsageError("--cache and --machine exclude each other (a machine names its caches)");

@@ -8,6 +8,7 @@
 // moves).
 #pragma once
 
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -15,6 +16,7 @@
 #include "analysis/reuse_analysis.h"
 #include "core/smoother.h"
 #include "reports/log.h"
+#include "tracer/access_stream.h"
 
 namespace meshreuse {
 
@@ -27,8 +29,12 @@ struct RankLocalityConfig {
   SmoothOptions sweeps;  // exact sweeps; Gauss-Seidel runs per sweep (the rank's quality pass)
 };
 
-// One analysis per rank (with the caller's options), labelled "MESH [rank r of P]" and the
-// ordering. UsageError: more ranks than vertices, an unknown partition or ordering.
+// Streams rank r's part, for r = 0..P-1 in turn, into the consumer to(r) returns (an analysis or a
+// simulation per rank), labelled "MESH [rank r of P]" and the ordering. UsageError: more ranks
+// than vertices, an unknown partition or ordering.
+void StreamRankParts(const RankLocalityConfig& cfg, const Log& log,
+                     const std::function<AccessConsumer&(int32_t rank)>& to);
+// The reuse analyzer per rank, with the caller's options.
 std::vector<std::unique_ptr<ReuseAnalysis>> AnalyzeRankParts(const RankLocalityConfig& cfg,
                                                              const ReuseOptions& opt,
                                                              const Log& log);

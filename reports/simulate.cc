@@ -5,8 +5,10 @@
 
 #include "core/error.h"
 #include "core/orderings/registry.h"
+#include "core/partition.h"
 #include "core/schedule.h"
 #include "reports/inputs.h"
+#include "reports/rank_locality.h"
 #include "reports/run_info.h"
 #include "tracer/access_stream.h"
 
@@ -21,6 +23,17 @@ void CheckSimulateConfig(const SimulateConfig& cfg) {
   if (cfg.threads < 1 || cfg.threads > kMaxThreads)
     throw UsageError("--threads must be 1.." + std::to_string(kMaxThreads));
   CheckStreamSweeps(cfg.iterations, cfg.threads);
+  if (cfg.ranks < 0 || cfg.ranks > 65536) throw UsageError("--ranks must be 1..65536");
+  if (cfg.ranks > 0) {
+    CheckPartitionMethod(cfg.partition);
+    if (!cfg.machine.empty() || !cfg.format.empty() || cfg.threads != 1)
+      throw UsageError(
+          "--ranks simulates each rank's part of a mesh (one stream per rank, private caches): "
+          "no --machine, --format or --threads with it");
+    for (const std::string& in : cfg.inputs)
+      if (ClassifyInput(in) != InputKind::kMesh)
+        throw UsageError("--ranks: " + in + " is not a mesh (each rank's part is a mesh's)");
+  }
   for (const CacheLevel& c : cfg.cache.levels)
     if (c.ways == 0)
       throw UsageError("cache level " + c.name + " needs its associativity for simulation, e.g. " +
@@ -106,6 +119,18 @@ std::vector<std::unique_ptr<CacheSimulation>> RunSimulate(const SimulateConfig& 
   sweeps.mode = cfg.mode;
   for (const std::string& in : cfg.inputs) {
     const InputKind kind = cfg.format.empty() ? ClassifyInput(in) : InputKind::kText;
+    if (kind == InputKind::kMesh && cfg.ranks > 0) {
+      for (const std::string& ord : cfg.orderings) {
+        RankLocalityConfig rc;
+        rc.mesh = in, rc.ranks = cfg.ranks, rc.partition = cfg.partition, rc.ordering = ord;
+        rc.seed = cfg.seed, rc.sweeps = sweeps;
+        StreamRankParts(rc, log, [&](int32_t) -> AccessConsumer& {
+          runs.push_back(std::make_unique<CacheSimulation>(cfg.cache, cfg.line_bytes));
+          return *runs.back();
+        });
+      }
+      continue;
+    }
     if (kind == InputKind::kMesh) {
       for (const std::string& ord : cfg.orderings) {
         Mesh m = LayOut(in, ord, cfg.seed, cfg.triangle_order, log);

@@ -36,6 +36,10 @@ struct SimulateConfig {
   Placement placement = Placement::kCompact;
   int interleave = 1;    // for meshes with a machine: SmoothOptions::interleave
   std::string prefetch;  // levels with a next-line prefetcher ("" : the machine's; "none")
+  // Meshes, private caches: simulate each of `ranks` parts as a rank of the distributed smoother
+  // lays it out and sweeps it (reports/rank_locality.h), 0: the whole mesh.
+  int32_t ranks = 0;
+  std::string partition = "hilbert";
 };
 
 // UsageError for what cannot run (levels without ways, a size that is no multiple of ways x line).

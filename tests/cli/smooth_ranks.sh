@@ -7,7 +7,8 @@
 #                           partitions, METIS inside the parts too (METIS keeps global state: its
 #                           calls from rank threads must not interleave), repeated: the same bytes;
 #   --ranks P, jacobi    == meshreuse smooth --mode jacobi;
-# `analyze MESH --ranks P` (per-rank locality: one stream per rank's part);
+# `analyze MESH --ranks P` and `simulate MESH --ranks P` (per-rank locality: one stream per rank's
+# part);
 # and refusals: --ranks 0, --ranks without a value, more ranks than vertices, a missing mesh.
 # Usage: smooth_ranks.sh MESHREUSE DATA
 set -u
@@ -63,6 +64,18 @@ check "analyze --ranks with threads" 2 "$bin" analyze "$fine" --ranks 2 --thread
 contains "analyze --ranks with threads: said" "--ranks"
 check "analyze bad partition" 2 "$bin" analyze "$fine" --ranks 2 --partition scotch
 contains "analyze bad partition: said" "--partition"
+
+# ... and simulated: one row per rank and level; the L1 accesses of each rank are its analysed
+# line accesses (the same stream into two consumers).
+check "simulate --ranks" 0 "$bin" simulate "$fine" --ranks 3 --orderings bfs -k 2 --csv --quiet
+rows=$(grep -c '\[rank [0-2] of 3\],bfs,0,all,L' "$tmp/out")
+if [[ $rows -eq 9 ]]; then pass=$((pass + 1)); else fail=$((fail + 1)); echo "FAIL simulate --ranks: $rows rows, expected 9"; cat "$tmp/out"; fi
+awk -F, '$5 == "L1" {print $1, $10}' "$tmp/out" | sort >"$tmp/sim.acc"
+check "analyze --ranks bfs" 0 "$bin" analyze "$fine" --ranks 3 --orderings bfs -k 2 --csv --quiet
+awk -F, '$4 == "line" {print $1, $5}' "$tmp/out" | sort >"$tmp/an.acc"
+if [[ -s $tmp/sim.acc ]] && cmp -s "$tmp/sim.acc" "$tmp/an.acc"; then pass=$((pass + 1)); else
+  fail=$((fail + 1)); echo "FAIL simulate --ranks accesses != analyze --ranks line accesses"; paste "$tmp/sim.acc" "$tmp/an.acc"; fi
+check "simulate --ranks with a machine" 2 "$bin" simulate "$fine" --ranks 2 --machine westmere-ex
 
 check "ranks 0" 2 "$bin" smooth-ranks "$fine" --ranks 0
 contains "ranks 0 named" "--ranks"
