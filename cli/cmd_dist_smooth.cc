@@ -21,13 +21,18 @@ namespace meshreuse::cli {
 int DistSmoothCommand(const Args& args, HaloTransport& tx) {
   po::options_description desc("options");
   DistSmoothConfig cfg;
-  std::string mode = "ordered", seed = "1", out_dir;
+  std::string mode = "ordered", seed = "1", out_dir, placement = "last";
   desc.add_options()("mesh", po::value(&cfg.mesh)->required(), "mesh file")(
       "partition", po::value(&cfg.partition)->default_value("hilbert"),
       "hilbert: contiguous ranges of the Hilbert order (balanced to a vertex); metis: METIS "
       "k-way, seeded")("ordering", po::value(&cfg.ordering)->default_value("ori"),
                        ("each rank's layout of its part: " + OrderingNames()).c_str())(
       "seed", po::value(&seed)->default_value("1"), "seed of METIS and seeded orderings")(
+      "cut-placement", po::value(&placement)->default_value("last"),
+      "where each part keeps its cut vertices: last (after the non-cut ones, which move while the "
+      "lower colours' ghosts arrive), first (moved and sent first; the non-cut ones move while "
+      "they travel) or interleaved (where the ordering puts them; a colour waits for the whole "
+      "sweep of the lower ones); each equals its own serial order (--pi-out)")(
       "mode", po::value(&mode)->default_value("ordered"),
       "ordered: Gauss-Seidel, bit for bit the serial sweep along pi (--pi-out); jacobi: bit for "
       "bit the serial Jacobi; hybrid: ghosts refreshed once per sweep (no serial equal; timing "
@@ -57,6 +62,7 @@ int DistSmoothCommand(const Args& args, HaloTransport& tx) {
     return 0;
   cfg.seed = ParseCount(seed, "--seed", 0, UINT64_MAX >> 1);
   cfg.smooth.mode = ParseHaloMode(mode);
+  cfg.placement = ParseCutPlacement(placement);
   CheckDistSmoothConfig(cfg);
   const bool writer = tx.rank() == 0;
   if (!cfg.output.empty())
@@ -69,10 +75,10 @@ int DistSmoothCommand(const Args& args, HaloTransport& tx) {
     if (!writer) return;
     std::printf(
         "== %s: %s vertices, %s triangles, %d ranks (%s partition: %s cut edges, %d "
-        "colours), ordering %s, %s\n",
+        "colours), ordering %s, cut vertices %s, %s\n",
         cfg.mesh.c_str(), Grouped(r.vertices).c_str(), Grouped(r.triangles).c_str(), r.parts,
         cfg.partition.c_str(), Grouped(r.cut_edges).c_str(), r.colours, cfg.ordering.c_str(),
-        HaloModeName(cfg.smooth.mode));
+        CutPlacementName(cfg.placement), HaloModeName(cfg.smooth.mode));
     std::printf("%6s  %10s  %12s  %10s\n", "sweep", "quality", "improvement", "time_ms");
     std::fflush(stdout);
   };

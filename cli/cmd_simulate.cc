@@ -15,7 +15,7 @@ int SimulateCommand(const Args& args) {
   SimulateConfig cfg;
   std::string orderings = "ori", cache = "westmere-ex", mode = "gauss-seidel", triangle_order,
               seed = "1", line_bytes = "64", out_dir, placement = "compact", interleave = "1",
-              ranks;
+              ranks, cut_placement = "last";
   desc.add_options()("input", po::value(&cfg.inputs)->required()->multitoken(),
                      "mesh(es) (the smoother streams into the simulator), a trace file from "
                      "`meshreuse trace`, or another tool's trace with --format ('-': stdin)")(
@@ -56,8 +56,11 @@ int SimulateCommand(const Args& args) {
       "meshes, private caches: simulate each of P ranks' parts as the distributed smoother lays "
       "it out and sweeps it (--orderings inside each part): one row per rank and level")(
       "partition", po::value(&cfg.partition)->default_value("hilbert"),
-      "with --ranks: hilbert or metis")("out", po::value(&out_dir),
-                                        "write simulate.{csv,json} and run.json here")(
+      "with --ranks: hilbert or metis")(
+      "cut-placement", po::value(&cut_placement)->default_value("last"),
+      "with --ranks: where each part keeps its cut vertices (last, first, interleaved; "
+      "meshreuse-mpi smooth --help)")("out", po::value(&out_dir),
+                                      "write simulate.{csv,json} and run.json here")(
       "quiet,q", "no progress on stderr");
   AddFormatOptions(desc);
   AddTriangleOrderOption(desc, &triangle_order);
@@ -82,6 +85,9 @@ int SimulateCommand(const Args& args) {
   cfg.instructions = vm.count("instructions") > 0;
   cfg.placement = ParsePlacement(placement);
   if (!ranks.empty()) cfg.ranks = static_cast<int32_t>(ParseCount(ranks, "--ranks", 1, 65536));
+  cfg.cut_placement = ParseCutPlacement(cut_placement);
+  if (cfg.ranks == 0 && !vm["cut-placement"].defaulted())
+    throw UsageError("--cut-placement needs --ranks");
   cfg.interleave = ParseInterleave(interleave);
   if (!cfg.machine.empty() && !vm["cache"].defaulted())
     throw UsageError("--cache and --machine exclude each other (a machine names its caches)");

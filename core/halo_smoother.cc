@@ -158,17 +158,23 @@ HaloResult SmoothRankPart(RankPart& p, const HaloOptions& opt, HaloTransport& tx
     };
     double* xy = p.xy.data();
     switch (opt.mode) {
-      case HaloMode::kOrdered:
-        timed([&] { MoveRange(p.v2v, xy, xy, 0, p.noncut); });
+      case HaloMode::kOrdered: {
+        // [0, before): moves that read no ghost, made before waiting for the lower colours;
+        // [before, sent): moves sent when done; [sent, movable): moves made while they travel.
+        const int32_t before = p.placement == CutPlacement::kLast ? p.noncut : 0;
+        const int32_t sent = p.placement == CutPlacement::kFirst ? p.cut() : p.movable;
+        timed([&] { MoveRange(p.v2v, xy, xy, 0, before); });
         for (size_t i = 0; i < links; ++i)
           if (p.links[i].colour < p.colour) run.ReceiveFrom(i, xy);
         timed([&] {
-          MoveRange(p.v2v, xy, xy, p.noncut, p.movable);
+          MoveRange(p.v2v, xy, xy, before, sent);
           for (size_t i = 0; i < links; ++i) run.SendTo(i, xy);
+          MoveRange(p.v2v, xy, xy, sent, p.movable);
         });
         for (size_t i = 0; i < links; ++i)
           if (p.links[i].colour > p.colour) run.ReceiveFrom(i, xy);
         break;
+      }
       case HaloMode::kHybrid:
         timed([&] {
           MoveRange(p.v2v, xy, xy, 0, p.movable);

@@ -9,6 +9,13 @@
 //     of colour 0) ++ (colour 1) ++ ... (GatheredVisitOrder): each vertex reads the new value of
 //     a neighbour before it in pi and the old value of one after it, summed in increasing global id
 //     (the serial mesh's row order). `meshreuse smooth --visit-order` runs that serial sweep.
+//     That is the default cut placement (rank_part.h, kLast). With kFirst a rank waits for the
+//     lower colours, moves its cut vertices, sends them and moves its non-cut ones while they
+//     travel: pi = (cut vertices of colour 0) ++ (colour 1) ++ ... ++ (every rank's non-cut
+//     vertices), exact because a cut vertex reads its own non-cut neighbours' old values and a
+//     non-cut vertex reads owned values only. With kInterleaved a rank waits for the lower colours,
+//     then sweeps everything in its ordering: pi = (colour 0's parts whole) ++ (colour 1's) ++ ...
+//     (a colour's sweep waits for the whole sweep of the ones below: the placement's cost).
 //   jacobi: every movable vertex from the previous sweep's values, then one exchange: bit for bit
 //     the serial Jacobi sweep.
 //   hybrid: Gauss-Seidel inside the part reading ghosts from the previous sweep, one exchange per

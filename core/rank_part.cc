@@ -6,21 +6,40 @@
 #include <numeric>
 #include <stdexcept>
 
+#include "core/error.h"
 #include "core/orderings/registry.h"
 #include "core/quality.h"
 
 namespace meshreuse {
 
+const char* CutPlacementName(CutPlacement c) {
+  switch (c) {
+    case CutPlacement::kLast:
+      return "last";
+    case CutPlacement::kFirst:
+      return "first";
+    case CutPlacement::kInterleaved:
+      return "interleaved";
+  }
+  return "?";
+}
+
+CutPlacement ParseCutPlacement(const std::string& s) {
+  for (CutPlacement c : {CutPlacement::kLast, CutPlacement::kFirst, CutPlacement::kInterleaved})
+    if (s == CutPlacementName(c)) return c;
+  throw UsageError("--cut-placement must be last, first or interleaved, not '" + s + "'");
+}
+
 RankPart BuildRankPart(const Mesh& m, const std::vector<int32_t>& part, int32_t parts,
                        const std::vector<int32_t>& colour, int32_t rank,
-                       const std::string& ordering, uint64_t seed) {
+                       const std::string& ordering, uint64_t seed, CutPlacement placement) {
   const int32_t n = m.NumVertices();
   if (static_cast<int64_t>(part.size()) != n || static_cast<int32_t>(colour.size()) != parts ||
       rank < 0 || rank >= parts)
     throw std::invalid_argument("BuildRankPart: partition, colouring and rank disagree");
   const OrderingSpec spec = ParseOrderingSpec(ordering);
   RankPart p;
-  p.rank = rank, p.parts = parts, p.colour = colour[rank];
+  p.rank = rank, p.parts = parts, p.colour = colour[rank], p.placement = placement;
   p.colours = parts ? *std::max_element(colour.begin(), colour.end()) + 1 : 1;
 
   // The vertices here, by global id: owned, then the ghost ring.
@@ -80,10 +99,15 @@ RankPart BuildRankPart(const Mesh& m, const std::vector<int32_t>& part, int32_t 
         if (part[*u] != rank) group[i] = 1;
     }
   }
+  // The storage (and visit) rank of each group: cut before non-cut with kFirst, one movable
+  // group with kInterleaved.
+  const int8_t rank_of[3][4] = {{0, 1, 2, 3}, {1, 0, 2, 3}, {0, 0, 2, 3}};
+  const int8_t* key = rank_of[static_cast<int>(placement)];
   std::vector<int32_t> at(mine.size());
   std::iota(at.begin(), at.end(), 0);
   std::sort(at.begin(), at.end(), [&](int32_t a, int32_t b) {
-    return group[a] != group[b] ? group[a] < group[b] : pos[a] < pos[b];
+    const int8_t ga = key[group[a]], gb = key[group[b]];
+    return ga != gb ? ga < gb : pos[a] < pos[b];
   });
   p.total = static_cast<int32_t>(mine.size());
   p.gid.resize(mine.size());
@@ -166,15 +190,45 @@ Mesh RankMesh(const RankPart& p) {
   return m;
 }
 
-std::vector<int64_t> GatheredVisitOrder(const std::vector<RankPart>& parts) {
+std::vector<int64_t> VisitOrderOf(const std::vector<RankMoves>& ranks) {
   std::vector<int64_t> pi;
-  for (const RankPart& p : parts) pi.insert(pi.end(), p.gid.begin(), p.gid.begin() + p.noncut);
   int32_t colours = 0;
-  for (const RankPart& p : parts) colours = std::max(colours, p.colour + 1);
-  for (int32_t c = 0; c < colours; ++c)
-    for (const RankPart& p : parts)
-      if (p.colour == c) pi.insert(pi.end(), p.gid.begin() + p.noncut, p.gid.begin() + p.movable);
+  for (const RankMoves& r : ranks) colours = std::max(colours, r.colour + 1);
+  auto add = [&pi](const RankMoves& r, size_t b, size_t e) {
+    pi.insert(pi.end(), r.gid.begin() + b, r.gid.begin() + e);
+  };
+  auto noncut = [&] {
+    for (const RankMoves& r : ranks) {
+      const size_t cut = r.gid.size() - r.noncut;
+      r.placement == CutPlacement::kFirst ? add(r, cut, r.gid.size()) : add(r, 0, r.noncut);
+    }
+  };
+  auto by_colour = [&](bool whole) {
+    for (int32_t c = 0; c < colours; ++c)
+      for (const RankMoves& r : ranks) {
+        if (r.colour != c) continue;
+        const size_t cut = r.gid.size() - r.noncut;
+        if (whole)
+          add(r, 0, r.gid.size());
+        else
+          r.placement == CutPlacement::kFirst ? add(r, 0, cut) : add(r, r.noncut, r.gid.size());
+      }
+  };
+  const CutPlacement placement = ranks.empty() ? CutPlacement::kLast : ranks[0].placement;
+  for (const RankMoves& r : ranks)
+    if (r.placement != placement) throw std::invalid_argument("VisitOrderOf: mixed placements");
+  if (placement == CutPlacement::kLast) noncut(), by_colour(false);
+  if (placement == CutPlacement::kFirst) by_colour(false), noncut();
+  if (placement == CutPlacement::kInterleaved) by_colour(true);
   return pi;
+}
+
+std::vector<int64_t> GatheredVisitOrder(const std::vector<RankPart>& parts) {
+  std::vector<RankMoves> ranks;
+  for (const RankPart& p : parts)
+    ranks.push_back({p.colour, p.placement, p.noncut,
+                     std::vector<int64_t>(p.gid.begin(), p.gid.begin() + p.movable)});
+  return VisitOrderOf(ranks);
 }
 
 }  // namespace meshreuse

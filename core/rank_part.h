@@ -28,6 +28,15 @@
 
 namespace meshreuse {
 
+// Where a rank stores, and so visits, its cut vertices among its movable ones: after the non-cut
+// ones (`last`, the default: the non-cut moves overlap the wait for lower colours' ghosts), before
+// them (`first`: the cut values go out first and the non-cut moves overlap their flight), or
+// wherever the ordering puts them (`interleaved`: one group, so a rank waits for every lower
+// colour before its sweep). Each gives an exact serial order π of its own (VisitOrderOf).
+enum class CutPlacement { kLast, kFirst, kInterleaved };
+const char* CutPlacementName(CutPlacement c);
+CutPlacement ParseCutPlacement(const std::string& s);  // UsageError naming --cut-placement
+
 struct RankLink {
   int32_t rank = 0, colour = 0;
   std::vector<int32_t> send;  // local ids of owned movable vertices `rank` ghosts
@@ -37,13 +46,17 @@ struct RankLink {
 struct RankPart {
   int32_t rank = 0, parts = 1;
   int32_t colour = 0, colours = 1;  // of the part graph's greedy colouring (partition.h)
-  int32_t noncut = 0, movable = 0, owned = 0, total = 0;  // group ends, see above
-  std::vector<int64_t> gid;                               // local -> global id
-  AlignedVector<double> xy;                               // local coordinates, 2 per vertex
-  Csr v2v;                                                // rows [0, movable), by global id
-  std::vector<int32_t> tri;                               // owned triangles, local corners
-  std::vector<double> weight;                             // their global quality weights
-  std::vector<RankLink> links;                            // by rank; non-empty send or recv
+  // Group ends, see above; with CutPlacement::kFirst the movable vertices are the cut ones,
+  // [0, cut()), then the non-cut ones, [cut(), movable); with kInterleaved one group [0, movable)
+  // in the ordering's order. `noncut` counts the non-cut vertices in every case.
+  int32_t noncut = 0, movable = 0, owned = 0, total = 0;
+  CutPlacement placement = CutPlacement::kLast;
+  std::vector<int64_t> gid;     // local -> global id
+  AlignedVector<double> xy;     // local coordinates, 2 per vertex
+  Csr v2v;                      // rows [0, movable), by global id
+  std::vector<int32_t> tri;     // owned triangles, local corners
+  std::vector<double> weight;   // their global quality weights
+  std::vector<RankLink> links;  // by rank; non-empty send or recv
   int32_t cut() const { return movable - noncut; }
   int32_t ghosts() const { return total - owned; }
 };
@@ -53,7 +66,8 @@ struct RankPart {
 // empty. Throws UsageError for a bad ordering spec, std::invalid_argument for inconsistent sizes.
 RankPart BuildRankPart(const Mesh& m, const std::vector<int32_t>& part, int32_t parts,
                        const std::vector<int32_t>& colour, int32_t rank,
-                       const std::string& ordering = "ori", uint64_t seed = 1);
+                       const std::string& ordering = "ori", uint64_t seed = 1,
+                       CutPlacement placement = CutPlacement::kLast);
 
 // The part as a Mesh of its own in local ids, for running the serial smoother's traced sweep on it
 // (per-rank locality, reports/rank_locality.h): the owned vertices' and ghosts' coordinates, the
@@ -65,9 +79,20 @@ RankPart BuildRankPart(const Mesh& m, const std::vector<int32_t>& part, int32_t 
 // accesses, but for the interior list's reads, the quality pass's stores and the ghost messages.
 Mesh RankMesh(const RankPart& p);
 
-// The serial order a distributed ordered Gauss-Seidel sweep equals (halo_smoother.h):
-// every rank's non-cut vertices (ranks in turn, each in local order), then the cut vertices of the
-// ranks of colour 0, of colour 1, ... (ranks in turn, each in local order). Global ids.
+// What π needs of one rank: its colour, placement, number of non-cut vertices and its movable
+// vertices' global ids in local order.
+struct RankMoves {
+  int32_t colour = 0;
+  CutPlacement placement = CutPlacement::kLast;
+  int32_t noncut = 0;
+  std::vector<int64_t> gid;
+};
+// The serial order a distributed ordered Gauss-Seidel sweep equals (halo_smoother.h), ranks in
+// turn and each in local order within a step. kLast: every rank's non-cut vertices, then the cut
+// vertices of the ranks of colour 0, of colour 1, ...; kFirst: the cut vertices colour by colour,
+// then every rank's non-cut ones; kInterleaved: the whole movable set of the ranks of colour 0,
+// of colour 1, ... Global ids. (Why each is exact: halo_smoother.h.)
+std::vector<int64_t> VisitOrderOf(const std::vector<RankMoves>& ranks);
 std::vector<int64_t> GatheredVisitOrder(const std::vector<RankPart>& parts);
 
 }  // namespace meshreuse

@@ -204,6 +204,7 @@ AnalyzeResult RunAnalyze(const AnalyzeConfig& cfg, const Log& log) {
       for (const std::string& ord : cfg.orderings) {
         RankLocalityConfig rc;
         rc.mesh = in, rc.ranks = cfg.ranks, rc.partition = cfg.partition, rc.ordering = ord;
+        rc.placement = cfg.cut_placement;
         rc.seed = cfg.seed, rc.sweeps = AnalyzeSweeps(cfg);
         for (auto& a : AnalyzeRankParts(rc, opt, log)) r.runs.push_back(std::move(a));
       }

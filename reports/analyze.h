@@ -15,6 +15,7 @@
 #include "analysis/cache_model.h"
 #include "analysis/reuse_analysis.h"
 #include "core/permutation.h"
+#include "core/rank_part.h"
 #include "core/smoother.h"
 #include "core/table.h"
 #include "reports/log.h"
@@ -59,6 +60,7 @@ struct AnalyzeConfig {
   // sweeps it (reports/rank_locality.h; the orderings apply inside each part), 0: the whole mesh.
   int32_t ranks = 0;
   std::string partition = "hilbert";
+  CutPlacement cut_placement = CutPlacement::kLast;
   // A distributed run (one trace, chunk = rank of size ranks; reports/chunk_summary.h): the
   // message layer, or nullptr.
   ChunkTransport* transport = nullptr;

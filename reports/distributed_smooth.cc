@@ -108,7 +108,8 @@ DistSmoothResult RunDistributedSmooth(const DistSmoothConfig& cfg, HaloTransport
           std::to_string(parts) + " parts (" + cfg.partition + ")");
   const std::vector<int32_t> part = PartsByMethod(m, cfg.partition, parts, cfg.seed);
   const PartitionStats ps = MeasurePartition(m, part, parts);
-  RankPart p = BuildRankPart(m, part, parts, ps.colour, rank, cfg.ordering, cfg.seed);
+  RankPart p =
+      BuildRankPart(m, part, parts, ps.colour, rank, cfg.ordering, cfg.seed, cfg.placement);
   DistSmoothResult res;
   res.vertices = m.NumVertices(), res.triangles = m.NumTriangles();
   res.parts = parts, res.colours = ps.colours, res.cut_edges = ps.cut_edges;
@@ -142,19 +143,19 @@ DistSmoothResult RunDistributedSmooth(const DistSmoothConfig& cfg, HaloTransport
   out.Put<int64_t>(p.noncut);
   const std::vector<std::string> all = tx.Gather(out.Take());
   if (rank != 0) return res;
-  std::vector<std::vector<int64_t>> gids(parts);
-  std::vector<int32_t> colour(parts);
-  std::vector<int64_t> noncut(parts);
+  std::vector<RankMoves> moves(parts);
   for (int32_t r = 0; r < parts; ++r) {
     Unpacker in(all[r]);
     res.ranks.push_back(in.Get<SmoothRankStats>());
-    colour[r] = in.Get<int32_t>();
-    gids[r] = in.GetVector<int64_t>();
+    RankMoves& mv = moves[r];
+    mv.colour = in.Get<int32_t>();
+    mv.placement = cfg.placement;
+    mv.gid = in.GetVector<int64_t>();
     const std::vector<double> xy = in.GetVector<double>();
-    noncut[r] = in.Get<int64_t>();
-    for (size_t k = 0; k < gids[r].size(); ++k) {
-      m.xy[2 * gids[r][k]] = xy[2 * k];
-      m.xy[2 * gids[r][k] + 1] = xy[2 * k + 1];
+    mv.noncut = static_cast<int32_t>(in.Get<int64_t>());
+    for (size_t k = 0; k < mv.gid.size(); ++k) {
+      m.xy[2 * mv.gid[k]] = xy[2 * k];
+      m.xy[2 * mv.gid[k] + 1] = xy[2 * k + 1];
     }
   }
   if (!cfg.output.empty())
@@ -163,19 +164,14 @@ DistSmoothResult RunDistributedSmooth(const DistSmoothConfig& cfg, HaloTransport
       res.written.push_back(f);
     }
   if (!cfg.pi_out.empty()) {
-    // As GatheredVisitOrder (rank_part.h): every rank's non-cut vertices, then cut ones by colour.
+    const std::vector<int64_t> pi = VisitOrderOf(moves);
     WriteAtomically(cfg.pi_out, [&](std::FILE* f) {
       std::fprintf(f,
                    "# the serial Gauss-Seidel visit order of `meshreuse-mpi smooth %s` on %d "
-                   "ranks (ordered mode): meshreuse smooth MESH --visit-order THIS\n",
-                   cfg.mesh.c_str(), parts);
-      for (int32_t r = 0; r < parts; ++r)
-        for (int64_t k = 0; k < noncut[r]; ++k) std::fprintf(f, "%lld\n", (long long)gids[r][k]);
-      for (int32_t c = 0; c < ps.colours; ++c)
-        for (int32_t r = 0; r < parts; ++r)
-          if (colour[r] == c)
-            for (size_t k = static_cast<size_t>(noncut[r]); k < gids[r].size(); ++k)
-              std::fprintf(f, "%lld\n", (long long)gids[r][k]);
+                   "ranks (ordered mode, cut vertices %s): meshreuse smooth MESH --visit-order "
+                   "THIS\n",
+                   cfg.mesh.c_str(), parts, CutPlacementName(cfg.placement));
+      for (int64_t v : pi) std::fprintf(f, "%lld\n", static_cast<long long>(v));
     });
     log.Say("wrote " + cfg.pi_out);
     res.written.push_back(cfg.pi_out);
@@ -208,6 +204,7 @@ Json DistSmoothJson(const DistSmoothConfig& cfg, const DistSmoothResult& r) {
   return {{"mesh", cfg.mesh},
           {"partition", cfg.partition},
           {"ordering", cfg.ordering},
+          {"cut_placement", CutPlacementName(cfg.placement)},
           {"seed", cfg.seed},
           {"mode", HaloModeName(cfg.smooth.mode)},
           {"ranks", r.parts},

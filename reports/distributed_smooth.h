@@ -21,9 +21,10 @@ namespace meshreuse {
 
 struct DistSmoothConfig {
   std::string mesh;
-  std::string partition = "hilbert";  // hilbert | metis
-  std::string ordering = "ori";       // each rank's layout of its part (registry spec)
-  uint64_t seed = 1;                  // METIS and seeded orderings
+  std::string partition = "hilbert";             // hilbert | metis
+  std::string ordering = "ori";                  // each rank's layout of its part (registry spec)
+  CutPlacement placement = CutPlacement::kLast;  // where each part keeps its cut vertices
+  uint64_t seed = 1;                             // METIS and seeded orderings
   HaloOptions smooth;
   std::string output;  // the smoothed mesh (rank 0 writes it)
   std::string pi_out;  // the serial visit order the run equals (ordered mode)

@@ -16,7 +16,8 @@ void StreamRankParts(const RankLocalityConfig& cfg, const Log& log,
   sweeps.quality = QualityMode::kPerSweep;  // what a rank does: moves, then one quality pass
   sweeps.threads = 1;
   for (int32_t r = 0; r < cfg.ranks; ++r) {
-    const RankPart p = BuildRankPart(m, part, cfg.ranks, ps.colour, r, cfg.ordering, cfg.seed);
+    const RankPart p =
+        BuildRankPart(m, part, cfg.ranks, ps.colour, r, cfg.ordering, cfg.seed, cfg.placement);
     Mesh local = RankMesh(p);
     log.Say("rank " + std::to_string(r) + " of " + std::to_string(cfg.ranks) + ": " +
             std::to_string(p.owned) + " owned, " + std::to_string(p.ghosts()) + " ghosts, " +

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "analysis/reuse_analysis.h"
+#include "core/rank_part.h"
 #include "core/smoother.h"
 #include "reports/log.h"
 #include "tracer/access_stream.h"
@@ -25,6 +26,7 @@ struct RankLocalityConfig {
   int32_t ranks = 2;
   std::string partition = "hilbert";  // hilbert or metis
   std::string ordering = "ori";       // inside each part
+  CutPlacement placement = CutPlacement::kLast;
   uint64_t seed = 1;
   SmoothOptions sweeps;  // exact sweeps; Gauss-Seidel runs per sweep (the rank's quality pass)
 };

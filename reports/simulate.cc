@@ -123,6 +123,7 @@ std::vector<std::unique_ptr<CacheSimulation>> RunSimulate(const SimulateConfig& 
       for (const std::string& ord : cfg.orderings) {
         RankLocalityConfig rc;
         rc.mesh = in, rc.ranks = cfg.ranks, rc.partition = cfg.partition, rc.ordering = ord;
+        rc.placement = cfg.cut_placement;
         rc.seed = cfg.seed, rc.sweeps = sweeps;
         StreamRankParts(rc, log, [&](int32_t) -> AccessConsumer& {
           runs.push_back(std::make_unique<CacheSimulation>(cfg.cache, cfg.line_bytes));

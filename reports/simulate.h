@@ -13,6 +13,7 @@
 #include "analysis/machine.h"
 #include "analysis/multicore_sim.h"
 #include "core/permutation.h"
+#include "core/rank_part.h"
 #include "core/smoother.h"
 #include "core/table.h"
 #include "reports/log.h"
@@ -40,6 +41,7 @@ struct SimulateConfig {
   // lays it out and sweeps it (reports/rank_locality.h), 0: the whole mesh.
   int32_t ranks = 0;
   std::string partition = "hilbert";
+  CutPlacement cut_placement = CutPlacement::kLast;
 };
 
 // UsageError for what cannot run (levels without ways, a size that is no multiple of ways x line).

@@ -9,6 +9,7 @@
 #   --ranks P, jacobi    == meshreuse smooth --mode jacobi;
 # `analyze MESH --ranks P` and `simulate MESH --ranks P` (per-rank locality: one stream per rank's
 # part);
+# the cut-vertex placements (first, interleaved) against their own pi;
 # and refusals: --ranks 0, --ranks without a value, more ranks than vertices, a missing mesh.
 # Usage: smooth_ranks.sh MESHREUSE DATA
 set -u
@@ -48,6 +49,19 @@ for ranks in 2 3 6; do
     if [[ $rows -eq $ranks ]]; then pass=$((pass + 1)); else fail=$((fail + 1)); echo "FAIL ranks.csv has $rows rows for $ranks ranks"; fi
   done
 done
+# The cut-vertex placements: each equals the serial sweep along the pi it writes.
+for placement in first interleaved; do
+  check "ranks 3 cut $placement" 0 "$bin" smooth-ranks "$fine" --ranks 3 --partition metis --cut-placement $placement \
+    --max-iters 4 --tol -1 -o "$tmp/r1.vtk" --pi-out "$tmp/pi1" --quiet
+  contains "pi names the placement" "cut vertices $placement"
+  check "serial along pi ($placement)" 0 "$bin" smooth "$fine" --visit-order "$tmp/pi1" --max-iters 4 --tol -1 -o "$tmp/along.vtk" --quiet
+  equal "ranks 3 cut $placement == serial along pi" "$tmp/along.vtk" "$tmp/r1.vtk"
+done
+check "bad placement" 2 "$bin" smooth-ranks "$fine" --ranks 2 --cut-placement middle
+contains "bad placement: said" "--cut-placement"
+check "placement without ranks" 2 "$bin" analyze "$fine" --cut-placement first
+check "analyze placement" 0 "$bin" analyze "$fine" --ranks 2 --cut-placement interleaved --quiet
+
 # stdout holds the table only, whatever METIS does meanwhile on other ranks' threads
 check "stdout" 0 "$bin" smooth-ranks "$fine" --ranks 4 --partition metis --ordering metis --max-iters 2 --quiet
 contains "stdout: sweep table" "     2    0."

@@ -38,11 +38,12 @@ struct DistRun {
 };
 
 DistRun RunParts(const Mesh& m, const std::vector<int32_t>& part, int32_t P, const HaloOptions& opt,
-                 const std::string& ordering = "ori") {
+                 const std::string& ordering = "ori",
+                 CutPlacement placement = CutPlacement::kLast) {
   const PartitionStats ps = MeasurePartition(m, part, P);
   DistRun d;
   for (int32_t r = 0; r < P; ++r)
-    d.parts.push_back(BuildRankPart(m, part, P, ps.colour, r, ordering, 7));
+    d.parts.push_back(BuildRankPart(m, part, P, ps.colour, r, ordering, 7, placement));
   d.results.resize(P);
   d.seen.resize(P);
   HaloThreads::Run(P, [&](HaloTransport& tx) {
@@ -175,6 +176,47 @@ TEST(HaloSmoother, OrderedEqualsSerialGaussSeidelAlongPi) {
   // The references tell orders apart: with several parts the order (and so the bits) change.
   EXPECT_GT(differs_from_storage_order, cases / 3);
   EXPECT_GT(differs_from_hybrid, cases / 3);
+}
+
+// Cut vertices first (moved and sent before the non-cut ones) and interleaved (where the ordering
+// puts them): each equals the serial sweep along its own pi, and the three placements are three
+// different orders.
+TEST(HaloSmoother, EveryCutPlacementEqualsItsSerialOrder) {
+  int first_differs = 0, interleaved_differs = 0, cases = 0;
+  for (const Mesh& m : MeshCorpus())
+    for (int32_t P : {2, 3, 4})
+      for (bool metis : {false, true}) {
+        if (P > m.NumVertices()) continue;
+        const std::string ordering = metis ? "bfs" : "ori";
+        const std::vector<int32_t> part = PartsOf(m, P, metis);
+        const Mesh last = Assemble(m, RunParts(m, part, P, Sweeps(3), ordering).parts);
+        for (CutPlacement c : {CutPlacement::kFirst, CutPlacement::kInterleaved}) {
+          const DistRun d = RunParts(m, part, P, Sweeps(3), ordering, c);
+          for (const RankPart& p : d.parts) {  // the layout: cut vertices where asked
+            for (int32_t k = 0; k < p.movable; ++k) {
+              const int32_t v = static_cast<int32_t>(p.gid[k]);
+              bool cut = false;
+              for (const int32_t* u = m.v2v.RowBegin(v); u != m.v2v.RowEnd(v); ++u)
+                cut = cut || part[*u] != p.rank;
+              if (c == CutPlacement::kFirst) {
+                EXPECT_EQ(cut, k < p.cut()) << "vertex " << v;
+              }
+            }
+            EXPECT_EQ(p.placement, c);
+          }
+          Mesh serial = m.Clone();
+          const std::vector<FixedSum> q =
+              SerialAlong(&serial, GatheredVisitOrder(d.parts), Sweeps(3));
+          const Mesh got = Assemble(m, d.parts);
+          ASSERT_TRUE(SameBits(got, serial))
+              << "P " << P << " metis " << metis << " " << CutPlacementName(c);
+          for (int32_t r = 0; r < P; ++r) EXPECT_EQ(d.results[r].quality_after, q.back());
+          (c == CutPlacement::kFirst ? first_differs : interleaved_differs) += !SameBits(got, last);
+        }
+        ++cases;
+      }
+  EXPECT_GT(first_differs, cases / 3);
+  EXPECT_GT(interleaved_differs, cases / 3);
 }
 
 TEST(HaloSmoother, OnePartOriEqualsTodaysSmoother) {

@@ -4,6 +4,7 @@
 #   -np 1, ordered, ori       == meshreuse smooth (today's smoother) on a Gmsh file and a refined mesh;
 #   -np P, ordered            == meshreuse smooth --visit-order PI, PI written by the run (--pi-out),
 #                                Hilbert and METIS partitions, orderings inside the parts;
+#   --cut-placement first and interleaved at -np 3 == the serial sweep along their own PI;
 #   -np P, jacobi             == meshreuse smooth --mode jacobi, and the same quality and sweep
 #                                count for every P (stopped by --tol);
 # and that the comparison can fail (ordered at -np 2 differs from the storage-order sweep).
@@ -46,6 +47,15 @@ for mesh in "$plate" "$fine"; do
   done
   # The reference can tell: the storage-order sweep is another order, other bits.
   if cmp -s "$tmp/serial.vtk" "$tmp/np.vtk"; then fail=$((fail + 1)); echo "FAIL ordered np 4 equals the storage-order sweep"; else pass=$((pass + 1)); fi
+done
+
+# The cut-vertex placements over MPI: each equals the serial sweep along its pi.
+for placement in first interleaved; do
+  check "np 3 cut $placement" 0 run 3 "$mpi" smooth "$fine" --cut-placement $placement --max-iters 5 --tol -1 \
+    -o "$tmp/np.vtk" --pi-out "$tmp/pi" --quiet
+  check "serial along pi ($placement)" 0 "$bin" smooth "$fine" --visit-order "$tmp/pi" --max-iters 5 \
+    --tol -1 -o "$tmp/along.vtk" --quiet
+  equal "np 3 cut $placement == serial along pi" "$tmp/along.vtk" "$tmp/np.vtk"
 done
 
 # Jacobi: the serial Jacobi for every P, stopped by the tolerance at the same sweep with the same
