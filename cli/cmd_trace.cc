@@ -5,6 +5,7 @@
 #include "cli/common.h"
 #include "core/error.h"
 #include "core/orderings/registry.h"
+#include "core/rank_part.h"
 #include "core/table.h"
 #include "reports/trace.h"
 #include "tracer/trace_format.h"
@@ -14,7 +15,8 @@ namespace meshreuse::cli {
 int TraceCommand(const Args& args) {
   po::options_description desc("options");
   TraceConfig cfg;
-  std::string mode = "gauss-seidel", triangle_order, seed = "1", element_bytes = "66";
+  std::string mode = "gauss-seidel", triangle_order, seed = "1", element_bytes = "66", ranks,
+              cut_placement = "last";
   desc.add_options()("mesh", po::value(&cfg.mesh)->required(), "input mesh")(
       "ordering", po::value(&cfg.ordering)->default_value("ori"),
       ("one of: " + OrderingNames()).c_str())("seed", po::value(&seed)->default_value("1"),
@@ -27,6 +29,13 @@ int TraceCommand(const Args& args) {
       "element size recorded in the header")("output,o", po::value(&cfg.output)->required(),
                                              "trace file")(
       "compress", "zstd-compress the trace (read back transparently by analyze and simulate)")(
+      "ranks", po::value(&ranks),
+      "one trace per rank's part of a distributed smoothing run on P ranks, laid out and swept "
+      "as that rank does (--ordering inside each part): OUTPUT.rank0 ... OUTPUT.rank(P-1)")(
+      "partition", po::value(&cfg.partition)->default_value("hilbert"),
+      "with --ranks: hilbert or metis")(
+      "cut-placement", po::value(&cut_placement)->default_value("last"),
+      "with --ranks: last, first or interleaved (meshreuse-mpi smooth --help)")(
       "quiet,q", "no progress on stderr");
   AddTriangleOrderOption(desc, &triangle_order);
   po::positional_options_description pos;
@@ -45,8 +54,20 @@ int TraceCommand(const Args& args) {
   cfg.mode = ParseUpdateMode(mode);
   cfg.triangle_order = ParseTriangleOrder(triangle_order);
   cfg.compress = vm.count("compress") > 0;
+  if (!ranks.empty()) cfg.ranks = static_cast<int32_t>(ParseCount(ranks, "--ranks", 1, 65536));
+  cfg.cut_placement = ParseCutPlacement(cut_placement);
+  if (cfg.ranks == 0 && (!vm["partition"].defaulted() || !vm["cut-placement"].defaulted()))
+    throw UsageError("--partition and --cut-placement need --ranks");
   const Progress progress(vm.count("quiet") > 0);
   const TraceRunResult r = RunTrace(cfg, MakeLog(progress));
+  if (cfg.ranks > 0) {
+    std::printf(
+        "wrote %s.rank0 ... %s.rank%d: %s accesses, %s element touches, %d sweep(s), %.2f s\n",
+        cfg.output.c_str(), cfg.output.c_str(), cfg.ranks - 1,
+        Grouped(static_cast<long long>(r.records)).c_str(),
+        Grouped(static_cast<long long>(r.elements)).c_str(), cfg.iterations, r.seconds);
+    return 0;
+  }
   const double per = static_cast<double>(r.vertices) * cfg.iterations;
   std::printf(
       "wrote %s: %s accesses (%s per vertex per sweep), %s element touches (%s), %d sweep(s), "

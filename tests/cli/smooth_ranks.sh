@@ -7,8 +7,8 @@
 #                           partitions, METIS inside the parts too (METIS keeps global state: its
 #                           calls from rank threads must not interleave), repeated: the same bytes;
 #   --ranks P, jacobi    == meshreuse smooth --mode jacobi;
-# `analyze MESH --ranks P` and `simulate MESH --ranks P` (per-rank locality: one stream per rank's
-# part);
+# `analyze MESH --ranks P`, `simulate MESH --ranks P` and `trace MESH --ranks P` (per-rank
+# locality: one stream per rank's part; a rank's trace file analyses as its row);
 # the cut-vertex placements (first, interleaved) against their own pi;
 # and refusals: --ranks 0, --ranks without a value, more ranks than vertices, a missing mesh.
 # Usage: smooth_ranks.sh MESHREUSE DATA
@@ -86,10 +86,22 @@ rows=$(grep -c '\[rank [0-2] of 3\],bfs,0,all,L' "$tmp/out")
 if [[ $rows -eq 9 ]]; then pass=$((pass + 1)); else fail=$((fail + 1)); echo "FAIL simulate --ranks: $rows rows, expected 9"; cat "$tmp/out"; fi
 awk -F, '$5 == "L1" {print $1, $10}' "$tmp/out" | sort >"$tmp/sim.acc"
 check "analyze --ranks bfs" 0 "$bin" analyze "$fine" --ranks 3 --orderings bfs -k 2 --csv --quiet
+cp "$tmp/out" "$tmp/an.rows"
 awk -F, '$4 == "line" {print $1, $5}' "$tmp/out" | sort >"$tmp/an.acc"
 if [[ -s $tmp/sim.acc ]] && cmp -s "$tmp/sim.acc" "$tmp/an.acc"; then pass=$((pass + 1)); else
   fail=$((fail + 1)); echo "FAIL simulate --ranks accesses != analyze --ranks line accesses"; paste "$tmp/sim.acc" "$tmp/an.acc"; fi
 check "simulate --ranks with a machine" 2 "$bin" simulate "$fine" --ranks 2 --machine westmere-ex
+
+# ... and written: one trace per rank whose analysis is the rank's row of analyze --ranks.
+check "trace --ranks" 0 "$bin" trace "$fine" --ranks 3 --ordering bfs -k 2 -o "$tmp/rt" --quiet
+for r in 0 1 2; do
+  "$bin" analyze "$tmp/rt.rank$r" --csv --quiet | tail -n +2 | cut -d, -f2- >"$tmp/file.rows"
+  awk -F, -v r="$r" 'index($1, "[rank " r " of 3]")' "$tmp/an.rows" | cut -d, -f2- >"$tmp/ranks.rows"
+  if [[ -s $tmp/file.rows ]] && cmp -s "$tmp/file.rows" "$tmp/ranks.rows"; then pass=$((pass + 1)); else
+    fail=$((fail + 1)); echo "FAIL trace --ranks: rank $r's file analyses differently"; diff "$tmp/file.rows" "$tmp/ranks.rows" | head; fi
+done
+check "trace --ranks --compress" 2 "$bin" trace "$fine" --ranks 2 --compress -o "$tmp/rz"
+check "trace --partition without --ranks" 2 "$bin" trace "$fine" --partition metis -o "$tmp/rz"
 
 check "ranks 0" 2 "$bin" smooth-ranks "$fine" --ranks 0
 contains "ranks 0 named" "--ranks"
