@@ -21,8 +21,8 @@ int AnalyzeCommand(const Args& args, ChunkTransport* transport) {
   AnalyzeConfig cfg;
   std::string orderings = "ori", granularity, quantiles = "50,75,90,100", cache = "westmere-ex",
               mode = "gauss-seidel", hist_csv, prof_csv, mrc_csv, out_dir, measured, triangle_order,
-              seed = "1", sample_size, element_bytes = "66", line_bytes = "64", chunk, rank_stats,
-              ranks, cut_placement = "last";
+              seed = "1", sample_size, element_bytes = "66", line_bytes = "64", chunk, rank_stats;
+  RankOptionText rank_text;
   double sample_rate = 0;
   desc.add_options()(
       "input", po::value(&cfg.inputs)->required()->multitoken(),
@@ -81,18 +81,14 @@ int AnalyzeCommand(const Args& args, ChunkTransport* transport) {
       "merge",
       "the inputs are the summaries of chunks 0..P-1, in order: merge them into exactly the "
       "serial analysis (every table and output below)")(
-      "ranks", po::value(&ranks),
-      "meshes: analyse each of P ranks' parts as the distributed smoother lays it out and sweeps "
-      "it (owned non-cut, cut, boundary, ghosts; --orderings inside each part): one row per rank")(
-      "partition", po::value(&cfg.partition)->default_value("hilbert"),
-      "with --ranks: hilbert or metis")(
-      "cut-placement", po::value(&cut_placement)->default_value("last"),
-      "with --ranks: where each part keeps its cut vertices (last, first, interleaved; "
-      "meshreuse-mpi smooth --help)")(
       "rank-stats", po::value(&rank_stats),
       "meshreuse-mpi: write each rank's CPU seconds per phase, wall seconds, records, distinct "
       "ids, stack ids received and sent, bytes sent and peak memory (JSON) to this file")(
       "quiet,q", "no progress on stderr");
+  AddRankOptions(desc, &rank_text,
+                 "meshes: analyse each of P ranks' parts as the distributed smoother lays it out "
+                 "and sweeps it (owned non-cut, cut, boundary, ghosts; --orderings inside each "
+                 "part): one row per rank");
   AddFormatOptions(desc);
   AddTriangleOrderOption(desc, &triangle_order);
   po::positional_options_description pos;
@@ -108,10 +104,8 @@ int AnalyzeCommand(const Args& args, ChunkTransport* transport) {
                     desc, pos, vm))
     return 0;
   cfg.orderings = SplitList(orderings);
-  if (!ranks.empty()) cfg.ranks = static_cast<int32_t>(ParseCount(ranks, "--ranks", 1, 65536));
-  cfg.cut_placement = ParseCutPlacement(cut_placement);
-  if (cfg.ranks == 0 && !vm["cut-placement"].defaulted())
-    throw UsageError("--cut-placement needs --ranks");
+  const RankOptions ro = RankOptionsOf(rank_text, vm);
+  cfg.ranks = ro.ranks, cfg.partition = ro.partition, cfg.cut_placement = ro.placement;
   cfg.seed = ParseCount(seed, "--seed", 0, UINT64_MAX >> 1);
   cfg.mode = ParseUpdateMode(mode);
   cfg.triangle_order = ParseTriangleOrder(triangle_order);

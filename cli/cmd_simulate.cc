@@ -14,8 +14,8 @@ int SimulateCommand(const Args& args) {
   po::options_description desc("options");
   SimulateConfig cfg;
   std::string orderings = "ori", cache = "westmere-ex", mode = "gauss-seidel", triangle_order,
-              seed = "1", line_bytes = "64", out_dir, placement = "compact", interleave = "1",
-              ranks, cut_placement = "last";
+              seed = "1", line_bytes = "64", out_dir, placement = "compact", interleave = "1";
+  RankOptionText rank_text;
   desc.add_options()("input", po::value(&cfg.inputs)->required()->multitoken(),
                      "mesh(es) (the smoother streams into the simulator), a trace file from "
                      "`meshreuse trace`, or another tool's trace with --format ('-': stdin)")(
@@ -52,16 +52,12 @@ int SimulateCommand(const Args& args) {
       "prefetch", po::value(&cfg.prefetch),
       "with --machine: levels with a next-line prefetcher, e.g. L1,L2 (none: off)")(
       "warm", "with --machine: rows of the last sweep only (caches warm from those before)")(
-      "ranks", po::value(&ranks),
-      "meshes, private caches: simulate each of P ranks' parts as the distributed smoother lays "
-      "it out and sweeps it (--orderings inside each part): one row per rank and level")(
-      "partition", po::value(&cfg.partition)->default_value("hilbert"),
-      "with --ranks: hilbert or metis")(
-      "cut-placement", po::value(&cut_placement)->default_value("last"),
-      "with --ranks: where each part keeps its cut vertices (last, first, interleaved; "
-      "meshreuse-mpi smooth --help)")("out", po::value(&out_dir),
-                                      "write simulate.{csv,json} and run.json here")(
+      "out", po::value(&out_dir), "write simulate.{csv,json} and run.json here")(
       "quiet,q", "no progress on stderr");
+  AddRankOptions(desc, &rank_text,
+                 "meshes, private caches: simulate each of P ranks' parts as the distributed "
+                 "smoother lays it out and sweeps it (--orderings inside each part): one row per "
+                 "rank and level");
   AddFormatOptions(desc);
   AddTriangleOrderOption(desc, &triangle_order);
   po::positional_options_description pos;
@@ -84,10 +80,8 @@ int SimulateCommand(const Args& args) {
   cfg.cache = ParseCacheSpec(cache);
   cfg.instructions = vm.count("instructions") > 0;
   cfg.placement = ParsePlacement(placement);
-  if (!ranks.empty()) cfg.ranks = static_cast<int32_t>(ParseCount(ranks, "--ranks", 1, 65536));
-  cfg.cut_placement = ParseCutPlacement(cut_placement);
-  if (cfg.ranks == 0 && !vm["cut-placement"].defaulted())
-    throw UsageError("--cut-placement needs --ranks");
+  const RankOptions ro = RankOptionsOf(rank_text, vm);
+  cfg.ranks = ro.ranks, cfg.partition = ro.partition, cfg.cut_placement = ro.placement;
   cfg.interleave = ParseInterleave(interleave);
   if (!cfg.machine.empty() && !vm["cache"].defaulted())
     throw UsageError("--cache and --machine exclude each other (a machine names its caches)");

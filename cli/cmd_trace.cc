@@ -15,8 +15,8 @@ namespace meshreuse::cli {
 int TraceCommand(const Args& args) {
   po::options_description desc("options");
   TraceConfig cfg;
-  std::string mode = "gauss-seidel", triangle_order, seed = "1", element_bytes = "66", ranks,
-              cut_placement = "last";
+  std::string mode = "gauss-seidel", triangle_order, seed = "1", element_bytes = "66";
+  RankOptionText rank_text;
   desc.add_options()("mesh", po::value(&cfg.mesh)->required(), "input mesh")(
       "ordering", po::value(&cfg.ordering)->default_value("ori"),
       ("one of: " + OrderingNames()).c_str())("seed", po::value(&seed)->default_value("1"),
@@ -29,15 +29,12 @@ int TraceCommand(const Args& args) {
       "element size recorded in the header")("output,o", po::value(&cfg.output)->required(),
                                              "trace file")(
       "compress", "zstd-compress the trace (read back transparently by analyze and simulate)")(
-      "ranks", po::value(&ranks),
-      "one trace per rank's part of a distributed smoothing run on P ranks, laid out and swept "
-      "as that rank does (--ordering inside each part): OUTPUT.rank0 ... OUTPUT.rank(P-1)")(
-      "partition", po::value(&cfg.partition)->default_value("hilbert"),
-      "with --ranks: hilbert or metis")(
-      "cut-placement", po::value(&cut_placement)->default_value("last"),
-      "with --ranks: last, first or interleaved (meshreuse-mpi smooth --help)")(
       "quiet,q", "no progress on stderr");
   AddTriangleOrderOption(desc, &triangle_order);
+  AddRankOptions(desc, &rank_text,
+                 "one trace per rank's part of a distributed smoothing run on P ranks, laid out "
+                 "and swept as that rank does (--ordering inside each part): OUTPUT.rank0 ... "
+                 "OUTPUT.rank(P-1)");
   po::positional_options_description pos;
   pos.add("mesh", 1);
   po::variables_map vm;
@@ -54,10 +51,8 @@ int TraceCommand(const Args& args) {
   cfg.mode = ParseUpdateMode(mode);
   cfg.triangle_order = ParseTriangleOrder(triangle_order);
   cfg.compress = vm.count("compress") > 0;
-  if (!ranks.empty()) cfg.ranks = static_cast<int32_t>(ParseCount(ranks, "--ranks", 1, 65536));
-  cfg.cut_placement = ParseCutPlacement(cut_placement);
-  if (cfg.ranks == 0 && (!vm["partition"].defaulted() || !vm["cut-placement"].defaulted()))
-    throw UsageError("--partition and --cut-placement need --ranks");
+  const RankOptions ro = RankOptionsOf(rank_text, vm);
+  cfg.ranks = ro.ranks, cfg.partition = ro.partition, cfg.cut_placement = ro.placement;
   const Progress progress(vm.count("quiet") > 0);
   const TraceRunResult r = RunTrace(cfg, MakeLog(progress));
   if (cfg.ranks > 0) {

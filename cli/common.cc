@@ -100,4 +100,24 @@ void WriteRunJson(const std::string& dir, const std::string& tool, const Json& c
                 RunJsonText(RunJson(tool, FullCommandLine(), configuration, extra)));
 }
 
+void AddRankOptions(po::options_description& desc, RankOptionText* text, const char* ranks) {
+  desc.add_options()("ranks", po::value(&text->ranks), ranks)(
+      "partition", po::value(&text->partition)->default_value("hilbert"),
+      "with --ranks: hilbert or metis")(
+      "cut-placement", po::value(&text->placement)->default_value("last"),
+      "with --ranks: where each part keeps its cut vertices: last, first or interleaved "
+      "(meshreuse-mpi smooth --help)");
+}
+
+RankOptions RankOptionsOf(const RankOptionText& text, const po::variables_map& vm) {
+  RankOptions o;
+  if (!text.ranks.empty())
+    o.ranks = static_cast<int32_t>(ParseCount(text.ranks, "--ranks", 1, 65536));
+  o.partition = text.partition;
+  o.placement = ParseCutPlacement(text.placement);
+  if (o.ranks == 0 && (!vm["partition"].defaulted() || !vm["cut-placement"].defaulted()))
+    throw UsageError("--partition and --cut-placement need --ranks");
+  return o;
+}
+
 }  // namespace meshreuse::cli

@@ -9,6 +9,7 @@
 #include "cli/options.h"
 #include "cli/progress.h"
 #include "core/permutation.h"
+#include "core/rank_part.h"
 #include "reports/log.h"
 #include "reports/output.h"
 #include "reports/run_info.h"
@@ -36,6 +37,20 @@ void PrepareOutDir(const std::string& dir, bool must_be_empty = false);
 
 // --triangle-order sorted|file, the same text on every command that lays a mesh out.
 void AddTriangleOrderOption(po::options_description& desc, std::string* value);
+
+// --ranks P, --partition and --cut-placement of the per-rank runs (reports/rank_locality.h);
+// `ranks` describes what --ranks does for this command. RankOptionsOf reads them back, refusing
+// --partition or --cut-placement without --ranks.
+struct RankOptions {
+  int32_t ranks = 0;  // 0: not asked
+  std::string partition = "hilbert";
+  CutPlacement placement = CutPlacement::kLast;
+};
+struct RankOptionText {
+  std::string ranks, partition = "hilbert", placement = "last";
+};
+void AddRankOptions(po::options_description& desc, RankOptionText* text, const char* ranks);
+RankOptions RankOptionsOf(const RankOptionText& text, const po::variables_map& vm);
 
 // The full command line, for run.json.
 const std::vector<std::string>& FullCommandLine();

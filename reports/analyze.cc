@@ -14,7 +14,6 @@
 #include "core/error.h"
 #include "core/mesh_io.h"
 #include "core/orderings/registry.h"
-#include "core/partition.h"
 #include "core/schedule.h"
 #include "reports/chunk_summary.h"
 #include "reports/inputs.h"
@@ -146,18 +145,12 @@ void CheckAnalyzeConfig(const AnalyzeConfig& cfg) {
         "--merge: the analysis was chosen by the chunk runs (no --sample-*, --vtk "
         "or --granularity here)");
   if (!cfg.format.empty()) ParseTraceFormat(cfg.format);
-  if (cfg.ranks < 0 || cfg.ranks > 65536) throw UsageError("--ranks must be 1..65536");
-  if (cfg.ranks > 0) {
-    CheckPartitionMethod(cfg.partition);
-    if (cfg.chunk || cfg.merge || cfg.transport || !cfg.format.empty() || !cfg.vtk.empty() ||
-        cfg.threads != 1)
-      throw UsageError(
-          "--ranks analyses each rank's part of a mesh (one stream per rank): no --chunk, "
-          "--merge, --format, --vtk or --threads with it");
-    for (const std::string& in : cfg.inputs)
-      if (ClassifyInput(in) != InputKind::kMesh)
-        throw UsageError("--ranks: " + in + " is not a mesh (each rank's part is a mesh's)");
-  }
+  if (cfg.ranks > 0 && (cfg.chunk || cfg.merge || cfg.transport || !cfg.format.empty() ||
+                        !cfg.vtk.empty() || cfg.threads != 1))
+    throw UsageError(
+        "--ranks analyses each rank's part of a mesh (one stream per rank): no --chunk, "
+        "--merge, --format, --vtk or --threads with it");
+  CheckRankParts(cfg.ranks, cfg.partition, cfg.inputs);
   if (cfg.orderings.empty()) throw UsageError("no ordering given");
   for (const std::string& o : cfg.orderings) CheckOrderingSpec(o);
   if (cfg.iterations < 1 || cfg.iterations > kMaxStreamSweeps)

@@ -1,11 +1,23 @@
 // Per-rank locality: see rank_locality.h.
 #include "reports/rank_locality.h"
 
+#include "core/error.h"
 #include "core/partition.h"
 #include "core/rank_part.h"
 #include "reports/distributed_smooth.h"
+#include "reports/inputs.h"
 
 namespace meshreuse {
+
+void CheckRankParts(int32_t ranks, const std::string& partition,
+                    const std::vector<std::string>& inputs) {
+  if (ranks < 0 || ranks > 65536) throw UsageError("--ranks must be 1..65536");
+  if (ranks == 0) return;
+  CheckPartitionMethod(partition);
+  for (const std::string& in : inputs)
+    if (ClassifyInput(in) != InputKind::kMesh)
+      throw UsageError("--ranks: " + in + " is not a mesh (each rank's part is a mesh's)");
+}
 
 void StreamRankParts(const RankLocalityConfig& cfg, const Log& log,
                      const std::function<AccessConsumer&(int32_t rank)>& to) {

@@ -31,6 +31,11 @@ struct RankLocalityConfig {
   SmoothOptions sweeps;  // exact sweeps; Gauss-Seidel runs per sweep (the rank's quality pass)
 };
 
+// UsageError unless ranks is 0 (no per-rank run) or 1..65536 with a known partition method and
+// every input a mesh.
+void CheckRankParts(int32_t ranks, const std::string& partition,
+                    const std::vector<std::string>& inputs);
+
 // Streams rank r's part, for r = 0..P-1 in turn, into the consumer to(r) returns (an analysis or a
 // simulation per rank), labelled "MESH [rank r of P]" and the ordering. UsageError: more ranks
 // than vertices, an unknown partition or ordering.

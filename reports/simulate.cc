@@ -5,7 +5,6 @@
 
 #include "core/error.h"
 #include "core/orderings/registry.h"
-#include "core/partition.h"
 #include "core/schedule.h"
 #include "reports/inputs.h"
 #include "reports/rank_locality.h"
@@ -23,17 +22,11 @@ void CheckSimulateConfig(const SimulateConfig& cfg) {
   if (cfg.threads < 1 || cfg.threads > kMaxThreads)
     throw UsageError("--threads must be 1.." + std::to_string(kMaxThreads));
   CheckStreamSweeps(cfg.iterations, cfg.threads);
-  if (cfg.ranks < 0 || cfg.ranks > 65536) throw UsageError("--ranks must be 1..65536");
-  if (cfg.ranks > 0) {
-    CheckPartitionMethod(cfg.partition);
-    if (!cfg.machine.empty() || !cfg.format.empty() || cfg.threads != 1)
-      throw UsageError(
-          "--ranks simulates each rank's part of a mesh (one stream per rank, private caches): "
-          "no --machine, --format or --threads with it");
-    for (const std::string& in : cfg.inputs)
-      if (ClassifyInput(in) != InputKind::kMesh)
-        throw UsageError("--ranks: " + in + " is not a mesh (each rank's part is a mesh's)");
-  }
+  if (cfg.ranks > 0 && (!cfg.machine.empty() || !cfg.format.empty() || cfg.threads != 1))
+    throw UsageError(
+        "--ranks simulates each rank's part of a mesh (one stream per rank, private caches): "
+        "no --machine, --format or --threads with it");
+  CheckRankParts(cfg.ranks, cfg.partition, cfg.inputs);
   for (const CacheLevel& c : cfg.cache.levels)
     if (c.ways == 0)
       throw UsageError("cache level " + c.name + " needs its associativity for simulation, e.g. " +

@@ -14,7 +14,6 @@
 #include "core/mesh_io.h"
 #include "core/orderings/registry.h"
 #include "core/output_file.h"
-#include "core/partition.h"
 #include "core/schedule.h"
 #include "core/table.h"
 #include "reports/inputs.h"
@@ -34,9 +33,8 @@ std::vector<std::string> TraceOutputs(const TraceConfig& cfg) {
 
 void CheckTraceConfig(const TraceConfig& cfg) {
   CheckOrderingSpec(cfg.ordering);
-  if (cfg.ranks < 0 || cfg.ranks > 65536) throw UsageError("--ranks must be 1..65536");
+  CheckRankParts(cfg.ranks, cfg.partition, {cfg.mesh});
   if (cfg.ranks > 0) {
-    CheckPartitionMethod(cfg.partition);
     if (cfg.threads != 1) throw UsageError("--ranks traces one stream per rank: no --threads");
     if (cfg.compress)
       throw UsageError("--ranks writes plain traces (compress each with zstd afterwards)");
