@@ -26,6 +26,7 @@ while IFS=$'\t' read -r file line msg kind; do
       cmds=("mesh generate --poly %s --vertices 1000 -o $tmp/generated") ;;
     summary) cmds=("analyze --merge %s") ;;
     perm) cmds=("smooth $data/two_interior.node --ordering file:%s" "reorder $data/two_interior.node -o $tmp/reordered --ordering file:%s") ;;
+    visit) cmds=("smooth $data/two_interior.node --visit-order %s") ;;
   esac
   for tmpl in "${cmds[@]}"; do
     # shellcheck disable=SC2059

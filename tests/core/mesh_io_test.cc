@@ -15,6 +15,7 @@
 #include "core/quality.h"
 #include "core/synthetic.h"
 #include "core/triangle_runner.h"
+#include "core/visit_order.h"
 #include "tests/test_util.h"
 #include "tracer/foreign_trace.h"
 #include "tracer/trace_reader.h"
@@ -170,8 +171,8 @@ struct BrokenCase {
   std::string file;
   int64_t line;
   std::string message;
-  // mesh, trace, text, u32, u64, perm, poly, summary (EXPECTED's 4th column); summaries belong
-  // to reports/ and are read by tests/reports/chunk_summary_test.cc.
+  // mesh, trace, text, u32, u64, perm, visit, poly, summary (EXPECTED's 4th column); summaries
+  // belong to reports/ and are read by tests/reports/chunk_summary_test.cc.
   std::string kind = "mesh";
 };
 
@@ -218,6 +219,8 @@ TEST_P(BrokenInput, FailsWithFileLineAndProblem) {
       }
     } else if (c.kind == "perm") {
       ComputeOrdering("file:" + path, testing::TwoInterior(), 1);
+    } else if (c.kind == "visit") {
+      ReadVisitOrder(path, testing::TwoInterior());
     } else if (c.kind == "poly") {
       if (FindProgram("triangle").empty()) GTEST_SKIP() << "Triangle is not installed";
       testing::TempDir out;
