@@ -12,6 +12,10 @@ Shards::Shards(const ShardsOptions& o)
     throw std::invalid_argument("the sampling rate must be in (0, 1]");
   threshold_ = o.s_max ? uint64_t{1} << 56 : static_cast<uint64_t>(std::ldexp(o.rate, 56));
   if (threshold_ == 0) threshold_ = 1;
+  if (o.exact_below) {
+    exact_ = std::make_shared<BoundedStackDistance>(o.exact_below);
+    small_.assign(o.exact_below, 0);
+  }
 }
 
 void Shards::Sampled(uint64_t id, uint64_t h) {
@@ -41,6 +45,8 @@ void Shards::Sampled(uint64_t id, uint64_t h) {
 Shards Shards::FromSampled(const ShardsOptions& o, uint64_t accesses,
                            const ReuseHistogram& sampled) {
   if (o.s_max) throw std::invalid_argument("Shards::FromSampled: fixed rate only");
+  if (o.exact_below)
+    throw std::invalid_argument("Shards::FromSampled: exact small distances need the whole stream");
   Shards s(o);
   s.accesses_ = accesses;
   s.samples_ = sampled.accesses();
@@ -59,12 +65,34 @@ Shards Shards::FromSampled(const ShardsOptions& o, uint64_t accesses,
 void Shards::Finish() {
   if (finished_) return;
   finished_ = true;
-  if (opt_.s_max || !opt_.adjust) return;
-  // SHARDS_adj: the expected weight is the access count; the shortfall (or excess) of the
-  // samples goes to the smallest distance.
-  const double diff = static_cast<double>(accesses_) - total_;
-  weight_[0] += diff;
-  total_ += diff;
+  if (!opt_.s_max && opt_.adjust) {
+    // SHARDS_adj: the expected weight is the access count; the shortfall (or excess) of the
+    // samples goes to the smallest distance.
+    const double diff = static_cast<double>(accesses_) - total_;
+    weight_[0] += diff;
+    total_ += diff;
+  }
+  if (!exact_) return;
+  // Below K the exact counts; at K and beyond (and cold) the sampled shape, scaled to carry the
+  // accesses the exact counts leave.
+  const uint64_t k = opt_.exact_below;
+  uint64_t small = 0;
+  for (uint64_t c : small_) small += c;
+  weight_.erase(weight_.begin(), weight_.lower_bound(k));
+  double rest = cold_;
+  for (const auto& kv : weight_) rest += kv.second;
+  const double target = static_cast<double>(accesses_ - small);
+  if (rest > 0) {
+    const double f = target / rest;
+    for (auto& kv : weight_) kv.second *= f;
+    cold_ *= f;
+  } else if (target > 0) {
+    weight_[k] += target;  // known to lie at K or beyond; the sample saw none
+  }
+  for (uint64_t d = 0; d < k; ++d)
+    if (small_[d]) weight_[d] = static_cast<double>(small_[d]);
+  total_ = static_cast<double>(accesses_);
+  exact_.reset();  // its memory is not needed any more
 }
 
 double Shards::MissRatio(uint64_t capacity) const {

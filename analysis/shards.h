@@ -11,14 +11,22 @@
 //     R_new/R_old), and the curve is normalised by the samples' total weight.
 // The estimate is a weighted histogram over scaled distances (round(d / R)): miss ratio at any
 // capacity, quantiles, mean. Memory: the exact analyzer over the sampled ids only.
+// Small distances (exact_below = K > 0): scaling by 1/R puts every sampled distance below 1/R at
+// 0 or 1/R, so the curve is coarsest where caches are small. With K, every access also goes
+// through an exact LRU stack of depth K (bounded_stack.h: memory O(K), not O(ids)); distances
+// below K are then counted exactly and replace the sampled weights below K, and the sampled
+// weights at K and beyond (and the cold ones) are scaled to carry exactly the remaining accesses.
+// The miss ratio at every capacity up to K is then exact. Serial streams only (not FromSampled).
 #pragma once
 
 #include <cstdint>
 #include <map>
+#include <memory>
 #include <queue>
 #include <utility>
 #include <vector>
 
+#include "analysis/bounded_stack.h"
 #include "analysis/reuse_histogram.h"
 #include "analysis/stack_distance.h"
 
@@ -28,7 +36,8 @@ struct ShardsOptions {
   double rate = 0.01;  // fixed rate (used when s_max == 0), in (0, 1]
   uint64_t s_max = 0;  // fixed size: ids tracked at most (0: fixed rate)
   uint64_t seed = 1;
-  bool adjust = true;  // SHARDS_adj (fixed rate only)
+  bool adjust = true;        // SHARDS_adj (fixed rate only)
+  uint32_t exact_below = 0;  // K: distances below K counted exactly (0: off)
 };
 
 class Shards {
@@ -36,6 +45,10 @@ class Shards {
   explicit Shards(const ShardsOptions& o);
   void Access(uint64_t id) {
     ++accesses_;
+    if (exact_) {
+      const uint64_t d = exact_->Access(id);
+      if (d != BoundedStackDistance::kFar) ++small_[d];
+    }
     const uint64_t h = Hash(id);
     if (h >= threshold_) return;
     Sampled(id, h);
@@ -61,7 +74,12 @@ class Shards {
   double MissRatio(uint64_t capacity) const;  // distances >= capacity, and cold, over total
   double Mean() const;                        // of the finite scaled distances
   uint64_t Quantile(double x) const;          // as ReuseHistogram::Quantile, weighted
-  size_t MemoryBytes() const { return sd_.MemoryBytes() + heap_.size() * 16 + weight_.size() * 48; }
+  size_t MemoryBytes() const {
+    return sd_.MemoryBytes() + heap_.size() * 16 + weight_.size() * 48 +
+           (exact_ ? exact_->depth() * size_t{80} : 0);
+  }
+  // With exact_below: the accesses at each distance below K, counted exactly.
+  const std::vector<uint64_t>& exact_small() const { return small_; }
 
  private:
   uint64_t Hash(uint64_t id) const {
@@ -83,6 +101,8 @@ class Shards {
   double total_ = 0, cold_ = 0, distinct_ = 0;
   uint64_t accesses_ = 0, samples_ = 0;
   bool finished_ = false;
+  std::shared_ptr<BoundedStackDistance> exact_;  // with exact_below (shared: Shards is copied)
+  std::vector<uint64_t> small_;
 };
 
 // The exact miss ratio at every capacity 1..max distance + 1 against the estimate: the mean

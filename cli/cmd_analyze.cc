@@ -21,7 +21,8 @@ int AnalyzeCommand(const Args& args, ChunkTransport* transport) {
   AnalyzeConfig cfg;
   std::string orderings = "ori", granularity, quantiles = "50,75,90,100", cache = "westmere-ex",
               mode = "gauss-seidel", hist_csv, prof_csv, mrc_csv, out_dir, measured, triangle_order,
-              seed = "1", sample_size, element_bytes = "66", line_bytes = "64", chunk, rank_stats;
+              seed = "1", sample_size, sample_exact_below, element_bytes = "66", line_bytes = "64",
+              chunk, rank_stats;
   RankOptionText rank_text;
   double sample_rate = 0;
   desc.add_options()(
@@ -58,6 +59,10 @@ int AnalyzeCommand(const Args& args, ChunkTransport* transport) {
                        "approximate instead: SHARDS at this fixed rate (e.g. 0.01)")(
       "sample-size", po::value(&sample_size),
       "approximate instead: SHARDS tracking at most this many ids (fixed size)")(
+      "sample-exact-below", po::value(&sample_exact_below),
+      "with --sample-*: count the distances below K exactly (every access through an exact LRU "
+      "stack of depth K, memory O(K)); the miss ratio at every capacity up to K is then exact, "
+      "where SHARDS' scaling is coarsest (e.g. the L1 or L2 capacity in elements or lines)")(
       "sample-error",
       "with --sample-*: run the exact analysis too and report the miss-ratio curve's mean "
       "absolute error")("histogram-csv", po::value(&hist_csv),
@@ -128,6 +133,11 @@ int AnalyzeCommand(const Args& args, ChunkTransport* transport) {
   cfg.shards.rate = cfg.sample && !cfg.shards.s_max ? sample_rate : 1;
   cfg.shards.seed = cfg.seed;
   cfg.sample_error = vm.count("sample-error") > 0;
+  if (!sample_exact_below.empty()) {
+    if (!cfg.sample) throw UsageError("--sample-exact-below needs --sample-rate or --sample-size");
+    cfg.shards.exact_below = static_cast<uint32_t>(
+        ParseCount(sample_exact_below, "--sample-exact-below", 1, uint64_t{1} << 26));
+  }
   if (cfg.sample_error && !cfg.sample)
     throw UsageError("--sample-error needs --sample-rate or --sample-size");
   if (!chunk.empty()) cfg.chunk = ParseChunk(chunk);

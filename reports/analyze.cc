@@ -360,11 +360,16 @@ Table MrcTable(const AnalyzeResult& r) {
 std::vector<std::string> AnalyzeNotes(const AnalyzeResult& r, const AnalyzeConfig& cfg) {
   std::vector<std::string> n;
   if (cfg.sample)
-    n.push_back("(SHARDS estimates, seed " + std::to_string(cfg.shards.seed) +
-                ": distances scaled by 1/rate; misses = accesses x the estimated miss ratio at "
-                "each capacity; mrc_mae = mean |exact - estimated| miss ratio over every "
-                "capacity, LEVEL_miss_ratio_error = estimated - exact at the level's capacity, "
-                "with --sample-error)");
+    n.push_back(
+        "(SHARDS estimates, seed " + std::to_string(cfg.shards.seed) +
+        ": distances scaled by 1/rate; misses = accesses x the estimated miss ratio at "
+        "each capacity; mrc_mae = mean |exact - estimated| miss ratio over every "
+        "capacity, LEVEL_miss_ratio_error = estimated - exact at the level's capacity, "
+        "with --sample-error" +
+        (cfg.shards.exact_below
+             ? "; distances below " + std::to_string(cfg.shards.exact_below) + " counted exactly"
+             : std::string()) +
+        ")");
   else
     n.push_back(
         "(distances in distinct elements or lines; sum exact; misses: fully associative "
@@ -419,6 +424,7 @@ Json AnalyzeConfigJson(const AnalyzeConfig& cfg, const AnalyzeResult& r) {
   j["sample_rate"] = cfg.sample && !cfg.shards.s_max ? Json(cfg.shards.rate) : Json(nullptr);
   j["sample_size"] = cfg.shards.s_max;
   j["sample_seed"] = cfg.shards.seed;
+  j["sample_exact_below"] = cfg.shards.exact_below;
   return j;
 }
 

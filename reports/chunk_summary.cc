@@ -568,6 +568,10 @@ SummaryFile SummarizeChunk(const AnalyzeConfig& cfg, uint32_t r, uint32_t p, con
     throw UsageError(
         "a chunked analysis samples at a fixed rate (--sample-rate): a fixed-size sample's "
         "threshold depends on every id before it (run --sample-size serially)");
+  if (cfg.sample && cfg.shards.exact_below)
+    throw UsageError(
+        "--sample-exact-below counts the small distances of the whole stream in order: run it "
+        "serially (or with --threads), not in chunks or ranks");
   if (cfg.threads != 1 && !mesh)
     throw UsageError("each chunk is analysed on one thread: run more chunks (ranks) instead");
   if (mesh) return SummarizeMeshChunk(cfg, r, p, log);

@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -69,6 +70,46 @@ TEST(Shards, SampledCurvesAreClose) {
   Both b = Sample(mesh, o);
   EXPECT_LT(MrcMeanAbsoluteError(b.exact, b.est), 0.02);
   EXPECT_LT(b.est.rate(), 0.05);
+}
+
+// With exact_below K the miss ratio at every capacity up to K is the exact one (the small
+// distances are counted, not sampled), where plain SHARDS at 1% is coarsest; beyond K the curve is
+// still the sampled one, close to the exact.
+TEST(Shards, ExactBelowKMakesTheSmallCapacitiesExact) {
+  const std::vector<uint64_t> mesh = MeshLikeTrace(200000, 3000000, 0.1, 5);
+  const std::vector<uint64_t> uni = UniformTrace(100000, 2000000, 6);
+  for (const auto* t : {&mesh, &uni})
+    for (uint64_t s_max : {uint64_t{0}, uint64_t{3000}}) {
+      ShardsOptions o;
+      o.rate = 0.01;
+      o.s_max = s_max;
+      Both plain = Sample(*t, o);
+      o.exact_below = 512;
+      Both b = Sample(*t, o);
+      const double n = static_cast<double>(t->size());
+      double worst_plain = 0;
+      for (const MrcPoint& p : MissRatioCurve(b.exact)) {
+        const double exact = static_cast<double>(p.misses) / n;
+        if (p.capacity <= 512) {
+          ASSERT_NEAR(b.est.MissRatio(p.capacity), exact, 1e-9) << "capacity " << p.capacity;
+          worst_plain = std::max(worst_plain, std::fabs(plain.est.MissRatio(p.capacity) - exact));
+        }
+      }
+      if (t == &mesh) {
+        EXPECT_GT(worst_plain, 0.05);  // what the correction corrects
+      }
+      // A quantile below K is close, not exact: quantiles are over the finite distances, and how
+      // the accesses beyond K split between far and cold is still the sample's estimate.
+      for (double q : {0.25, 0.5, 0.75, 0.9}) {
+        const double e = static_cast<double>(b.exact.Quantile(q));
+        if (e < 512) {
+          EXPECT_NEAR(static_cast<double>(b.est.Quantile(q)), e, 0.05 * e + 1) << q;
+        }
+      }
+      EXPECT_NEAR(b.est.total_weight(), n, 1e-6 * n);
+      EXPECT_LT(MrcMeanAbsoluteError(b.exact, b.est), 0.03);
+      EXPECT_THROW(Shards::FromSampled(o, 10, ReuseHistogram()), std::invalid_argument);
+    }
 }
 
 TEST(Shards, SeededAndBounded) {

@@ -270,6 +270,19 @@ contains "sample rate 1" ",mrc_mae,L1_miss_ratio_error,L2_miss_ratio_error"
 contains "sample rate 1" ",0,0,0"
 check "sample size" 0 "$bin" analyze "$tmp/scan.u64" --format u64 --granularity element --sample-size 100 --csv --quiet
 contains "sample size" ",fixed-size,"
+# Small distances counted exactly: at 1% on a mesh the L1 and L2 capacities (8 and 64 lines here)
+# fall below K = 64 + 1, so their miss-ratio errors are exactly 0 where plain SHARDS' are not.
+check "sample exact below" 0 "$bin" analyze "$data/plate41.msh" -k 3 --granularity line --sample-rate 0.01 \
+  --sample-exact-below 65 --sample-error --cache L1=512/8,L2=4K/8 --csv --quiet
+levels_exact() {  # the last two columns (L1 and L2 miss-ratio errors) of the last row within 1e-12
+  tail -n 1 "$tmp/out" | awk -F, '{e1 = $(NF-1); e2 = $NF; exit !((e1 < 1e-12 && e1 > -1e-12) && (e2 < 1e-12 && e2 > -1e-12))}'
+}
+if levels_exact; then pass=$((pass + 1)); else fail=$((fail + 1)); echo "FAIL sample exact below: L1/L2 errors not 0"; cat "$tmp/out"; fi
+check "sample exact below: plain" 0 "$bin" analyze "$data/plate41.msh" -k 3 --granularity line --sample-rate 0.01 \
+  --sample-error --cache L1=512/8,L2=4K/8 --csv --quiet
+if levels_exact; then fail=$((fail + 1)); echo "FAIL plain SHARDS exact at L1 and L2 already: the test shows nothing"; else pass=$((pass + 1)); fi
+check "sample exact below without sampling" 2 "$bin" analyze "$data/plate41.msh" --sample-exact-below 64
+check "sample exact below in chunks" 2 "$bin" analyze "$data/plate41.msh" --sample-rate 0.1 --sample-exact-below 64 --chunk 0/2 --summary-out "$tmp/s0"
 check "sample both" 2 "$bin" analyze "$tmp/scan.u64" --format u64 --sample-size 100 --sample-rate 0.1
 check "sample rate range" 2 "$bin" analyze "$tmp/scan.u64" --format u64 --sample-rate 1.5
 check "mrc csv" 0 "$bin" analyze "$tmp/scan.u64" --format u64 --granularity element --mrc-csv "$tmp/mrc.csv" --quiet
