@@ -31,8 +31,8 @@ int DistSmoothCommand(const Args& args, HaloTransport& tx) {
       "cut-placement", po::value(&placement)->default_value("last"),
       "where each part keeps its cut vertices: last (after the non-cut ones, which move while the "
       "lower colours' ghosts arrive), first (moved and sent first; the non-cut ones move while "
-      "they travel) or interleaved (where the ordering puts them; a colour waits for the whole "
-      "sweep of the lower ones); each equals its own serial order (--pi-out)")(
+      "they travel) or interleaved (where the ordering puts them; a rank waits for the whole "
+      "sweeps of its lower-coloured neighbours); each equals its own serial order (--pi-out)")(
       "mode", po::value(&mode)->default_value("ordered"),
       "ordered: Gauss-Seidel, bit for bit the serial sweep along pi (--pi-out); jacobi: bit for "
       "bit the serial Jacobi; hybrid: ghosts refreshed once per sweep (no serial equal; timing "
@@ -111,7 +111,7 @@ int DistSmoothCommand(const Args& args, HaloTransport& tx) {
 
 int DistSmoothThreads(const Args& args) {
   Args rest;
-  std::string ranks_text = "2";
+  std::string ranks_text;
   bool help = false;
   for (size_t i = 0; i < args.size(); ++i) {
     if (args[i] == "--ranks" || args[i] == "-P") {
@@ -134,6 +134,7 @@ int DistSmoothThreads(const Args& args) {
     HaloThreads::Run(1, [&](HaloTransport& tx) { DistSmoothCommand(rest, tx); });
     return 0;
   }
+  if (ranks_text.empty()) throw UsageError("--ranks P is required (the number of ranks)");
   // Every rank holds a copy of the mesh; a thread per rank beyond a few thousand is a mistake.
   const auto ranks = static_cast<int32_t>(ParseCount(ranks_text, "--ranks", 1, 4096));
   HaloThreads::Run(ranks, [&](HaloTransport& tx) { DistSmoothCommand(rest, tx); });

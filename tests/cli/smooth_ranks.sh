@@ -106,6 +106,8 @@ check "trace --partition without --ranks" 2 "$bin" trace "$fine" --partition met
 check "ranks 0" 2 "$bin" smooth-ranks "$fine" --ranks 0
 contains "ranks 0 named" "--ranks"
 check "ranks without a value" 2 "$bin" smooth-ranks "$fine" --ranks
+check "ranks not given" 2 "$bin" smooth-ranks "$fine"
+contains "ranks not given: said" "--ranks P is required"
 check "more ranks than vertices" 2 "$bin" smooth-ranks "$data/plate41.msh" --ranks 4000 --quiet
 contains "more ranks than vertices: said" "at most one rank per vertex"
 check "missing mesh" 2 "$bin" smooth-ranks "$tmp/none.node" --ranks 3 --quiet
