@@ -13,7 +13,7 @@ Shards::Shards(const ShardsOptions& o)
   threshold_ = o.s_max ? uint64_t{1} << 56 : static_cast<uint64_t>(std::ldexp(o.rate, 56));
   if (threshold_ == 0) threshold_ = 1;
   if (o.exact_below) {
-    exact_ = std::make_shared<BoundedStackDistance>(o.exact_below);
+    exact_ = std::make_unique<BoundedStackDistance>(o.exact_below);
     small_.assign(o.exact_below, 0);
   }
 }

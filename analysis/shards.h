@@ -101,7 +101,7 @@ class Shards {
   double total_ = 0, cold_ = 0, distinct_ = 0;
   uint64_t accesses_ = 0, samples_ = 0;
   bool finished_ = false;
-  std::shared_ptr<BoundedStackDistance> exact_;  // with exact_below (shared: Shards is copied)
+  std::unique_ptr<BoundedStackDistance> exact_;  // with exact_below
   std::vector<uint64_t> small_;
 };
 
