@@ -10,6 +10,7 @@
 #include "cli/common.h"
 #include "core/error.h"
 #include "core/halo_threads.h"
+#include "core/mesh_file.h"
 #include "core/mesh_io.h"
 #include "core/orderings/registry.h"
 #include "core/output_file.h"
@@ -25,8 +26,12 @@ int DistSmoothCommand(const Args& args, HaloTransport& tx) {
   desc.add_options()("mesh", po::value(&cfg.mesh)->required(), "mesh file")(
       "partition", po::value(&cfg.partition)->default_value("hilbert"),
       "hilbert: contiguous ranges of the Hilbert order (balanced to a vertex); metis: METIS "
-      "k-way, seeded")("ordering", po::value(&cfg.ordering)->default_value("ori"),
-                       ("each rank's layout of its part: " + OrderingNames()).c_str())(
+      "k-way, seeded; ranges: contiguous ranges of the stored ids. For a mesh file (FILE.mrm, "
+      "written by `meshreuse mesh convert MESH -o FILE.mrm` in Hilbert order) the default is "
+      "ranges, and each rank then reads only its range and ghost ring (the other methods read "
+      "the whole file on every rank)")(
+      "ordering", po::value(&cfg.ordering)->default_value("ori"),
+      ("each rank's layout of its part: " + OrderingNames()).c_str())(
       "seed", po::value(&seed)->default_value("1"), "seed of METIS and seeded orderings")(
       "cut-placement", po::value(&placement)->default_value("last"),
       "where each part keeps its cut vertices: last (after the non-cut ones, which move while the "
@@ -41,7 +46,7 @@ int DistSmoothCommand(const Args& args, HaloTransport& tx) {
       "max-iters", po::value(&cfg.smooth.max_iters)->default_value(100),
       "at most this many sweeps")(
       "output,o", po::value(&cfg.output),
-      "write the smoothed mesh (PATH.vtk or a .node/.ele prefix), gathered on rank 0")(
+      "write the smoothed mesh (PATH.vtk, PATH.mrm or a .node/.ele prefix), gathered on rank 0")(
       "pi-out", po::value(&cfg.pi_out),
       "write the serial visit order this run equals (ordered mode): `meshreuse smooth MESH "
       "--visit-order FILE` reproduces the run bit for bit")(
@@ -52,14 +57,16 @@ int DistSmoothCommand(const Args& args, HaloTransport& tx) {
   po::variables_map vm;
   if (!ParseOptions(
           args,
-          "smooth MESH [--partition hilbert|metis] [--ordering NAME] [--mode "
+          "smooth MESH [--partition hilbert|metis|ranges] [--ordering NAME] [--mode "
           "ordered|jacobi|hybrid] [-o OUT] [--pi-out FILE]",
-          "Laplacian smoothing across the ranks of an MPI job: each rank reads MESH, keeps "
-          "its part and one ring of ghosts, and smooths it; rank 0 gathers the result. "
+          "Laplacian smoothing across the ranks of an MPI job: each rank reads MESH (of a "
+          "mesh file FILE.mrm, only its range and ghost ring), keeps its part and one ring of "
+          "ghosts, and smooths it; rank 0 gathers the result. "
           "The global quality is summed exactly, so it and the number of sweeps are the "
           "same for any number of ranks.",
           desc, pos, vm))
     return 0;
+  if (vm["partition"].defaulted() && IsMeshFilePath(cfg.mesh)) cfg.partition = "ranges";
   cfg.seed = ParseCount(seed, "--seed", 0, UINT64_MAX >> 1);
   cfg.smooth.mode = ParseHaloMode(mode);
   cfg.placement = ParseCutPlacement(placement);

@@ -6,6 +6,7 @@
 
 #include "cli/common.h"
 #include "core/error.h"
+#include "core/mesh_file.h"
 #include "core/mesh_io.h"
 #include "core/output_file.h"
 #include "core/refine.h"
@@ -24,8 +25,9 @@ int MeshRefine(const Args& args) {
       "move each new vertex off the coarse boundary by up to JITTER/2 of the local fine spacing "
       "in x and y (0..0.5; areas stay positive)")("seed", po::value(&o.seed)->default_value(1),
                                                   "seed of the jitter")(
-      "output,o", po::value(&out)->required(), "PATH.vtk, or a prefix for .node/.ele")(
-      "quiet,q", "no progress on stderr");
+      "output,o", po::value(&out)->required(),
+      "PATH.vtk, PATH.mrm (the distributed mesh file, in Hilbert order), or a prefix for "
+      ".node/.ele")("quiet,q", "no progress on stderr");
   po::positional_options_description pos;
   pos.add("mesh", 1);
   po::variables_map vm;
@@ -46,7 +48,7 @@ int MeshRefine(const Args& args) {
                Grouped(size.triangles));
   RawMesh raw = RefineMesh(coarse, o);
   const uint64_t hash = MeshContentHash(raw.xy, raw.tri);
-  const Mesh fine = BuildMesh(std::move(raw));
+  Mesh fine = BuildMesh(std::move(raw));
   std::printf("coarse     %s vertices, %s triangles, %s edges\n",
               Grouped(coarse.NumVertices()).c_str(), Grouped(coarse.NumTriangles()).c_str(),
               Grouped(size.edges).c_str());
@@ -54,6 +56,8 @@ int MeshRefine(const Args& args) {
               Grouped(fine.NumVertices()).c_str(), Grouped(fine.NumTriangles()).c_str(), o.levels,
               o.jitter, o.seed);
   std::printf("hash       %016" PRIx64 "\n", hash);
+  // The hash is of the refinement's own ids; a mesh file stores them in Hilbert order.
+  if (IsMeshFilePath(out)) LayOutForRanks(&fine);
   for (const std::string& f : WriteMesh(fine, out)) std::printf("wrote %s\n", f.c_str());
   return 0;
 }

@@ -53,6 +53,7 @@ class HaloTransport {
   virtual FixedSum SumAll(const FixedSum& mine) = 0;            // the sum over all ranks
   // Rank 0 gets every rank's bytes (by rank); the others an empty vector.
   virtual std::vector<std::string> Gather(const std::string& mine) = 0;
+  virtual std::vector<std::string> AllGather(const std::string& mine) = 0;  // every rank, all
 };
 
 enum class HaloMode { kOrdered, kJacobi, kHybrid };

@@ -39,6 +39,12 @@ class HaloThreads::Endpoint : public HaloTransport {
     return net_.sum_;
   }
   std::vector<std::string> Gather(const std::string& mine) override {
+    std::vector<std::string> all = AllGather(mine);
+    if (rank_ != 0) all.clear();
+    return all;
+  }
+  // A rank reads `gathered_` before the next collective can complete: that needs it to arrive.
+  std::vector<std::string> AllGather(const std::string& mine) override {
     std::unique_lock<std::mutex> lock(net_.mu_);
     const uint64_t round = net_.round_;
     net_.slots_.resize(net_.size_);
@@ -49,7 +55,7 @@ class HaloThreads::Endpoint : public HaloTransport {
       Complete();
     }
     net_.Wait(lock, [&] { return net_.round_ != round; });
-    return rank_ == 0 ? net_.gathered_ : std::vector<std::string>();
+    return net_.gathered_;
   }
 
  private:

@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "core/error.h"
+#include "core/mesh_file.h"
 #include "core/quality.h"
 
 namespace meshreuse {
@@ -26,6 +27,7 @@ bool Exists(const std::string& p) { return ::access(p.c_str(), F_OK) == 0; }
 
 RawMesh ReadRawMesh(const std::string& path) {
   if (EndsWith(path, ".msh")) return ReadGmsh(path);
+  if (EndsWith(path, ".mrm")) return ReadMeshFileRaw(path);
   if (EndsWith(path, ".node"))
     return ReadTriangleFiles(path, path.substr(0, path.size() - 5) + ".ele");
   if (EndsWith(path, ".ele"))
@@ -88,7 +90,7 @@ void WritePermutation(const std::vector<int32_t>& new_to_old, const std::string&
 }
 
 std::vector<std::string> MeshOutputFiles(const std::string& target) {
-  if (EndsWith(target, ".vtk")) return {target};
+  if (EndsWith(target, ".vtk") || EndsWith(target, ".mrm")) return {target};
   const std::string prefix =
       EndsWith(target, ".node") ? target.substr(0, target.size() - 5) : target;
   // "" or "dir/" would write the hidden files ".node" and ".ele": a prefix must name a file.
@@ -105,7 +107,8 @@ std::vector<std::string> InputFiles(const std::vector<std::string>& inputs) {
       prefix = p.substr(0, p.size() - 5);
     else if (EndsWith(p, ".ele"))
       prefix = p.substr(0, p.size() - 4);
-    else if (!EndsWith(p, ".msh") && (Exists(p + ".node") || Exists(p + ".ele")))
+    else if (!EndsWith(p, ".msh") && !EndsWith(p, ".mrm") &&
+             (Exists(p + ".node") || Exists(p + ".ele")))
       prefix = p;
     if (prefix.empty()) {
       out.push_back(p);
@@ -120,6 +123,10 @@ std::vector<std::string> InputFiles(const std::vector<std::string>& inputs) {
 std::vector<std::string> WriteMesh(const Mesh& m, const std::string& target) {
   if (EndsWith(target, ".vtk")) {
     WriteVtk(m, target);
+    return {target};
+  }
+  if (EndsWith(target, ".mrm")) {
+    WriteMeshFile(m, target);
     return {target};
   }
   std::string prefix = target;

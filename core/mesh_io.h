@@ -3,7 +3,8 @@
 // temporary renamed when complete; devices and FIFOs written in place; .node and .ele as a unit).
 // Formats: Triangle .node/.ele (Shewchuk; any attribute and marker columns, numbering from 0 or 1,
 // linear or quadratic triangles), Gmsh .msh 2.2 and 4.1 ASCII and 4.1 binary (triangles; other
-// element types are skipped and counted), VTK legacy ASCII (write only, for ParaView).
+// element types are skipped and counted), the distributed mesh file .mrm (mesh_file.h), VTK legacy
+// ASCII (write only, for ParaView).
 #pragma once
 
 #include <cstdio>
@@ -20,8 +21,8 @@ RawMesh ReadTriangleFiles(const std::string& node_path, const std::string& ele_p
 RawMesh ReadGmsh(const std::string& msh_path);
 RawMesh ReadGmshBinary(const std::string& msh_path);  // 4.1 binary; ReadGmsh picks it itself
 
-// Picks the reader from the path: FILE.msh; FILE.node or FILE.ele (the other one beside it); or a
-// prefix P with P.node and P.ele.
+// Picks the reader from the path: FILE.msh; FILE.mrm (mesh_file.h); FILE.node or FILE.ele (the
+// other one beside it); or a prefix P with P.node and P.ele.
 RawMesh ReadRawMesh(const std::string& path);
 
 // Read + BuildMesh. Reader and builder warnings (skipped elements, dropped vertices) go to
@@ -38,7 +39,9 @@ struct VtkField {
 // Writes a VTK legacy unstructured grid with vertex quality, boundary flag and triangle quality,
 // and `fields` as further point data (ParaView shows each).
 void WriteVtk(const Mesh& m, const std::string& path, const std::vector<VtkField>& fields = {});
-// -o target: PATH.vtk writes VTK; anything else is a prefix for .node/.ele. Returns files written.
+// -o target: PATH.vtk writes VTK, PATH.mrm the distributed mesh file (as stored: lay it out in
+// Hilbert order first, LayOutForRanks); anything else is a prefix for .node/.ele. Returns files
+// written.
 std::vector<std::string> WriteMesh(const Mesh& m, const std::string& target);
 // The files WriteMesh(target) writes, and the files a path names as input (a mesh's .node and
 // .ele for FILE.node, FILE.ele or a prefix; the path itself otherwise): what an output must be

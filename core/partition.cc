@@ -6,6 +6,7 @@
 #include "core/error.h"
 #include "core/orderings/metis_graph.h"
 #include "core/orderings/registry.h"
+#include "core/rank_neighbourhood.h"
 #include "core/stdout_guard.h"
 
 namespace meshreuse {
@@ -48,14 +49,23 @@ std::vector<int32_t> MetisParts(const Mesh& m, int32_t parts, uint64_t seed) {
   return std::vector<int32_t>(p.begin(), p.end());
 }
 
+std::vector<int32_t> RangeParts(const Mesh& m, int32_t parts) {
+  CheckParts(m, parts);
+  const int64_t n = m.NumVertices();
+  std::vector<int32_t> part(n);
+  for (int64_t v = 0; v < n; ++v) part[v] = RangeOwner(v, n, parts);
+  return part;
+}
+
 void CheckPartitionMethod(const std::string& method) {
-  if (method != "hilbert" && method != "metis")
-    throw UsageError("--partition must be hilbert or metis, not '" + method + "'");
+  if (method != "hilbert" && method != "metis" && method != "ranges")
+    throw UsageError("--partition must be hilbert, metis or ranges, not '" + method + "'");
 }
 
 std::vector<int32_t> PartsByMethod(const Mesh& m, const std::string& method, int32_t parts,
                                    uint64_t seed) {
   CheckPartitionMethod(method);
+  if (method == "ranges") return RangeParts(m, parts);
   return method == "metis" ? MetisParts(m, parts, seed) : HilbertRangeParts(m, parts);
 }
 
@@ -107,17 +117,25 @@ PartitionStats MeasurePartition(const Mesh& m, const std::vector<int32_t>& part,
     std::sort(pnbr[p].begin(), pnbr[p].end());
     pnbr[p].erase(std::unique(pnbr[p].begin(), pnbr[p].end()), pnbr[p].end());
   }
-  s.colour.assign(parts, -1);
+  s.colour = GreedyPartColouring(pnbr, &s.colours);
+  return s;
+}
+
+std::vector<int32_t> GreedyPartColouring(const std::vector<std::vector<int32_t>>& neighbours,
+                                         int32_t* colours) {
+  const int32_t parts = static_cast<int32_t>(neighbours.size());
+  std::vector<int32_t> colour(parts, -1);
+  *colours = 0;
   for (int32_t p = 0; p < parts; ++p) {
-    std::vector<uint8_t> used(pnbr[p].size() + 1, 0);
-    for (int32_t q : pnbr[p])
-      if (q < p && s.colour[q] < static_cast<int32_t>(used.size())) used[s.colour[q]] = 1;
+    std::vector<uint8_t> used(neighbours[p].size() + 1, 0);
+    for (int32_t q : neighbours[p])
+      if (q < p && colour[q] < static_cast<int32_t>(used.size())) used[colour[q]] = 1;
     int32_t c = 0;
     while (used[c]) ++c;
-    s.colour[p] = c;
-    s.colours = std::max(s.colours, c + 1);
+    colour[p] = c;
+    *colours = std::max(*colours, c + 1);
   }
-  return s;
+  return colour;
 }
 
 }  // namespace meshreuse

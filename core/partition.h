@@ -18,7 +18,12 @@ std::vector<int32_t> HilbertRangeParts(const Mesh& m, int32_t parts);
 // METIS_PartGraphKway into `parts` parts, seeded (one part: all zero).
 std::vector<int32_t> MetisParts(const Mesh& m, int32_t parts, uint64_t seed);
 
-// "hilbert" or "metis" (UsageError naming --partition otherwise).
+// Part p holds the ids [n p / P, n (p + 1) / P) as stored (RangeOwner): the partition a
+// distributed read of a mesh file takes (rank_neighbourhood.h), Hilbert ranges when the file is in
+// Hilbert order.
+std::vector<int32_t> RangeParts(const Mesh& m, int32_t parts);
+
+// "hilbert", "metis" or "ranges" (UsageError naming --partition otherwise).
 void CheckPartitionMethod(const std::string& method);
 std::vector<int32_t> PartsByMethod(const Mesh& m, const std::string& method, int32_t parts,
                                    uint64_t seed);
@@ -33,6 +38,10 @@ struct PartitionStats {
   int32_t colours = 0;
   double imbalance() const;  // max owned / mean owned
 };
+// The greedy colouring of the part graph (`neighbours[p]`: the parts next to p, symmetric), parts
+// in id order, each the least colour no lower neighbour has; `colours` gets the count.
+std::vector<int32_t> GreedyPartColouring(const std::vector<std::vector<int32_t>>& neighbours,
+                                         int32_t* colours);
 // Throws InputError(name, 0, ...) for a part outside [0, parts).
 PartitionStats MeasurePartition(const Mesh& m, const std::vector<int32_t>& part, int32_t parts,
                                 const std::string& name = "partition");

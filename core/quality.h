@@ -39,12 +39,19 @@ double GlobalQuality(const Mesh& m);
 // corner). Global quality = sum_t weight[t] * q[t], which lets a sweep update it from the moved
 // vertex's triangles alone.
 std::vector<double> GlobalQualityWeights(const Mesh& m);
-inline double GlobalQualityWeight(const Mesh& m, int32_t t) {
-  const double inv_v = 1.0 / static_cast<double>(m.NumVertices());
+// The weight from 1 / V and the triangle counts at its corners, in corner order: the one
+// expression every layout uses (a rank that sees only its neighbourhood gets the same bits).
+inline double QualityWeightOf(double inv_v, int64_t n0, int64_t n1, int64_t n2) {
   double w = 0.0;
-  for (int k = 0; k < 3; ++k)
-    w += inv_v / static_cast<double>(m.v2t.RowSize(m.tri[3 * int64_t{t} + k]));
+  w += inv_v / static_cast<double>(n0);
+  w += inv_v / static_cast<double>(n1);
+  w += inv_v / static_cast<double>(n2);
   return w;
+}
+inline double GlobalQualityWeight(const Mesh& m, int32_t t) {
+  const int32_t* c = &m.tri[3 * int64_t{t}];
+  return QualityWeightOf(1.0 / static_cast<double>(m.NumVertices()), m.v2t.RowSize(c[0]),
+                         m.v2t.RowSize(c[1]), m.v2t.RowSize(c[2]));
 }
 
 struct QualitySummary {

@@ -30,9 +30,16 @@ CutPlacement ParseCutPlacement(const std::string& s) {
   throw UsageError("--cut-placement must be last, first or interleaved, not '" + s + "'");
 }
 
-RankPart BuildRankPart(const Mesh& m, const std::vector<int32_t>& part, int32_t parts,
-                       const std::vector<int32_t>& colour, int32_t rank,
-                       const std::string& ordering, uint64_t seed, CutPlacement placement) {
+namespace {
+
+// The part from `m`, a mesh holding at least the rank's vertices and their ghost ring with the
+// owned vertices' rows complete: the whole mesh (gid and weight null: ids are global, weights
+// computed from it) or a rank's neighbourhood (local ids increasing with the global ids `gid`,
+// `weight` per triangle given).
+RankPart BuildPart(const Mesh& m, const std::vector<int32_t>& part, int32_t parts,
+                   const std::vector<int32_t>& colour, int32_t rank, const std::string& ordering,
+                   uint64_t seed, CutPlacement placement, const int64_t* gid,
+                   const double* weight) {
   const int32_t n = m.NumVertices();
   if (static_cast<int64_t>(part.size()) != n || static_cast<int32_t>(colour.size()) != parts ||
       rank < 0 || rank >= parts)
@@ -112,10 +119,12 @@ RankPart BuildRankPart(const Mesh& m, const std::vector<int32_t>& part, int32_t 
   p.total = static_cast<int32_t>(mine.size());
   p.gid.resize(mine.size());
   p.xy.resize(2 * mine.size());
+  std::vector<int32_t> vert(mine.size());  // local -> vertex of `m`
   int32_t ends[4] = {0, 0, 0, 0};
   for (int32_t k = 0; k < p.total; ++k) {
     const int32_t v = mine[at[k]];
-    p.gid[k] = v;
+    p.gid[k] = gid ? gid[v] : v;
+    vert[k] = v;
     p.xy[2 * int64_t{k}] = m.xy[2 * int64_t{v}];
     p.xy[2 * int64_t{k} + 1] = m.xy[2 * int64_t{v} + 1];
     local[v] = k;
@@ -128,7 +137,7 @@ RankPart BuildRankPart(const Mesh& m, const std::vector<int32_t>& part, int32_t 
   // Neighbour rows of the movable vertices, in the serial mesh's (increasing global id) order.
   p.v2v.off.assign(p.movable + 1, 0);
   for (int32_t k = 0; k < p.movable; ++k) {
-    const int32_t v = static_cast<int32_t>(p.gid[k]);
+    const int32_t v = vert[k];
     for (const int32_t* u = m.v2v.RowBegin(v); u != m.v2v.RowEnd(v); ++u)
       p.v2v.idx.push_back(local[*u]);
     p.v2v.off[k + 1] = static_cast<int64_t>(p.v2v.idx.size());
@@ -138,7 +147,7 @@ RankPart BuildRankPart(const Mesh& m, const std::vector<int32_t>& part, int32_t 
     const int32_t* c = &m.tri[3 * int64_t{t}];
     if (part[std::min(c[0], std::min(c[1], c[2]))] != rank) continue;
     for (int k = 0; k < 3; ++k) p.tri.push_back(local[c[k]]);
-    p.weight.push_back(GlobalQualityWeight(m, t));
+    p.weight.push_back(weight ? weight[t] : GlobalQualityWeight(m, t));
   }
   // Links, both lists by increasing global id (`mine` is).
   std::map<int32_t, RankLink> links;
@@ -166,6 +175,23 @@ RankPart BuildRankPart(const Mesh& m, const std::vector<int32_t>& part, int32_t 
     p.links.push_back(std::move(l));
   }
   return p;
+}
+
+}  // namespace
+
+RankPart BuildRankPart(const Mesh& m, const std::vector<int32_t>& part, int32_t parts,
+                       const std::vector<int32_t>& colour, int32_t rank,
+                       const std::string& ordering, uint64_t seed, CutPlacement placement) {
+  return BuildPart(m, part, parts, colour, rank, ordering, seed, placement, nullptr, nullptr);
+}
+
+RankPart BuildRankPart(const RankNeighbourhood& nb, const std::vector<int32_t>& colour,
+                       const std::string& ordering, uint64_t seed, CutPlacement placement) {
+  if (nb.gid.size() != static_cast<size_t>(nb.mesh.NumVertices()) ||
+      nb.weight.size() != static_cast<size_t>(nb.mesh.NumTriangles()))
+    throw std::invalid_argument("BuildRankPart: an inconsistent neighbourhood");
+  return BuildPart(nb.mesh, nb.part, nb.parts, colour, nb.rank, ordering, seed, placement,
+                   nb.gid.data(), nb.weight.data());
 }
 
 Mesh RankMesh(const RankPart& p) {

@@ -25,6 +25,7 @@
 
 #include "core/aligned.h"
 #include "core/mesh.h"
+#include "core/rank_neighbourhood.h"
 
 namespace meshreuse {
 
@@ -66,6 +67,13 @@ struct RankPart {
 // empty. Throws UsageError for a bad ordering spec, std::invalid_argument for inconsistent sizes.
 RankPart BuildRankPart(const Mesh& m, const std::vector<int32_t>& part, int32_t parts,
                        const std::vector<int32_t>& colour, int32_t rank,
+                       const std::string& ordering = "ori", uint64_t seed = 1,
+                       CutPlacement placement = CutPlacement::kLast);
+
+// The same part from the rank's neighbourhood alone (a distributed read, rank_neighbourhood.h):
+// equal, member for member, to BuildRankPart on the whole mesh with the range partition
+// (nb.part), the neighbourhood's global ids and weights standing in for the whole mesh's.
+RankPart BuildRankPart(const RankNeighbourhood& nb, const std::vector<int32_t>& colour,
                        const std::string& ordering = "ori", uint64_t seed = 1,
                        CutPlacement placement = CutPlacement::kLast);
 

@@ -7,11 +7,13 @@
 #include <stdexcept>
 
 #include "core/error.h"
+#include "core/mesh_file.h"
 #include "core/mesh_io.h"
 #include "core/orderings/registry.h"
 #include "core/output_file.h"
 #include "core/partition.h"
 #include "core/permutation.h"
+#include "core/rank_neighbourhood.h"
 #include "core/rank_part.h"
 #include "reports/inputs.h"
 
@@ -85,6 +87,10 @@ double Since(std::chrono::steady_clock::time_point t0) {
 
 }  // namespace
 
+bool ReadsRanges(const DistSmoothConfig& cfg) {
+  return cfg.partition == "ranges" && IsMeshFilePath(cfg.mesh);
+}
+
 Mesh LoadForRanks(const std::string& path, int32_t parts, const Log& log) {
   Mesh m = LoadMesh(path, log);
   // The serial `smooth`'s default layout (ori, triangles sorted by their smallest corner): vertex
@@ -103,17 +109,36 @@ DistSmoothResult RunDistributedSmooth(const DistSmoothConfig& cfg, HaloTransport
   CheckDistSmoothConfig(cfg);
   const auto t0 = std::chrono::steady_clock::now();
   const int32_t parts = tx.size(), rank = tx.rank();
-  Mesh m = LoadForRanks(cfg.mesh, parts, log);
-  log.Say("partitioning " + std::to_string(m.NumVertices()) + " vertices into " +
-          std::to_string(parts) + " parts (" + cfg.partition + ")");
-  const std::vector<int32_t> part = PartsByMethod(m, cfg.partition, parts, cfg.seed);
-  const PartitionStats ps = MeasurePartition(m, part, parts);
-  RankPart p =
-      BuildRankPart(m, part, parts, ps.colour, rank, cfg.ordering, cfg.seed, cfg.placement);
   DistSmoothResult res;
-  res.vertices = m.NumVertices(), res.triangles = m.NumTriangles();
-  res.parts = parts, res.colours = ps.colours, res.cut_edges = ps.cut_edges;
+  res.parts = parts;
+  Mesh m;
+  RankPart p;
   SmoothRankStats st;
+  if (ReadsRanges(cfg)) {
+    // Each rank reads its range and ghost ring; one all-gather of counts checks what no rank can
+    // alone and gives every rank the part graph to colour.
+    log.Say("reading rank " + std::to_string(rank) + "'s range of " + cfg.mesh);
+    const RankNeighbourhood nb = ReadRankNeighbourhood(cfg.mesh, rank, parts);
+    std::vector<RankShare> shares;
+    for (const std::string& b : tx.AllGather(PackShare(ShareOf(nb))))
+      shares.push_back(UnpackShare(b));
+    const std::vector<std::vector<int32_t>> graph = CheckRankShares(cfg.mesh, shares);
+    const std::vector<int32_t> colour = GreedyPartColouring(graph, &res.colours);
+    p = BuildRankPart(nb, colour, cfg.ordering, cfg.seed, cfg.placement);
+    res.vertices = static_cast<int32_t>(nb.vertices);
+    res.triangles = static_cast<int32_t>(nb.triangles);
+    for (const RankShare& s : shares) res.cut_edges += s.cut_edges;
+    st.bytes_read = nb.bytes_read;
+  } else {
+    m = LoadForRanks(cfg.mesh, parts, log);
+    log.Say("partitioning " + std::to_string(m.NumVertices()) + " vertices into " +
+            std::to_string(parts) + " parts (" + cfg.partition + ")");
+    const std::vector<int32_t> part = PartsByMethod(m, cfg.partition, parts, cfg.seed);
+    const PartitionStats ps = MeasurePartition(m, part, parts);
+    p = BuildRankPart(m, part, parts, ps.colour, rank, cfg.ordering, cfg.seed, cfg.placement);
+    res.vertices = m.NumVertices(), res.triangles = m.NumTriangles();
+    res.colours = ps.colours, res.cut_edges = ps.cut_edges;
+  }
   st.rank = rank, st.colour = p.colour;
   st.owned = p.owned, st.noncut = p.noncut, st.cut = p.cut(), st.boundary = p.owned - p.movable;
   st.ghosts = p.ghosts(), st.triangles = static_cast<int64_t>(p.weight.size());
@@ -138,11 +163,16 @@ DistSmoothResult RunDistributedSmooth(const DistSmoothConfig& cfg, HaloTransport
   Packer out;
   out.Put(st);
   out.Put(p.colour);
-  out.PutVector(p.gid.data(), static_cast<size_t>(p.movable));
-  out.PutVector(p.xy.data(), 2 * static_cast<size_t>(p.movable));
+  // The moves only when something needs them (-o, --pi-out): 24 bytes a vertex on rank 0.
+  const size_t moved = cfg.output.empty() && cfg.pi_out.empty() ? 0 : p.movable;
+  out.PutVector(p.gid.data(), moved);
+  out.PutVector(p.xy.data(), 2 * moved);
   out.Put<int64_t>(p.noncut);
   const std::vector<std::string> all = tx.Gather(out.Take());
   if (rank != 0) return res;
+  // A distributed read leaves no rank the whole mesh: rank 0 reads it now to write it (a mesh that
+  // fits one node; the ranks' moves are what it gathered).
+  if (ReadsRanges(cfg) && !cfg.output.empty()) m = LoadForRanks(cfg.mesh, parts, log);
   std::vector<RankMoves> moves(parts);
   for (int32_t r = 0; r < parts; ++r) {
     Unpacker in(all[r]);
@@ -153,7 +183,7 @@ DistSmoothResult RunDistributedSmooth(const DistSmoothConfig& cfg, HaloTransport
     mv.gid = in.GetVector<int64_t>();
     const std::vector<double> xy = in.GetVector<double>();
     mv.noncut = static_cast<int32_t>(in.Get<int64_t>());
-    for (size_t k = 0; k < mv.gid.size(); ++k) {
+    for (size_t k = 0; k < mv.gid.size() && !m.xy.empty(); ++k) {
       m.xy[2 * mv.gid[k]] = xy[2 * k];
       m.xy[2 * mv.gid[k] + 1] = xy[2 * k + 1];
     }
@@ -181,14 +211,15 @@ DistSmoothResult RunDistributedSmooth(const DistSmoothConfig& cfg, HaloTransport
 
 Table RankStatsTable(const std::vector<SmoothRankStats>& ranks) {
   Table t({"rank", "colour", "owned", "noncut", "cut", "boundary", "ghosts", "triangles", "links",
-           "setup_s", "smooth_s", "cpu_s", "wait_s", "messages", "bytes_sent", "peak_rss_mb",
-           "rss_bytes_per_owned"});
+           "read_mb", "setup_s", "smooth_s", "cpu_s", "wait_s", "messages", "bytes_sent",
+           "peak_rss_mb", "rss_bytes_per_owned"});
   for (const SmoothRankStats& s : ranks)
     t.AddRow({std::to_string(s.rank), std::to_string(s.colour), std::to_string(s.owned),
               std::to_string(s.noncut), std::to_string(s.cut), std::to_string(s.boundary),
               std::to_string(s.ghosts), std::to_string(s.triangles), std::to_string(s.links),
-              Fixed(s.setup_seconds, 3), Fixed(s.smooth_seconds, 3), Fixed(s.cpu_seconds, 3),
-              Fixed(s.wait_seconds, 3), std::to_string(s.messages), std::to_string(s.bytes_sent),
+              s.bytes_read ? Fixed(s.bytes_read / 1048576.0, 1) : "-", Fixed(s.setup_seconds, 3),
+              Fixed(s.smooth_seconds, 3), Fixed(s.cpu_seconds, 3), Fixed(s.wait_seconds, 3),
+              std::to_string(s.messages), std::to_string(s.bytes_sent),
               Fixed(s.peak_rss_bytes / 1048576.0, 1),
               s.owned ? Fixed(static_cast<double>(s.peak_rss_bytes) / s.owned, 0) : "-"});
   return t;

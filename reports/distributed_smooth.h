@@ -1,8 +1,10 @@
 // The runner behind `mpirun -np P meshreuse-mpi smooth MESH` (issue 23; ../shared/scale-out.md
 // 3b): every rank reads the mesh (a mesh that fits one node), computes the same partition
-// (Hilbert ranges or METIS, seeded) and colouring, keeps its part (core/rank_part.h) and smooths it
-// with the ghost exchanges of core/halo_smoother.h; rank 0 gathers the moved vertices, writes the
-// smoothed mesh (equal to the serial smoother's output: bit for bit at -np 1, and along the
+// (Hilbert ranges, METIS seeded, or ranges of ids) and colouring -- or, for a mesh file
+// (FILE.mrm) with the ranges partition, reads only its range and ghost ring (rank_neighbourhood.h)
+// and learns the part graph from one all-gather --, keeps its part (core/rank_part.h) and smooths
+// it with the ghost exchanges of core/halo_smoother.h; rank 0 gathers the moved vertices, writes
+// the smoothed mesh (equal to the serial smoother's output: bit for bit at -np 1, and along the
 // gathered order pi at any P), pi itself, and a table per rank. The transport moves the bytes
 // (MPI in cli/mpi_main.cc, threads in core/halo_threads.h).
 #pragma once
@@ -38,6 +40,7 @@ struct SmoothRankStats {
   double cpu_seconds = 0;     // thread CPU time moving, packing and summing quality
   double wait_seconds = 0;    // blocked receiving ghosts
   uint64_t messages = 0, bytes_sent = 0, peak_rss_bytes = 0;
+  uint64_t bytes_read = 0;  // of the mesh file, by a distributed read (0: the whole file read)
 };
 
 struct DistSmoothResult {
@@ -49,6 +52,9 @@ struct DistSmoothResult {
 };
 
 void CheckDistSmoothConfig(const DistSmoothConfig& cfg);  // UsageError
+// Whether each rank reads only its range of MESH (a mesh file, FILE.mrm, with --partition
+// ranges: core/rank_neighbourhood.h) rather than the whole mesh.
+bool ReadsRanges(const DistSmoothConfig& cfg);
 // MESH as every rank reads it: the serial smoother's default layout (vertex ids unchanged,
 // triangles sorted by their smallest corner); UsageError when `parts` exceeds its vertices.
 Mesh LoadForRanks(const std::string& path, int32_t parts, const Log& log);

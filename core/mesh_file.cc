@@ -1,0 +1,317 @@
+// The distributed mesh file: writer, checked reader, whole-file reader; see mesh_file.h.
+#include "core/mesh_file.h"
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cstring>
+#include <functional>
+
+#include "core/error.h"
+#include "core/mix.h"
+#include "core/orderings/registry.h"
+#include "core/output_file.h"
+#include "core/permutation.h"
+
+#if !defined(__BYTE_ORDER__) || __BYTE_ORDER__ != __ORDER_LITTLE_ENDIAN__
+#error "mesh_file.cc writes and reads its integers as stored: little-endian hosts only"
+#endif
+
+namespace meshreuse {
+
+namespace {
+
+constexpr char kMagic[8] = {'M', 'R', 'M', 'E', 'S', 'H', '1', '\n'};
+constexpr int64_t kMaxId = INT32_MAX;  // ids are int32 in memory
+
+int64_t Pad8(int64_t n) { return (n + 7) / 8 * 8; }
+
+// Section starts for V vertices and T triangles (V, T <= 2^31: no product overflows).
+void Layout(int64_t v, int64_t t, int64_t* off) {
+  off[MeshFile::kXy] = kMeshFileHeader;
+  off[MeshFile::kBoundary] = off[MeshFile::kXy] + 16 * v;
+  off[MeshFile::kV2tOff] = off[MeshFile::kBoundary] + Pad8(v);
+  off[MeshFile::kV2t] = off[MeshFile::kV2tOff] + 8 * (v + 1);
+  off[MeshFile::kTri] = off[MeshFile::kV2t] + Pad8(12 * t);
+  off[MeshFile::kSections] = off[MeshFile::kTri] + Pad8(12 * t);
+}
+
+int64_t Blocks(int64_t data_end) {
+  return (data_end - kMeshFileHeader + kMeshFileBlock - 1) / kMeshFileBlock;
+}
+
+template <class T>
+T Load(const char* p) {
+  T v;
+  std::memcpy(&v, p, sizeof v);
+  return v;
+}
+
+}  // namespace
+
+bool IsMeshFilePath(const std::string& path) {
+  return path.size() > 4 && path.compare(path.size() - 4, 4, ".mrm") == 0;
+}
+
+void LayOutForRanks(Mesh* m) {
+  ApplyPermutationInPlace(m, ComputeOrdering("hilbert", *m), TriangleOrder::kSorted);
+}
+
+uint64_t MeshFileBlockHash(const char* p, size_t n) {
+  uint64_t h = Mix64(0x6D72626C6F636BULL ^ n);
+  size_t i = 0;
+  for (; i + 8 <= n; i += 8) h = Mix64(h ^ Load<uint64_t>(p + i));
+  if (i < n) {
+    uint64_t w = 0;
+    std::memcpy(&w, p + i, n - i);
+    h = Mix64(h ^ w ^ 0x8000000000000000ULL);
+  }
+  return h;
+}
+
+uint64_t MeshFileContentId(int64_t vertices, int64_t triangles,
+                           const std::vector<uint64_t>& table) {
+  uint64_t h = Mix64(static_cast<uint64_t>(vertices) * 0x9E3779B97F4A7C15ULL ^
+                     static_cast<uint64_t>(triangles));
+  for (uint64_t b : table) h = Mix64(h ^ b) + 0x632BE59BD9B4E019ULL;
+  return h;
+}
+
+uint64_t MeshFileHeaderHash(const char* header) { return MeshFileBlockHash(header, 120); }
+
+void WriteMeshFile(const Mesh& m, const std::string& path) {
+  const int64_t v = m.NumVertices(), t = m.NumTriangles();
+  int64_t off[MeshFile::kSections + 1];
+  Layout(v, t, off);
+  static const char kZero[8] = {};
+  // The sections as pieces in file order after the header, padding included.
+  auto pieces = [&](const std::function<void(const char*, size_t)>& f) {
+    auto put = [&](const void* p, int64_t n) {
+      if (n) f(static_cast<const char*>(p), static_cast<size_t>(n));
+      if (n % 8) f(kZero, static_cast<size_t>(8 - n % 8));
+    };
+    put(m.xy.data(), 16 * v);
+    put(m.boundary.data(), v);
+    put(m.v2t.off.data(), 8 * (v + 1));
+    put(m.v2t.idx.data(), 12 * t);
+    put(m.tri.data(), 12 * t);
+  };
+  // Pass 1: the block table, through a block-sized buffer.
+  std::vector<uint64_t> table;
+  std::vector<char> buf;
+  buf.reserve(kMeshFileBlock);
+  pieces([&](const char* p, size_t n) {
+    while (n) {
+      const size_t k = std::min<size_t>(n, kMeshFileBlock - buf.size());
+      buf.insert(buf.end(), p, p + k);
+      p += k, n -= k;
+      if (buf.size() == kMeshFileBlock) {
+        table.push_back(MeshFileBlockHash(buf.data(), buf.size()));
+        buf.clear();
+      }
+    }
+  });
+  if (!buf.empty()) table.push_back(MeshFileBlockHash(buf.data(), buf.size()));
+  char header[kMeshFileHeader] = {};
+  std::memcpy(header, kMagic, 8);
+  const uint32_t version = kMeshFileVersion, block = kMeshFileBlock;
+  const uint64_t id = MeshFileContentId(v, t, table);
+  std::memcpy(header + 8, &version, 4);
+  std::memcpy(header + 12, &block, 4);
+  std::memcpy(header + 16, &v, 8);
+  std::memcpy(header + 24, &t, 8);
+  std::memcpy(header + 32, &id, 8);
+  const uint64_t hh = MeshFileHeaderHash(header);
+  std::memcpy(header + 120, &hh, 8);
+  // Pass 2: the bytes.
+  WriteAtomically(path, [&](std::FILE* f) {
+    auto write = [&](const char* p, size_t n) {  // a short write: Commit's ferror reports it
+      if (std::fwrite(p, 1, n, f) != n) throw EnvironmentError(path, "cannot write: short write");
+    };
+    write(header, sizeof header);
+    pieces(write);
+    if (!table.empty()) write(reinterpret_cast<const char*>(table.data()), 8 * table.size());
+  });
+}
+
+MeshFile::MeshFile(const std::string& path) : path_(path) {
+  fd_.fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd_.fd < 0) throw InputError(path, 0, std::string("cannot open: ") + std::strerror(errno));
+  struct stat st {};
+  if (::fstat(fd_.fd, &st) != 0 || !S_ISREG(st.st_mode))
+    throw InputError(path, 0, "not a regular file (ranks read their ranges with pread)");
+  file_bytes_ = st.st_size;
+  char h[kMeshFileHeader];
+  if (file_bytes_ < kMeshFileHeader)
+    Fail(0, "truncated: " + std::to_string(file_bytes_) +
+                " bytes, shorter than the 128-byte header of a meshreuse mesh file");
+  if (::pread(fd_.fd, h, sizeof h, 0) != static_cast<ssize_t>(sizeof h))
+    Fail(0, std::string("read error: ") + std::strerror(errno));
+  bytes_read_ += sizeof h;
+  if (std::memcmp(h, kMagic, 8) != 0)
+    Fail(0, "not a meshreuse mesh file (its first bytes are not \"MRMESH1\\n\")");
+  if (Load<uint64_t>(h + 120) != MeshFileHeaderHash(h))
+    Fail(120, "the header's hash does not match its bytes: the header is damaged");
+  const uint32_t version = Load<uint32_t>(h + 8), block = Load<uint32_t>(h + 12);
+  if (version != kMeshFileVersion)
+    Fail(8, "version " + std::to_string(version) + ", this build reads version " +
+                std::to_string(kMeshFileVersion));
+  if (block != kMeshFileBlock)
+    Fail(12,
+         "block size " + std::to_string(block) + ", expected " + std::to_string(kMeshFileBlock));
+  vertices_ = Load<int64_t>(h + 16);
+  triangles_ = Load<int64_t>(h + 24);
+  content_id_ = Load<uint64_t>(h + 32);
+  if (vertices_ < 1 || vertices_ > kMaxId)
+    Fail(16, std::to_string(vertices_) + " vertices: expected 1.." + std::to_string(kMaxId));
+  if (triangles_ < 1 || 3 * triangles_ > kMaxId)
+    Fail(24, std::to_string(triangles_) + " triangles: expected 1.." + std::to_string(kMaxId / 3));
+  for (int i = 40; i < 120; ++i)
+    if (h[i] != 0) Fail(i, "a reserved header byte is not zero");
+  Layout(vertices_, triangles_, offset_);
+  data_end_ = offset_[kSections];
+  const int64_t blocks = Blocks(data_end_);
+  const int64_t expected = data_end_ + 8 * blocks;
+  if (file_bytes_ != expected)
+    Fail(file_bytes_ < expected ? file_bytes_ : expected,
+         (file_bytes_ < expected ? "truncated: " : "trailing bytes: ") +
+             std::to_string(file_bytes_) + " bytes, the header's " + std::to_string(vertices_) +
+             " vertices and " + std::to_string(triangles_) + " triangles make " +
+             std::to_string(expected));
+  block_hash_.resize(static_cast<size_t>(blocks));
+  if (blocks) {
+    const size_t n = 8 * static_cast<size_t>(blocks);
+    size_t got = 0;
+    while (got < n) {
+      const ssize_t r = ::pread(fd_.fd, reinterpret_cast<char*>(block_hash_.data()) + got, n - got,
+                                data_end_ + static_cast<int64_t>(got));
+      if (r <= 0) Fail(data_end_ + static_cast<int64_t>(got), "read error in the block table");
+      got += static_cast<size_t>(r);
+    }
+    bytes_read_ += n;
+  }
+  if (MeshFileContentId(vertices_, triangles_, block_hash_) != content_id_)
+    Fail(data_end_,
+         "the block table does not belong to this header's content id (a table from another "
+         "mesh, or damaged)");
+  verified_.assign(static_cast<size_t>(blocks), 0);
+}
+
+MeshFile::~MeshFile() = default;
+MeshFile::Fd::~Fd() {
+  if (fd >= 0) ::close(fd);
+}
+
+void MeshFile::Fail(int64_t offset, const std::string& problem) const {
+  throw InputError(path_, 0, "byte " + std::to_string(offset) + ": " + problem);
+}
+
+int64_t MeshFile::ElementBytes(Section s) const {
+  static const int64_t kBytes[kSections] = {16, 1, 8, 4, 12};
+  return kBytes[s];
+}
+
+int64_t MeshFile::Elements(Section s) const {
+  switch (s) {
+    case kXy:
+    case kBoundary:
+      return vertices_;
+    case kV2tOff:
+      return vertices_ + 1;
+    case kV2t:
+      return 3 * triangles_;
+    case kTri:
+      return triangles_;
+    default:
+      return 0;
+  }
+}
+
+void MeshFile::ReadChecked(int64_t a, int64_t b, char* out) {
+  if (a >= b) return;
+  // Whole blocks, so each can be verified; read in pieces of at most 64 blocks.
+  const int64_t first = (a - kMeshFileHeader) / kMeshFileBlock;
+  const int64_t last = (b - 1 - kMeshFileHeader) / kMeshFileBlock;
+  for (int64_t k0 = first; k0 <= last; k0 += 64) {
+    const int64_t k1 = std::min(last + 1, k0 + 64);
+    const int64_t lo = kMeshFileHeader + k0 * kMeshFileBlock;
+    const int64_t hi = std::min(data_end_, kMeshFileHeader + k1 * kMeshFileBlock);
+    scratch_.resize(static_cast<size_t>(hi - lo));
+    int64_t got = 0;
+    while (got < hi - lo) {
+      const ssize_t r =
+          ::pread(fd_.fd, scratch_.data() + got, static_cast<size_t>(hi - lo - got), lo + got);
+      if (r <= 0)
+        Fail(lo + got,
+             std::string("read error: ") + (r < 0 ? std::strerror(errno) : "end of file"));
+      got += r;
+    }
+    bytes_read_ += static_cast<uint64_t>(hi - lo);
+    for (int64_t k = k0; k < k1; ++k) {
+      if (verified_[k]) continue;
+      const int64_t s = kMeshFileHeader + k * kMeshFileBlock - lo;
+      const int64_t e = std::min(hi - lo, s + kMeshFileBlock);
+      if (MeshFileBlockHash(scratch_.data() + s, static_cast<size_t>(e - s)) != block_hash_[k])
+        Fail(lo + s, "block " + std::to_string(k) + " (bytes " + std::to_string(lo + s) + ".." +
+                         std::to_string(lo + e - 1) +
+                         ") does not match its hash: the file is damaged or was changed after "
+                         "it was written");
+      verified_[k] = 1;
+    }
+    const int64_t from = std::max(a, lo), to = std::min(b, hi);
+    std::memcpy(out + (from - a), scratch_.data() + (from - lo), static_cast<size_t>(to - from));
+  }
+}
+
+void MeshFile::Read(Section s, int64_t first, int64_t count, void* out) {
+  if (first < 0 || count < 0 || first > Elements(s) - count)
+    throw std::logic_error("MeshFile::Read outside its section");
+  const int64_t a = Offset(s) + first * ElementBytes(s);
+  ReadChecked(a, a + count * ElementBytes(s), static_cast<char*>(out));
+}
+
+void MeshFile::ReadAt(Section s, const std::vector<int64_t>& at, void* out) {
+  const int64_t eb = ElementBytes(s);
+  char* o = static_cast<char*>(out);
+  std::vector<char> block;
+  int64_t block_lo = -1, block_hi = -1;  // file bytes held in `block`
+  for (size_t i = 0; i < at.size(); ++i) {
+    if (at[i] < 0 || at[i] >= Elements(s) || (i && at[i] < at[i - 1]))
+      throw std::logic_error("MeshFile::ReadAt: positions out of range or not increasing");
+    const int64_t a = Offset(s) + at[i] * eb;
+    if (a < block_lo || a + eb > block_hi) {
+      // The block holding this element, and the next one when the element straddles them.
+      const int64_t k = (a - kMeshFileHeader) / kMeshFileBlock;
+      block_lo = kMeshFileHeader + k * kMeshFileBlock;
+      block_hi = std::min(data_end_, block_lo + 2 * int64_t{kMeshFileBlock});
+      if (a + eb <= block_lo + kMeshFileBlock)
+        block_hi = std::min(block_hi, block_lo + kMeshFileBlock);
+      block.resize(static_cast<size_t>(block_hi - block_lo));
+      ReadChecked(block_lo, block_hi, block.data());
+    }
+    std::memcpy(o + i * eb, block.data() + (a - block_lo), static_cast<size_t>(eb));
+  }
+}
+
+RawMesh ReadMeshFileRaw(const std::string& path) {
+  MeshFile f(path);
+  RawMesh raw;
+  raw.vertex_file = raw.triangle_file = path;
+  raw.xy.resize(2 * static_cast<size_t>(f.vertices()));
+  raw.tri.resize(3 * static_cast<size_t>(f.triangles()));
+  f.Read(MeshFile::kXy, 0, f.vertices(), raw.xy.data());
+  f.Read(MeshFile::kTri, 0, f.triangles(), raw.tri.data());
+  // Corners checked here, so BuildMesh's messages can name a triangle rather than a line.
+  for (size_t k = 0; k < raw.tri.size(); ++k)
+    if (raw.tri[k] < 0 || raw.tri[k] >= f.vertices())
+      throw InputError(path, 0,
+                       "triangle " + std::to_string(k / 3) + ": corner " +
+                           std::to_string(raw.tri[k]) + " outside 0.." +
+                           std::to_string(f.vertices() - 1));
+  return raw;
+}
+
+}  // namespace meshreuse

@@ -1,0 +1,101 @@
+// The distributed mesh file (FILE.mrm, issue 23; ../shared/scale-out.md 3c): one binary file that
+// any number of ranks read, each only its own range of vertices and their ghost ring, with pread.
+// Global ids are implicit (the position in the file); a file written by `meshreuse mesh convert
+// IN -o OUT.mrm` stores its vertices in Hilbert order and its triangles stably by smallest corner,
+// so contiguous ranges of ids are the Hilbert-range partition (partition.h) and a rank's triangles
+// are nearly one contiguous run. Layout, little-endian, every section starting on 8 bytes:
+//   header (128 bytes): magic "MRMESH1\n", u32 version (1), u32 block bytes (16384), i64 vertices
+//     V, i64 triangles T, u64 content id, 80 zero bytes, u64 hash of the 120 bytes before it;
+//   xy       V x 2 f64          coordinates;
+//   boundary V x u8             1 on the topological boundary (what a rank cannot compute for its
+//                               ghosts: their triangles are not all on the rank);
+//   v2t_off  (V + 1) x i64      rows of the vertex -> triangle adjacency, v2t_off[V] = 3T;
+//   v2t      3T x i32           each vertex's triangles, increasing id;
+//   tri      T x 3 x i32        corners (orientation kept);
+//   blocks   one u64 hash per 16 KiB block of the bytes from the end of the header to the start
+//            of this table (the last block short). The content id hashes V, T and this table.
+// Checks: a reader refuses (InputError naming the file and byte offset or block) another magic or
+// version, a damaged header, a size other than the header's sections add up to (truncated or
+// trailing bytes), a block table that is not the content id's, and every block whose bytes it uses
+// and whose hash differs: each rank verifies what it reads, so every byte of a distributed read is
+// verified by some rank. The topology the boundary flags and v2t rows claim is checked by the
+// readers that use them (rank_neighbourhood.h): the whole-file reader builds the mesh from xy and
+// tri alone, like every other format.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "core/mesh.h"
+
+namespace meshreuse {
+
+inline constexpr uint32_t kMeshFileVersion = 1;
+inline constexpr uint32_t kMeshFileBlock = 16384;
+inline constexpr int64_t kMeshFileHeader = 128;
+
+// FILE.mrm: the path names a mesh file.
+bool IsMeshFilePath(const std::string& path);
+// The layout `mesh convert` and `mesh refine` give a mesh file: vertices in Hilbert order,
+// triangles stably by smallest corner, so ranges of ids are the Hilbert-range partition.
+void LayOutForRanks(Mesh* m);
+
+// Writes `m` as stored (callers lay it out first: `mesh convert` in Hilbert order). Atomic, as
+// every output (output_file.h).
+void WriteMeshFile(const Mesh& m, const std::string& path);
+// The whole file as a RawMesh (serial commands read FILE.mrm like any mesh).
+RawMesh ReadMeshFileRaw(const std::string& path);
+
+// The checked reader. Sections by element; every read verifies the blocks it touches.
+class MeshFile {
+ public:
+  explicit MeshFile(const std::string& path);  // opens and checks header, size and block table
+  ~MeshFile();
+  MeshFile(const MeshFile&) = delete;
+  MeshFile& operator=(const MeshFile&) = delete;
+
+  enum Section { kXy, kBoundary, kV2tOff, kV2t, kTri, kSections };
+  int64_t vertices() const { return vertices_; }
+  int64_t triangles() const { return triangles_; }
+  uint64_t content_id() const { return content_id_; }
+  const std::string& path() const { return path_; }
+  int64_t ElementBytes(Section s) const;
+  int64_t Elements(Section s) const;
+  // Elements [first, first + count) of section `s` into `out` (ElementBytes(s) * count bytes).
+  void Read(Section s, int64_t first, int64_t count, void* out);
+  // Elements `at` (increasing, may repeat) of section `s`, one after another into `out`: each block
+  // is read once however many of the elements lie in it.
+  void ReadAt(Section s, const std::vector<int64_t>& at, void* out);
+  uint64_t bytes_read() const { return bytes_read_; }
+
+ private:
+  int64_t Offset(Section s) const { return offset_[s]; }
+  // Reads file bytes [a, b) into `out`, verifying every block they touch (each block once).
+  void ReadChecked(int64_t a, int64_t b, char* out);
+  void Fail(int64_t offset, const std::string& problem) const;
+
+  struct Fd {  // closed by its destructor, also when the constructor throws
+    int fd = -1;
+    ~Fd();
+  };
+  std::string path_;
+  Fd fd_;
+  int64_t vertices_ = 0, triangles_ = 0, file_bytes_ = 0, data_end_ = 0;
+  int64_t offset_[kSections + 1] = {};
+  uint64_t content_id_ = 0;
+  std::vector<uint64_t> block_hash_;
+  std::vector<uint8_t> verified_;
+  std::vector<char> scratch_;
+  uint64_t bytes_read_ = 0;
+};
+
+// The hash of one block (exposed for the tests that damage a file and mend its table).
+uint64_t MeshFileBlockHash(const char* p, size_t n);
+// The content id of a block table (what the header stores).
+uint64_t MeshFileContentId(int64_t vertices, int64_t triangles, const std::vector<uint64_t>& table);
+// The hash of a header's first 120 bytes.
+uint64_t MeshFileHeaderHash(const char* header);
+
+}  // namespace meshreuse

@@ -1,0 +1,257 @@
+// A rank's range of a distributed mesh file and its ghost ring; see rank_neighbourhood.h.
+#include "core/rank_neighbourhood.h"
+
+#include <algorithm>
+#include <cstring>
+#include <stdexcept>
+
+#include "core/error.h"
+#include "core/mesh_file.h"
+#include "core/quality.h"
+
+namespace meshreuse {
+
+int64_t RangeFirst(int32_t r, int64_t n, int32_t parts) {
+  return (int64_t{r} * n + parts - 1) / parts;  // the least i with i * parts / n >= r
+}
+
+int32_t RangeOwner(int64_t v, int64_t n, int32_t parts) {
+  return static_cast<int32_t>(v * parts / n);
+}
+
+namespace {
+
+int32_t LocalOf(const std::vector<int64_t>& gid, int64_t g) {
+  return static_cast<int32_t>(std::lower_bound(gid.begin(), gid.end(), g) - gid.begin());
+}
+
+}  // namespace
+
+RankNeighbourhood ReadRankNeighbourhood(const std::string& path, int32_t rank, int32_t parts) {
+  MeshFile f(path);
+  const int64_t n = f.vertices(), nt = f.triangles();
+  if (parts > n)
+    throw UsageError(std::to_string(parts) + " ranks for a mesh of " + std::to_string(n) +
+                     " vertices: at most one rank per vertex");
+  if (rank < 0 || rank >= parts) throw std::invalid_argument("ReadRankNeighbourhood: bad rank");
+  RankNeighbourhood nb;
+  nb.rank = rank, nb.parts = parts, nb.vertices = n, nb.triangles = nt;
+  nb.content_id = f.content_id();
+  const int64_t lo = RangeFirst(rank, n, parts), hi = RangeFirst(rank + 1, n, parts);
+  nb.first = lo, nb.last = hi;
+  auto fail = [&](const std::string& what) { throw InputError(path, 0, what); };
+
+  // The owned rows.
+  std::vector<int64_t> off(static_cast<size_t>(hi - lo + 1));
+  f.Read(MeshFile::kV2tOff, lo, hi - lo + 1, off.data());
+  if (lo == 0 && off[0] != 0) fail("v2t row offsets: the first is " + std::to_string(off[0]));
+  if (hi == n && off.back() != 3 * nt)
+    fail("v2t row offsets: the last is " + std::to_string(off.back()) + ", not 3 x " +
+         std::to_string(nt) + " triangles");
+  for (int64_t v = lo; v < hi; ++v) {
+    const int64_t a = off[v - lo], b = off[v - lo + 1];
+    if (a < 0 || b > 3 * nt || b <= a)
+      fail("vertex " + std::to_string(v) + ": v2t row [" + std::to_string(a) + ", " +
+           std::to_string(b) + ") is empty, reversed or outside 0.." + std::to_string(3 * nt));
+  }
+  nb.row_entries = off.back() - off.front();
+  std::vector<int32_t> rows(static_cast<size_t>(nb.row_entries));
+  f.Read(MeshFile::kV2t, off.front(), nb.row_entries, rows.data());
+  for (int64_t v = lo; v < hi; ++v)
+    for (int64_t k = off[v - lo]; k < off[v - lo + 1]; ++k) {
+      const int32_t t = rows[k - off.front()];
+      if (t < 0 || t >= nt || (k > off[v - lo] && t <= rows[k - 1 - off.front()]))
+        fail("vertex " + std::to_string(v) + ": its v2t row lists triangle " + std::to_string(t) +
+             " (out of 0.." + std::to_string(nt - 1) + " or not increasing)");
+    }
+
+  // Every triangle the rows list, in increasing id.
+  std::vector<int64_t> tris(rows.begin(), rows.end());
+  std::sort(tris.begin(), tris.end());
+  tris.erase(std::unique(tris.begin(), tris.end()), tris.end());
+  std::vector<int32_t> corners(3 * tris.size());
+  f.ReadAt(MeshFile::kTri, tris, corners.data());
+  for (size_t i = 0; i < tris.size(); ++i) {
+    const int32_t* c = &corners[3 * i];
+    for (int k = 0; k < 3; ++k)
+      if (c[k] < 0 || c[k] >= n)
+        fail("triangle " + std::to_string(tris[i]) + ": corner " + std::to_string(c[k]) +
+             " outside 0.." + std::to_string(n - 1));
+  }
+  auto corners_of = [&](int32_t t) {
+    return &corners[3 * (std::lower_bound(tris.begin(), tris.end(), t) - tris.begin())];
+  };
+  for (int64_t v = lo; v < hi; ++v)
+    for (int64_t k = off[v - lo]; k < off[v - lo + 1]; ++k) {
+      const int32_t t = rows[k - off.front()];
+      const int32_t* c = corners_of(t);
+      if (c[0] != v && c[1] != v && c[2] != v)
+        fail("vertex " + std::to_string(v) + ": its v2t row lists triangle " + std::to_string(t) +
+             ", which does not have it as a corner");
+    }
+  // The triangles holding each owned vertex must be its row: count them.
+  std::vector<int64_t> held(static_cast<size_t>(hi - lo), 0);
+  for (size_t i = 0; i < tris.size(); ++i)
+    for (int k = 0; k < 3; ++k) {
+      const int32_t c = corners[3 * i + k];
+      if (c >= lo && c < hi && ++held[c - lo] > off[c - lo + 1] - off[c - lo])
+        fail("triangle " + std::to_string(tris[i]) + " has vertex " + std::to_string(c) +
+             " as a corner but is not in its v2t row");
+    }
+
+  // The vertices here: owned, and the ghosts (other corners), increasing global id.
+  std::vector<int64_t> ghosts;
+  for (int32_t c : corners)
+    if (c < lo || c >= hi) ghosts.push_back(c);
+  std::sort(ghosts.begin(), ghosts.end());
+  ghosts.erase(std::unique(ghosts.begin(), ghosts.end()), ghosts.end());
+  const auto split = std::lower_bound(ghosts.begin(), ghosts.end(), lo) - ghosts.begin();
+  nb.gid.assign(ghosts.begin(), ghosts.begin() + split);
+  for (int64_t v = lo; v < hi; ++v) nb.gid.push_back(v);
+  nb.gid.insert(nb.gid.end(), ghosts.begin() + split, ghosts.end());
+  const size_t total = nb.gid.size();
+
+  std::vector<double> gxy(2 * ghosts.size());
+  std::vector<uint8_t> gflag(ghosts.size());
+  std::vector<int64_t> goff_at, goff(2 * ghosts.size());
+  for (int64_t g : ghosts) goff_at.push_back(g), goff_at.push_back(g + 1);
+  f.ReadAt(MeshFile::kXy, ghosts, gxy.data());
+  f.ReadAt(MeshFile::kBoundary, ghosts, gflag.data());
+  f.ReadAt(MeshFile::kV2tOff, goff_at, goff.data());
+  std::vector<uint8_t> flag(static_cast<size_t>(hi - lo));
+  RawMesh raw;
+  raw.vertex_file = raw.triangle_file = path;
+  raw.xy.resize(2 * total);
+  const size_t before = static_cast<size_t>(split);
+  for (size_t i = 0; i < before; ++i)
+    raw.xy[2 * i] = gxy[2 * i], raw.xy[2 * i + 1] = gxy[2 * i + 1];
+  f.Read(MeshFile::kXy, lo, hi - lo, raw.xy.data() + 2 * before);
+  for (size_t i = before; i < ghosts.size(); ++i) {
+    const size_t l = i + static_cast<size_t>(hi - lo);
+    raw.xy[2 * l] = gxy[2 * i], raw.xy[2 * l + 1] = gxy[2 * i + 1];
+  }
+  f.Read(MeshFile::kBoundary, lo, hi - lo, flag.data());
+  raw.tri.resize(corners.size());
+  for (size_t k = 0; k < corners.size(); ++k) raw.tri[k] = LocalOf(nb.gid, corners[k]);
+  for (int64_t g : nb.gid) raw.vertex_tag.Push(g);  // BuildMesh's messages name global ids
+  BuildReport report;
+  nb.mesh = BuildMesh(std::move(raw), &report);
+  if (!report.kept.empty())  // every vertex here is a corner of a triangle read
+    throw std::logic_error(
+        "ReadRankNeighbourhood: a vertex of the neighbourhood lies in no triangle");
+
+  // Boundary flags: the owned ones checked, the ghosts' taken from the file (their owners check).
+  for (int64_t v = lo; v < hi; ++v) {
+    const uint8_t mine = nb.mesh.boundary[LocalOf(nb.gid, v)];
+    if (flag[v - lo] != mine)
+      fail("vertex " + std::to_string(v) + ": boundary flag " + std::to_string(flag[v - lo]) +
+           ", but its triangles make it " + (mine ? "a boundary" : "an interior") + " vertex");
+  }
+  for (size_t i = 0; i < ghosts.size(); ++i) {
+    if (gflag[i] > 1)
+      fail("vertex " + std::to_string(ghosts[i]) + ": boundary flag " + std::to_string(gflag[i]) +
+           " (0 or 1)");
+    nb.mesh.boundary[LocalOf(nb.gid, ghosts[i])] = gflag[i];
+  }
+  nb.mesh.interior.clear();
+  for (size_t l = 0; l < total; ++l)
+    if (!nb.mesh.boundary[l]) nb.mesh.interior.push_back(static_cast<int32_t>(l));
+
+  nb.part.resize(total);
+  for (size_t l = 0; l < total; ++l) nb.part[l] = RangeOwner(nb.gid[l], n, parts);
+  // Global row sizes (triangles at each corner) for the quality weights, as GlobalQualityWeight.
+  std::vector<int64_t> row(total);
+  for (size_t i = 0; i < ghosts.size(); ++i) {
+    const int64_t a = goff[2 * i], b = goff[2 * i + 1];
+    const int64_t here = nb.mesh.v2t.RowSize(LocalOf(nb.gid, ghosts[i]));
+    if (b - a < here || a < 0 || b > 3 * nt)
+      fail("vertex " + std::to_string(ghosts[i]) + ": v2t row [" + std::to_string(a) + ", " +
+           std::to_string(b) + ") is shorter than the " + std::to_string(here) +
+           " triangles that hold it");
+    row[LocalOf(nb.gid, ghosts[i])] = b - a;
+  }
+  for (int64_t v = lo; v < hi; ++v) row[LocalOf(nb.gid, v)] = off[v - lo + 1] - off[v - lo];
+  const double inv_v = 1.0 / static_cast<double>(n);
+  nb.weight.resize(tris.size());
+  for (size_t t = 0; t < tris.size(); ++t) {
+    const int32_t* c = &nb.mesh.tri[3 * t];
+    nb.weight[t] = QualityWeightOf(inv_v, row[c[0]], row[c[1]], row[c[2]]);
+    const int64_t smallest = nb.gid[std::min(c[0], std::min(c[1], c[2]))];
+    nb.owned_triangles += smallest >= lo && smallest < hi;
+  }
+  for (int64_t v = lo; v < hi; ++v) {
+    const int32_t l = LocalOf(nb.gid, v);
+    for (const int32_t* u = nb.mesh.v2v.RowBegin(l); u != nb.mesh.v2v.RowEnd(l); ++u)
+      if (nb.part[*u] != rank) {
+        nb.neighbours.push_back(nb.part[*u]);
+        nb.cut_edges += nb.gid[*u] > v;
+      }
+  }
+  std::sort(nb.neighbours.begin(), nb.neighbours.end());
+  nb.neighbours.erase(std::unique(nb.neighbours.begin(), nb.neighbours.end()), nb.neighbours.end());
+  nb.bytes_read = f.bytes_read();
+  return nb;
+}
+
+RankShare ShareOf(const RankNeighbourhood& nb) {
+  return {nb.content_id,  nb.vertices,  nb.triangles, nb.owned_triangles,
+          nb.row_entries, nb.cut_edges, nb.neighbours};
+}
+
+std::string PackShare(const RankShare& s) {
+  std::string b(sizeof(uint64_t) + 5 * sizeof(int64_t), '\0');
+  char* p = &b[0];
+  std::memcpy(p, &s.content_id, 8);
+  const int64_t v[5] = {s.vertices, s.triangles, s.owned_triangles, s.row_entries, s.cut_edges};
+  std::memcpy(p + 8, v, sizeof v);
+  b.append(reinterpret_cast<const char*>(s.neighbours.data()), 4 * s.neighbours.size());
+  return b;
+}
+
+RankShare UnpackShare(const std::string& b) {
+  if (b.size() < 48 || (b.size() - 48) % 4) throw std::logic_error("UnpackShare: bad size");
+  RankShare s;
+  int64_t v[5];
+  std::memcpy(&s.content_id, b.data(), 8);
+  std::memcpy(v, b.data() + 8, sizeof v);
+  s.vertices = v[0], s.triangles = v[1], s.owned_triangles = v[2], s.row_entries = v[3];
+  s.cut_edges = v[4];
+  s.neighbours.resize((b.size() - 48) / 4);
+  if (!s.neighbours.empty()) std::memcpy(s.neighbours.data(), b.data() + 48, b.size() - 48);
+  return s;
+}
+
+std::vector<std::vector<int32_t>> CheckRankShares(const std::string& path,
+                                                  const std::vector<RankShare>& shares) {
+  const int32_t parts = static_cast<int32_t>(shares.size());
+  int64_t tris = 0, entries = 0;
+  for (int32_t r = 0; r < parts; ++r) {
+    const RankShare& s = shares[r];
+    if (s.content_id != shares[0].content_id)
+      throw InputError(path, 0,
+                       "rank " + std::to_string(r) +
+                           " read another mesh file than rank 0 (content "
+                           "ids differ): every rank must see the same file");
+    tris += s.owned_triangles, entries += s.row_entries;
+  }
+  const int64_t nt = parts ? shares[0].triangles : 0;
+  if (tris != nt || entries != 3 * nt)
+    throw InputError(path, 0,
+                     "the ranks found " + std::to_string(tris) + " triangles and " +
+                         std::to_string(entries) + " v2t entries, the header says " +
+                         std::to_string(nt) + " triangles (a triangle that no v2t row lists)");
+  std::vector<std::vector<int32_t>> g(parts);
+  for (int32_t r = 0; r < parts; ++r) {
+    for (int32_t q : shares[r].neighbours) {
+      const auto& back = shares[q < 0 || q >= parts ? r : q].neighbours;
+      if (q < 0 || q >= parts || q == r || !std::binary_search(back.begin(), back.end(), r))
+        throw InputError(path, 0,
+                         "ranks " + std::to_string(r) + " and " + std::to_string(q) +
+                             " disagree on whether they are neighbours");
+    }
+    g[r] = shares[r].neighbours;
+  }
+  return g;
+}
+
+}  // namespace meshreuse

@@ -1,0 +1,69 @@
+// One rank's share of a distributed mesh file (mesh_file.h), read without the rest of the mesh:
+// the owned range of vertex ids [RangeFirst(r), RangeFirst(r + 1)) -- the Hilbert-range partition
+// of partition.h when the file is in Hilbert order, HilbertRangeParts' own formula -- their v2t
+// rows, every triangle those rows list, and the ghost ring (the other corners of those triangles)
+// with coordinates, boundary flags and triangle counts. About (owned + ghosts) * 100 bytes of
+// reading, whatever the size of the mesh.
+// The result is the neighbourhood as a Mesh of its own, local ids in increasing global id and
+// triangles in increasing global id, so BuildRankPart (rank_part.h) lays it out exactly as it lays
+// out the same rank from the whole mesh (the same local mesh of the part, the same rows, the same
+// weights): a distributed read smooths bit for bit as a whole read with `--partition hilbert`.
+// Checks, beyond the file's (each an InputError naming the file and the vertex or triangle): every
+// owned row increasing, within range and listing triangles that hold the vertex; the triangles
+// holding an owned vertex are exactly its row (so its neighbours are all here); the owned boundary
+// flags equal what the owned triangles say (each vertex is owned by one rank, so every flag a
+// ghost is read with is checked by its owner); BuildMesh's checks on the neighbourhood (areas,
+// repeated triangles, edges of more than two triangles). What one rank cannot see -- a triangle
+// that no row lists -- CheckRankShares finds from every rank's counts.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "core/mesh.h"
+
+namespace meshreuse {
+
+// The first id of rank r's range of n ids over `parts` ranks, and the rank of id v: rank r holds
+// the ids i with floor(i * parts / n) = r (HilbertRangeParts' formula).
+int64_t RangeFirst(int32_t r, int64_t n, int32_t parts);
+int32_t RangeOwner(int64_t v, int64_t n, int32_t parts);
+
+struct RankNeighbourhood {
+  int32_t rank = 0, parts = 1;
+  int64_t vertices = 0, triangles = 0;  // of the whole mesh
+  uint64_t content_id = 0;
+  int64_t first = 0, last = 0;      // owned global ids [first, last)
+  Mesh mesh;                        // owned + ghosts, local ids by increasing global id
+  std::vector<int64_t> gid;         // local -> global
+  std::vector<int32_t> part;        // local -> owning rank
+  std::vector<double> weight;       // per local triangle, its weight in the global quality
+  int64_t owned_triangles = 0;      // triangles whose smallest corner is owned
+  int64_t row_entries = 0;          // sum of the owned v2t row lengths
+  int64_t cut_edges = 0;            // edges from an owned vertex to a larger id elsewhere
+  std::vector<int32_t> neighbours;  // ranks owning a ghost, increasing
+  uint64_t bytes_read = 0;
+};
+
+// Throws InputError for a damaged or inconsistent file, UsageError when `parts` exceeds the
+// vertices.
+RankNeighbourhood ReadRankNeighbourhood(const std::string& path, int32_t rank, int32_t parts);
+
+// What each rank contributes to the checks no single rank can make.
+struct RankShare {
+  uint64_t content_id = 0;
+  int64_t vertices = 0, triangles = 0, owned_triangles = 0, row_entries = 0, cut_edges = 0;
+  std::vector<int32_t> neighbours;
+};
+RankShare ShareOf(const RankNeighbourhood& nb);
+std::string PackShare(const RankShare& s);
+RankShare UnpackShare(const std::string& bytes);  // std::logic_error when short
+// Every rank calls it with every rank's share (by rank) and gets the same verdict: InputError when
+// ranks read different files (content ids differ), when the owned triangles do not add up to the
+// file's T or the rows to 3T (a triangle some row omits), or when the neighbour relation is not
+// symmetric. Returns the part graph (each rank's neighbours) for the colouring.
+std::vector<std::vector<int32_t>> CheckRankShares(const std::string& path,
+                                                  const std::vector<RankShare>& shares);
+
+}  // namespace meshreuse
