@@ -42,6 +42,7 @@ void Layout(int64_t v, int64_t t, int64_t* off) {
 int64_t Blocks(int64_t data_end) {
   return (data_end - kMeshFileHeader + kMeshFileBlock - 1) / kMeshFileBlock;
 }
+int64_t Pages(int64_t blocks) { return (blocks + kMeshFilePage - 1) / kMeshFilePage; }
 
 template <class T>
 T Load(const char* p) {
@@ -72,11 +73,19 @@ uint64_t MeshFileBlockHash(const char* p, size_t n) {
   return h;
 }
 
+std::vector<uint64_t> MeshFilePageHashes(const std::vector<uint64_t>& block_table) {
+  std::vector<uint64_t> pages;
+  for (size_t a = 0; a < block_table.size(); a += kMeshFilePage)
+    pages.push_back(MeshFileBlockHash(reinterpret_cast<const char*>(block_table.data() + a),
+                                      8 * std::min<size_t>(kMeshFilePage, block_table.size() - a)));
+  return pages;
+}
+
 uint64_t MeshFileContentId(int64_t vertices, int64_t triangles,
-                           const std::vector<uint64_t>& table) {
+                           const std::vector<uint64_t>& page_hashes) {
   uint64_t h = Mix64(static_cast<uint64_t>(vertices) * 0x9E3779B97F4A7C15ULL ^
                      static_cast<uint64_t>(triangles));
-  for (uint64_t b : table) h = Mix64(h ^ b) + 0x632BE59BD9B4E019ULL;
+  for (uint64_t b : page_hashes) h = Mix64(h ^ b) + 0x632BE59BD9B4E019ULL;
   return h;
 }
 
@@ -118,7 +127,8 @@ void WriteMeshFile(const Mesh& m, const std::string& path) {
   char header[kMeshFileHeader] = {};
   std::memcpy(header, kMagic, 8);
   const uint32_t version = kMeshFileVersion, block = kMeshFileBlock;
-  const uint64_t id = MeshFileContentId(v, t, table);
+  const std::vector<uint64_t> pages = MeshFilePageHashes(table);
+  const uint64_t id = MeshFileContentId(v, t, pages);
   std::memcpy(header + 8, &version, 4);
   std::memcpy(header + 12, &block, 4);
   std::memcpy(header + 16, &v, 8);
@@ -133,7 +143,8 @@ void WriteMeshFile(const Mesh& m, const std::string& path) {
     };
     write(header, sizeof header);
     pieces(write);
-    if (!table.empty()) write(reinterpret_cast<const char*>(table.data()), 8 * table.size());
+    write(reinterpret_cast<const char*>(table.data()), 8 * table.size());
+    write(reinterpret_cast<const char*>(pages.data()), 8 * pages.size());
   });
 }
 
@@ -148,9 +159,7 @@ MeshFile::MeshFile(const std::string& path) : path_(path) {
   if (file_bytes_ < kMeshFileHeader)
     Fail(0, "truncated: " + std::to_string(file_bytes_) +
                 " bytes, shorter than the 128-byte header of a meshreuse mesh file");
-  if (::pread(fd_.fd, h, sizeof h, 0) != static_cast<ssize_t>(sizeof h))
-    Fail(0, std::string("read error: ") + std::strerror(errno));
-  bytes_read_ += sizeof h;
+  PreadAll(h, sizeof h, 0);
   if (std::memcmp(h, kMagic, 8) != 0)
     Fail(0, "not a meshreuse mesh file (its first bytes are not \"MRMESH1\\n\")");
   if (Load<uint64_t>(h + 120) != MeshFileHeaderHash(h))
@@ -173,31 +182,52 @@ MeshFile::MeshFile(const std::string& path) : path_(path) {
     if (h[i] != 0) Fail(i, "a reserved header byte is not zero");
   Layout(vertices_, triangles_, offset_);
   data_end_ = offset_[kSections];
-  const int64_t blocks = Blocks(data_end_);
-  const int64_t expected = data_end_ + 8 * blocks;
+  blocks_ = Blocks(data_end_);
+  const int64_t pages = Pages(blocks_);
+  const int64_t expected = data_end_ + 8 * blocks_ + 8 * pages;
   if (file_bytes_ != expected)
     Fail(file_bytes_ < expected ? file_bytes_ : expected,
          (file_bytes_ < expected ? "truncated: " : "trailing bytes: ") +
              std::to_string(file_bytes_) + " bytes, the header's " + std::to_string(vertices_) +
              " vertices and " + std::to_string(triangles_) + " triangles make " +
              std::to_string(expected));
-  block_hash_.resize(static_cast<size_t>(blocks));
-  if (blocks) {
-    const size_t n = 8 * static_cast<size_t>(blocks);
-    size_t got = 0;
-    while (got < n) {
-      const ssize_t r = ::pread(fd_.fd, reinterpret_cast<char*>(block_hash_.data()) + got, n - got,
-                                data_end_ + static_cast<int64_t>(got));
-      if (r <= 0) Fail(data_end_ + static_cast<int64_t>(got), "read error in the block table");
-      got += static_cast<size_t>(r);
-    }
-    bytes_read_ += n;
-  }
-  if (MeshFileContentId(vertices_, triangles_, block_hash_) != content_id_)
-    Fail(data_end_,
+  page_hash_.resize(static_cast<size_t>(pages));
+  PreadAll(reinterpret_cast<char*>(page_hash_.data()), 8 * pages, data_end_ + 8 * blocks_);
+  if (MeshFileContentId(vertices_, triangles_, page_hash_) != content_id_)
+    Fail(data_end_ + 8 * blocks_,
          "the block table does not belong to this header's content id (a table from another "
          "mesh, or damaged)");
-  verified_.assign(static_cast<size_t>(blocks), 0);
+  page_.resize(static_cast<size_t>(pages));
+  verified_.assign(static_cast<size_t>(blocks_), false);
+}
+
+void MeshFile::PreadAll(char* out, int64_t n, int64_t at) {
+  int64_t got = 0;
+  while (got < n) {
+    const ssize_t r = ::pread(fd_.fd, out + got, static_cast<size_t>(n - got), at + got);
+    if (r <= 0)
+      Fail(at + got, std::string("read error: ") + (r < 0 ? std::strerror(errno) : "end of file"));
+    got += r;
+  }
+  bytes_read_ += static_cast<uint64_t>(n);
+}
+
+uint64_t MeshFile::BlockHash(int64_t k) {
+  std::vector<uint64_t>& page = page_[k / kMeshFilePage];
+  if (page.empty()) {  // one page of the block table, verified against its hash
+    const int64_t first = k / kMeshFilePage * kMeshFilePage;
+    const int64_t n = std::min<int64_t>(kMeshFilePage, blocks_ - first);
+    page.resize(static_cast<size_t>(n));
+    const int64_t at = data_end_ + 8 * first;
+    PreadAll(reinterpret_cast<char*>(page.data()), 8 * n, at);
+    if (MeshFileBlockHash(reinterpret_cast<const char*>(page.data()), 8 * n) !=
+        page_hash_[k / kMeshFilePage]) {
+      page.clear();
+      Fail(at, "page " + std::to_string(k / kMeshFilePage) +
+                   " of the block table does not match its hash: the file is damaged");
+    }
+  }
+  return page[k % kMeshFilePage];
 }
 
 MeshFile::~MeshFile() = default;
@@ -240,26 +270,17 @@ void MeshFile::ReadChecked(int64_t a, int64_t b, char* out) {
     const int64_t lo = kMeshFileHeader + k0 * kMeshFileBlock;
     const int64_t hi = std::min(data_end_, kMeshFileHeader + k1 * kMeshFileBlock);
     scratch_.resize(static_cast<size_t>(hi - lo));
-    int64_t got = 0;
-    while (got < hi - lo) {
-      const ssize_t r =
-          ::pread(fd_.fd, scratch_.data() + got, static_cast<size_t>(hi - lo - got), lo + got);
-      if (r <= 0)
-        Fail(lo + got,
-             std::string("read error: ") + (r < 0 ? std::strerror(errno) : "end of file"));
-      got += r;
-    }
-    bytes_read_ += static_cast<uint64_t>(hi - lo);
+    PreadAll(scratch_.data(), hi - lo, lo);
     for (int64_t k = k0; k < k1; ++k) {
       if (verified_[k]) continue;
       const int64_t s = kMeshFileHeader + k * kMeshFileBlock - lo;
       const int64_t e = std::min(hi - lo, s + kMeshFileBlock);
-      if (MeshFileBlockHash(scratch_.data() + s, static_cast<size_t>(e - s)) != block_hash_[k])
+      if (MeshFileBlockHash(scratch_.data() + s, static_cast<size_t>(e - s)) != BlockHash(k))
         Fail(lo + s, "block " + std::to_string(k) + " (bytes " + std::to_string(lo + s) + ".." +
                          std::to_string(lo + e - 1) +
                          ") does not match its hash: the file is damaged or was changed after "
                          "it was written");
-      verified_[k] = 1;
+      verified_[k] = true;
     }
     const int64_t from = std::max(a, lo), to = std::min(b, hi);
     std::memcpy(out + (from - a), scratch_.data() + (from - lo), static_cast<size_t>(to - from));
@@ -276,23 +297,27 @@ void MeshFile::Read(Section s, int64_t first, int64_t count, void* out) {
 void MeshFile::ReadAt(Section s, const std::vector<int64_t>& at, void* out) {
   const int64_t eb = ElementBytes(s);
   char* o = static_cast<char*>(out);
-  std::vector<char> block;
-  int64_t block_lo = -1, block_hi = -1;  // file bytes held in `block`
-  for (size_t i = 0; i < at.size(); ++i) {
-    if (at[i] < 0 || at[i] >= Elements(s) || (i && at[i] < at[i - 1]))
-      throw std::logic_error("MeshFile::ReadAt: positions out of range or not increasing");
-    const int64_t a = Offset(s) + at[i] * eb;
-    if (a < block_lo || a + eb > block_hi) {
-      // The block holding this element, and the next one when the element straddles them.
-      const int64_t k = (a - kMeshFileHeader) / kMeshFileBlock;
-      block_lo = kMeshFileHeader + k * kMeshFileBlock;
-      block_hi = std::min(data_end_, block_lo + 2 * int64_t{kMeshFileBlock});
-      if (a + eb <= block_lo + kMeshFileBlock)
-        block_hi = std::min(block_hi, block_lo + kMeshFileBlock);
-      block.resize(static_cast<size_t>(block_hi - block_lo));
-      ReadChecked(block_lo, block_hi, block.data());
+  auto block_of = [](int64_t byte) { return (byte - kMeshFileHeader) / kMeshFileBlock; };
+  std::vector<char> run;
+  // Runs of elements whose blocks touch or adjoin: each run is one read of whole blocks, so no
+  // block is read twice however the elements straddle them.
+  for (size_t i = 0; i < at.size();) {
+    size_t j = i;
+    int64_t last = -1;
+    for (; j < at.size(); ++j) {
+      if (at[j] < 0 || at[j] >= Elements(s) || (j && at[j] < at[j - 1]))
+        throw std::logic_error("MeshFile::ReadAt: positions out of range or not increasing");
+      const int64_t a = Offset(s) + at[j] * eb;
+      if (j > i && block_of(a) > last + 1) break;
+      last = std::max(last, block_of(a + eb - 1));
     }
-    std::memcpy(o + i * eb, block.data() + (a - block_lo), static_cast<size_t>(eb));
+    const int64_t lo = kMeshFileHeader + block_of(Offset(s) + at[i] * eb) * kMeshFileBlock;
+    const int64_t hi = std::min(data_end_, kMeshFileHeader + (last + 1) * kMeshFileBlock);
+    run.resize(static_cast<size_t>(hi - lo));
+    ReadChecked(lo, hi, run.data());
+    for (size_t k = i; k < j; ++k)
+      std::memcpy(o + k * eb, run.data() + (Offset(s) + at[k] * eb - lo), static_cast<size_t>(eb));
+    i = j;
   }
 }
 

@@ -4,7 +4,7 @@
 // IN -o OUT.mrm` stores its vertices in Hilbert order and its triangles stably by smallest corner,
 // so contiguous ranges of ids are the Hilbert-range partition (partition.h) and a rank's triangles
 // are nearly one contiguous run. Layout, little-endian, every section starting on 8 bytes:
-//   header (128 bytes): magic "MRMESH1\n", u32 version (1), u32 block bytes (16384), i64 vertices
+//   header (128 bytes): magic "MRMESH1\n", u32 version (1), u32 block bytes (4096), i64 vertices
 //     V, i64 triangles T, u64 content id, 80 zero bytes, u64 hash of the 120 bytes before it;
 //   xy       V x 2 f64          coordinates;
 //   boundary V x u8             1 on the topological boundary (what a rank cannot compute for its
@@ -12,8 +12,12 @@
 //   v2t_off  (V + 1) x i64      rows of the vertex -> triangle adjacency, v2t_off[V] = 3T;
 //   v2t      3T x i32           each vertex's triangles, increasing id;
 //   tri      T x 3 x i32        corners (orientation kept);
-//   blocks   one u64 hash per 16 KiB block of the bytes from the end of the header to the start
-//            of this table (the last block short). The content id hashes V, T and this table.
+//   blocks   one u64 hash per 4 KiB block of the bytes from the end of the header to the start
+//            of this table (the last block short);
+//   pages    one u64 hash per page of 512 entries of the block table (the last page short).
+// The content id hashes V, T and the page table: a rank reads the page table whole (8 bytes per
+// 2 MiB of mesh: 190 KiB at 10^9 vertices) and only the pages of the block table it needs, so
+// what it reads is its share of the file, whatever the size of the whole table.
 // Checks: a reader refuses (InputError naming the file and byte offset or block) another magic or
 // version, a damaged header, a size other than the header's sections add up to (truncated or
 // trailing bytes), a block table that is not the content id's, and every block whose bytes it uses
@@ -33,8 +37,9 @@
 namespace meshreuse {
 
 inline constexpr uint32_t kMeshFileVersion = 1;
-inline constexpr uint32_t kMeshFileBlock = 16384;
+inline constexpr uint32_t kMeshFileBlock = 4096;
 inline constexpr int64_t kMeshFileHeader = 128;
+inline constexpr int64_t kMeshFilePage = 512;  // block hashes per page of the block table
 
 // FILE.mrm: the path names a mesh file.
 bool IsMeshFilePath(const std::string& path);
@@ -75,6 +80,8 @@ class MeshFile {
   // Reads file bytes [a, b) into `out`, verifying every block they touch (each block once).
   void ReadChecked(int64_t a, int64_t b, char* out);
   void Fail(int64_t offset, const std::string& problem) const;
+  void PreadAll(char* out, int64_t n, int64_t at);
+  uint64_t BlockHash(int64_t k);
 
   struct Fd {  // closed by its destructor, also when the constructor throws
     int fd = -1;
@@ -85,16 +92,21 @@ class MeshFile {
   int64_t vertices_ = 0, triangles_ = 0, file_bytes_ = 0, data_end_ = 0;
   int64_t offset_[kSections + 1] = {};
   uint64_t content_id_ = 0;
-  std::vector<uint64_t> block_hash_;
-  std::vector<uint8_t> verified_;
+  int64_t blocks_ = 0;
+  std::vector<uint64_t> page_hash_;          // the page table, read whole
+  std::vector<std::vector<uint64_t>> page_;  // pages of the block table, read when needed
+  std::vector<bool> verified_;               // blocks
   std::vector<char> scratch_;
   uint64_t bytes_read_ = 0;
 };
 
 // The hash of one block (exposed for the tests that damage a file and mend its table).
 uint64_t MeshFileBlockHash(const char* p, size_t n);
-// The content id of a block table (what the header stores).
-uint64_t MeshFileContentId(int64_t vertices, int64_t triangles, const std::vector<uint64_t>& table);
+// The hash of each page of a block table (kMeshFilePage entries, the last page short).
+std::vector<uint64_t> MeshFilePageHashes(const std::vector<uint64_t>& block_table);
+// The content id of a page table (what the header stores).
+uint64_t MeshFileContentId(int64_t vertices, int64_t triangles,
+                           const std::vector<uint64_t>& page_hashes);
 // The hash of a header's first 120 bytes.
 uint64_t MeshFileHeaderHash(const char* header);
 

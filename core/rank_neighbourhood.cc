@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "core/error.h"
+#include "core/halo_smoother.h"
 #include "core/mesh_file.h"
 #include "core/quality.h"
 
@@ -27,7 +28,8 @@ int32_t LocalOf(const std::vector<int64_t>& gid, int64_t g) {
 
 }  // namespace
 
-RankNeighbourhood ReadRankNeighbourhood(const std::string& path, int32_t rank, int32_t parts) {
+RankNeighbourhood ReadRankNeighbourhood(const std::string& path, int32_t rank, int32_t parts,
+                                        const GhostLookup& lookup) {
   MeshFile f(path);
   const int64_t n = f.vertices(), nt = f.triangles();
   if (parts > n)
@@ -111,26 +113,50 @@ RankNeighbourhood ReadRankNeighbourhood(const std::string& path, int32_t rank, i
   nb.gid.insert(nb.gid.end(), ghosts.begin() + split, ghosts.end());
   const size_t total = nb.gid.size();
 
-  std::vector<double> gxy(2 * ghosts.size());
-  std::vector<uint8_t> gflag(ghosts.size());
-  std::vector<int64_t> goff_at, goff(2 * ghosts.size());
-  for (int64_t g : ghosts) goff_at.push_back(g), goff_at.push_back(g + 1);
-  f.ReadAt(MeshFile::kXy, ghosts, gxy.data());
-  f.ReadAt(MeshFile::kBoundary, ghosts, gflag.data());
-  f.ReadAt(MeshFile::kV2tOff, goff_at, goff.data());
+  // The owned vertices' data, then the ghosts' from their owners (or the file).
   std::vector<uint8_t> flag(static_cast<size_t>(hi - lo));
   RawMesh raw;
   raw.vertex_file = raw.triangle_file = path;
   raw.xy.resize(2 * total);
   const size_t before = static_cast<size_t>(split);
-  for (size_t i = 0; i < before; ++i)
-    raw.xy[2 * i] = gxy[2 * i], raw.xy[2 * i + 1] = gxy[2 * i + 1];
   f.Read(MeshFile::kXy, lo, hi - lo, raw.xy.data() + 2 * before);
-  for (size_t i = before; i < ghosts.size(); ++i) {
-    const size_t l = i + static_cast<size_t>(hi - lo);
-    raw.xy[2 * l] = gxy[2 * i], raw.xy[2 * l + 1] = gxy[2 * i + 1];
-  }
   f.Read(MeshFile::kBoundary, lo, hi - lo, flag.data());
+  const OwnedLookup own = [&](int64_t g) {
+    if (g < lo || g >= hi)
+      throw InputError(path, 0,
+                       "rank " + std::to_string(rank) + " was asked for vertex " +
+                           std::to_string(g) + ", which it does not own");
+    const size_t l = before + static_cast<size_t>(g - lo);
+    return GhostRecord{raw.xy[2 * l], raw.xy[2 * l + 1], off[g - lo + 1] - off[g - lo],
+                       flag[g - lo]};
+  };
+  std::vector<GhostRecord> ghost;
+  if (lookup) {
+    std::vector<int32_t> owner(ghosts.size());
+    for (size_t i = 0; i < ghosts.size(); ++i) owner[i] = RangeOwner(ghosts[i], n, parts);
+    ghost = lookup(ghosts, owner, own);
+  } else {
+    std::vector<double> gxy(2 * ghosts.size());
+    std::vector<uint8_t> gflag(ghosts.size());
+    std::vector<int64_t> goff_at, goff(2 * ghosts.size());
+    for (int64_t g : ghosts) goff_at.push_back(g), goff_at.push_back(g + 1);
+    f.ReadAt(MeshFile::kXy, ghosts, gxy.data());
+    f.ReadAt(MeshFile::kBoundary, ghosts, gflag.data());
+    f.ReadAt(MeshFile::kV2tOff, goff_at, goff.data());
+    for (size_t i = 0; i < ghosts.size(); ++i) {
+      if (goff[2 * i] < 0 || goff[2 * i + 1] > 3 * nt || goff[2 * i + 1] < goff[2 * i])
+        fail("vertex " + std::to_string(ghosts[i]) + ": v2t row [" + std::to_string(goff[2 * i]) +
+             ", " + std::to_string(goff[2 * i + 1]) + ") is reversed or outside 0.." +
+             std::to_string(3 * nt));
+      ghost.push_back({gxy[2 * i], gxy[2 * i + 1], goff[2 * i + 1] - goff[2 * i], gflag[i]});
+    }
+  }
+  if (ghost.size() != ghosts.size())
+    throw std::logic_error("ReadRankNeighbourhood: a ghost lookup answered the wrong count");
+  for (size_t i = 0; i < ghosts.size(); ++i) {
+    const size_t l = i < before ? i : i + static_cast<size_t>(hi - lo);
+    raw.xy[2 * l] = ghost[i].x, raw.xy[2 * l + 1] = ghost[i].y;
+  }
   raw.tri.resize(corners.size());
   for (size_t k = 0; k < corners.size(); ++k) raw.tri[k] = LocalOf(nb.gid, corners[k]);
   for (int64_t g : nb.gid) raw.vertex_tag.Push(g);  // BuildMesh's messages name global ids
@@ -148,10 +174,10 @@ RankNeighbourhood ReadRankNeighbourhood(const std::string& path, int32_t rank, i
            ", but its triangles make it " + (mine ? "a boundary" : "an interior") + " vertex");
   }
   for (size_t i = 0; i < ghosts.size(); ++i) {
-    if (gflag[i] > 1)
-      fail("vertex " + std::to_string(ghosts[i]) + ": boundary flag " + std::to_string(gflag[i]) +
-           " (0 or 1)");
-    nb.mesh.boundary[LocalOf(nb.gid, ghosts[i])] = gflag[i];
+    if (ghost[i].boundary > 1)
+      fail("vertex " + std::to_string(ghosts[i]) + ": boundary flag " +
+           std::to_string(ghost[i].boundary) + " (0 or 1)");
+    nb.mesh.boundary[LocalOf(nb.gid, ghosts[i])] = ghost[i].boundary;
   }
   nb.mesh.interior.clear();
   for (size_t l = 0; l < total; ++l)
@@ -162,13 +188,12 @@ RankNeighbourhood ReadRankNeighbourhood(const std::string& path, int32_t rank, i
   // Global row sizes (triangles at each corner) for the quality weights, as GlobalQualityWeight.
   std::vector<int64_t> row(total);
   for (size_t i = 0; i < ghosts.size(); ++i) {
-    const int64_t a = goff[2 * i], b = goff[2 * i + 1];
     const int64_t here = nb.mesh.v2t.RowSize(LocalOf(nb.gid, ghosts[i]));
-    if (b - a < here || a < 0 || b > 3 * nt)
-      fail("vertex " + std::to_string(ghosts[i]) + ": v2t row [" + std::to_string(a) + ", " +
-           std::to_string(b) + ") is shorter than the " + std::to_string(here) +
-           " triangles that hold it");
-    row[LocalOf(nb.gid, ghosts[i])] = b - a;
+    if (ghost[i].triangles < here)
+      fail("vertex " + std::to_string(ghosts[i]) + ": its v2t row has " +
+           std::to_string(ghost[i].triangles) + " triangles, fewer than the " +
+           std::to_string(here) + " that hold it");
+    row[LocalOf(nb.gid, ghosts[i])] = ghost[i].triangles;
   }
   for (int64_t v = lo; v < hi; ++v) row[LocalOf(nb.gid, v)] = off[v - lo + 1] - off[v - lo];
   const double inv_v = 1.0 / static_cast<double>(n);
@@ -191,6 +216,62 @@ RankNeighbourhood ReadRankNeighbourhood(const std::string& path, int32_t rank, i
   nb.neighbours.erase(std::unique(nb.neighbours.begin(), nb.neighbours.end()), nb.neighbours.end());
   nb.bytes_read = f.bytes_read();
   return nb;
+}
+
+GhostLookup GhostExchange(HaloTransport& tx) {
+  return [&tx](const std::vector<int64_t>& wanted, const std::vector<int32_t>& owner,
+               const OwnedLookup& mine) {
+    const int32_t P = tx.size(), me = tx.rank();
+    // Who I ask, and for how many: (rank, count) pairs, all-gathered.
+    std::vector<int64_t> need;
+    for (size_t i = 0; i < wanted.size(); ++i) {
+      if (owner[i] == me || owner[i] < 0 || owner[i] >= P)
+        throw std::logic_error("GhostExchange: a ghost owned by its own rank or none");
+      if (need.empty() || need[need.size() - 2] != owner[i])
+        need.push_back(owner[i]), need.push_back(0);
+      ++need.back();
+    }
+    const std::vector<std::string> all =
+        tx.AllGather(std::string(reinterpret_cast<const char*>(need.data()), 8 * need.size()));
+    // Requests out: the global ids (exact in a double: ids are below 2^31).
+    std::vector<std::vector<double>> request(P), answer(P);
+    for (size_t i = 0; i < wanted.size(); ++i)
+      request[owner[i]].push_back(static_cast<double>(wanted[i]));
+    for (int32_t q = 0; q < P; ++q)
+      if (!request[q].empty()) tx.Send(q, request[q].data(), request[q].size());
+    // Answers to whoever asked me, in rank order.
+    for (int32_t p = 0; p < P; ++p) {
+      if (static_cast<int32_t>(all.size()) != P || all[p].size() % 16)
+        throw std::logic_error("GhostExchange: a malformed all-gather");
+      std::vector<int64_t> pairs(all[p].size() / 8);
+      if (!pairs.empty()) std::memcpy(pairs.data(), all[p].data(), all[p].size());
+      for (size_t k = 0; k < pairs.size(); k += 2) {
+        if (pairs[k] != me) continue;
+        std::vector<double> ids(static_cast<size_t>(pairs[k + 1]));
+        tx.Recv(p, ids.data(), ids.size());
+        std::vector<double>& a = answer[p];
+        for (double id : ids) {
+          const GhostRecord g = mine(static_cast<int64_t>(id));
+          a.insert(a.end(),
+                   {g.x, g.y, static_cast<double>(g.triangles), static_cast<double>(g.boundary)});
+        }
+        tx.Send(p, a.data(), a.size());
+      }
+    }
+    // My answers, in the order asked.
+    std::vector<GhostRecord> out(wanted.size());
+    size_t at = 0;
+    for (int32_t q = 0; q < P; ++q) {
+      if (request[q].empty()) continue;
+      std::vector<double> a(4 * request[q].size());
+      tx.Recv(q, a.data(), a.size());
+      for (size_t k = 0; k < request[q].size(); ++k, ++at)
+        out[at] = {a[4 * k], a[4 * k + 1], static_cast<int64_t>(a[4 * k + 2]),
+                   static_cast<uint8_t>(a[4 * k + 3])};
+    }
+    tx.Flush();
+    return out;
+  };
 }
 
 RankShare ShareOf(const RankNeighbourhood& nb) {

@@ -115,10 +115,10 @@ DistSmoothResult RunDistributedSmooth(const DistSmoothConfig& cfg, HaloTransport
   RankPart p;
   SmoothRankStats st;
   if (ReadsRanges(cfg)) {
-    // Each rank reads its range and ghost ring; one all-gather of counts checks what no rank can
-    // alone and gives every rank the part graph to colour.
+    // Each rank reads its range, gets its ghosts from their owners, and one all-gather of counts
+    // checks what no rank can alone and gives every rank the part graph to colour.
     log.Say("reading rank " + std::to_string(rank) + "'s range of " + cfg.mesh);
-    const RankNeighbourhood nb = ReadRankNeighbourhood(cfg.mesh, rank, parts);
+    const RankNeighbourhood nb = ReadRankNeighbourhood(cfg.mesh, rank, parts, GhostExchange(tx));
     std::vector<RankShare> shares;
     for (const std::string& b : tx.AllGather(PackShare(ShareOf(nb))))
       shares.push_back(UnpackShare(b));

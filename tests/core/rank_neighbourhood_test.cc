@@ -1,0 +1,278 @@
+// A rank's read of a mesh file (core/rank_neighbourhood.h): the part it lays out equals, member for
+// member, the part BuildRankPart makes from the whole mesh with the range partition (every corpus
+// mesh, P = 1..4, three orderings, every cut placement); the part graph learnt from the shares is
+// MeasurePartition's (same colouring, same cut edges); a rank reads a fraction of a large file; and
+// inconsistent files (mended so the hashes pass) are refused by the rank that owns the fault, while
+// what no rank sees alone is refused by CheckRankShares on every rank.
+#include "core/rank_neighbourhood.h"
+
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <fstream>
+#include <iterator>
+
+#include "core/error.h"
+#include "core/halo_threads.h"
+#include "core/mesh_file.h"
+#include "core/partition.h"
+#include "core/rank_part.h"
+#include "core/synthetic.h"
+#include "tests/test_util.h"
+
+namespace meshreuse {
+namespace {
+using namespace testing;
+
+bool Has(const std::string& s, const std::string& part) {
+  return s.find(part) != std::string::npos;
+}
+
+std::string Slurp(const std::string& p) {
+  std::ifstream in(p, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), {});
+}
+void Spit(const std::string& p, const std::string& b) {
+  std::ofstream(p, std::ios::binary | std::ios::trunc).write(b.data(), b.size());
+}
+int64_t Pad8(int64_t n) { return (n + 7) / 8 * 8; }
+
+// Fresh hashes for damaged bytes (as mesh_file_test's): the damage reaches the topology checks.
+std::string Mend(std::string b) {
+  int64_t v, t;
+  std::memcpy(&v, b.data() + 16, 8);
+  std::memcpy(&t, b.data() + 24, 8);
+  const int64_t end = 128 + 16 * v + Pad8(v) + 8 * (v + 1) + 2 * Pad8(12 * t);
+  std::vector<uint64_t> table;
+  for (int64_t a = 128; a < end; a += kMeshFileBlock)
+    table.push_back(MeshFileBlockHash(
+        b.data() + a, static_cast<size_t>(std::min<int64_t>(end, a + kMeshFileBlock) - a)));
+  const std::vector<uint64_t> pages = MeshFilePageHashes(table);
+  std::memcpy(&b[end], table.data(), 8 * table.size());
+  std::memcpy(&b[end + 8 * table.size()], pages.data(), 8 * pages.size());
+  const uint64_t id = MeshFileContentId(v, t, pages);
+  std::memcpy(&b[32], &id, 8);
+  const uint64_t h = MeshFileHeaderHash(b.data());
+  std::memcpy(&b[120], &h, 8);
+  return b;
+}
+
+void ExpectSameParts(const RankPart& a, const RankPart& b) {
+  EXPECT_EQ(a.rank, b.rank);
+  EXPECT_EQ(a.colour, b.colour);
+  EXPECT_EQ(a.colours, b.colours);
+  EXPECT_EQ(a.noncut, b.noncut);
+  EXPECT_EQ(a.movable, b.movable);
+  EXPECT_EQ(a.owned, b.owned);
+  EXPECT_EQ(a.total, b.total);
+  EXPECT_EQ(a.gid, b.gid);
+  ASSERT_EQ(a.xy.size(), b.xy.size());
+  EXPECT_EQ(std::memcmp(a.xy.data(), b.xy.data(), a.xy.size() * sizeof(double)), 0);
+  EXPECT_TRUE(std::equal(a.v2v.off.begin(), a.v2v.off.end(), b.v2v.off.begin(), b.v2v.off.end()));
+  EXPECT_TRUE(std::equal(a.v2v.idx.begin(), a.v2v.idx.end(), b.v2v.idx.begin(), b.v2v.idx.end()));
+  EXPECT_EQ(a.tri, b.tri);
+  ASSERT_EQ(a.weight.size(), b.weight.size());
+  EXPECT_EQ(std::memcmp(a.weight.data(), b.weight.data(), a.weight.size() * sizeof(double)), 0);
+  ASSERT_EQ(a.links.size(), b.links.size());
+  for (size_t i = 0; i < a.links.size(); ++i) {
+    EXPECT_EQ(a.links[i].rank, b.links[i].rank);
+    EXPECT_EQ(a.links[i].colour, b.links[i].colour);
+    EXPECT_EQ(a.links[i].send, b.links[i].send);
+    EXPECT_EQ(a.links[i].recv, b.links[i].recv);
+  }
+}
+
+TEST(RankNeighbourhood, RangeFormulaIsHilbertRangePartsOwn) {
+  for (int64_t n : {1, 2, 3, 7, 10, 1000, 1001})
+    for (int32_t P = 1; P <= std::min<int64_t>(n, 9); ++P) {
+      std::vector<int64_t> first(P + 1, n);  // by a scan of HilbertRangeParts' i * P / n
+      for (int64_t v = n - 1; v >= 0; --v) {
+        EXPECT_EQ(RangeOwner(v, n, P), v * P / n);
+        first[v * P / n] = v;
+      }
+      for (int32_t r = 0; r <= P; ++r) EXPECT_EQ(RangeFirst(r, n, P), first[r]) << n << " " << P;
+      for (int32_t r = 0; r < P; ++r) EXPECT_LT(first[r], first[r + 1]);  // none empty if P <= n
+    }
+}
+
+TEST(RankNeighbourhood, PartsEqualTheWholeMeshsWithRangeParts) {
+  TempDir dir;
+  const std::string p = dir / "m.mrm";
+  for (const Mesh& m0 : MeshCorpus()) {
+    Mesh m = m0.Clone();
+    LayOutForRanks(&m);
+    WriteMeshFile(m, p);
+    for (int32_t P = 1; P <= std::min(4, m.NumVertices()); ++P) {
+      const std::vector<int32_t> part = RangeParts(m, P);
+      const PartitionStats ps = MeasurePartition(m, part, P);
+      std::vector<RankNeighbourhood> nbs;
+      std::vector<RankShare> shares;
+      for (int32_t r = 0; r < P; ++r) {
+        nbs.push_back(ReadRankNeighbourhood(p, r, P));
+        shares.push_back(UnpackShare(PackShare(ShareOf(nbs.back()))));
+      }
+      int32_t colours = 0;
+      const std::vector<int32_t> colour = GreedyPartColouring(CheckRankShares(p, shares), &colours);
+      EXPECT_EQ(colour, ps.colour);
+      EXPECT_EQ(colours, ps.colours);
+      int64_t cut = 0;
+      for (const RankShare& s : shares) cut += s.cut_edges;
+      EXPECT_EQ(cut, ps.cut_edges);
+      for (const char* ordering : {"ori", "bfs", "hilbert"})
+        for (CutPlacement pl :
+             {CutPlacement::kLast, CutPlacement::kFirst, CutPlacement::kInterleaved})
+          for (int32_t r = 0; r < P; ++r) {
+            SCOPED_TRACE(std::to_string(m.NumVertices()) + " vertices, P " + std::to_string(P) +
+                         ", rank " + std::to_string(r) + ", " + ordering);
+            ExpectSameParts(BuildRankPart(nbs[r], colour, ordering, 5, pl),
+                            BuildRankPart(m, part, P, ps.colour, r, ordering, 5, pl));
+          }
+    }
+  }
+}
+
+// The ghosts from their owners (GhostExchange, ranks as threads) equal the ghosts read from the
+// file, and a rank then reads its share of the file and little more.
+TEST(RankNeighbourhood, GhostsFromTheirOwnersEqualTheFilesAndReadingIsTheRanksShare) {
+  TempDir dir;
+  SyntheticOptions o;
+  o.nx = 400, o.ny = 320, o.holes = 1, o.seed = 2;
+  Mesh m = BuildMesh(MakeSyntheticMesh(o));
+  LayOutForRanks(&m);
+  const std::string p = dir / "m.mrm";
+  WriteMeshFile(m, p);
+  const double size = static_cast<double>(Slurp(p).size());
+  for (int32_t P : {1, 2, 4, 7}) {
+    std::vector<RankNeighbourhood> got(P);
+    HaloThreads::Run(P, [&](HaloTransport& tx) {
+      got[tx.rank()] = ReadRankNeighbourhood(p, tx.rank(), P, GhostExchange(tx));
+    });
+    for (int32_t r = 0; r < P; ++r) {
+      const RankNeighbourhood file = ReadRankNeighbourhood(p, r, P);
+      const RankNeighbourhood& nb = got[r];
+      ASSERT_EQ(nb.gid, file.gid);
+      EXPECT_EQ(std::memcmp(nb.mesh.xy.data(), file.mesh.xy.data(), 8 * nb.mesh.xy.size()), 0);
+      EXPECT_EQ(nb.mesh.boundary, file.mesh.boundary);
+      EXPECT_EQ(std::memcmp(nb.weight.data(), file.weight.data(), 8 * nb.weight.size()), 0);
+      EXPECT_EQ(nb.part, file.part);
+      // Its share of the vertex-indexed sections and of the triangles, plus the blocks its range
+      // straddles and the pages of the block table: within 4% of the file beyond 1/P.
+      EXPECT_LT(static_cast<double>(nb.bytes_read), size * (1.0 / P + 0.04)) << P << " " << r;
+      EXPECT_LT(nb.bytes_read, file.bytes_read + (P == 1 ? 1 : 0)) << P << " " << r;
+    }
+  }
+}
+
+TEST(RankNeighbourhood, InconsistentFilesAreRefusedByTheOwner) {
+  TempDir dir;
+  SyntheticOptions o;
+  o.nx = 30, o.ny = 20, o.seed = 4;
+  Mesh m = BuildMesh(MakeSyntheticMesh(o));
+  LayOutForRanks(&m);
+  const std::string good = dir / "good.mrm", bad = dir / "bad.mrm";
+  WriteMeshFile(m, good);
+  const std::string b = Slurp(good);
+  const int64_t v = m.NumVertices(), t = m.NumTriangles();
+  const int64_t flags = 128 + 16 * v, offs = flags + Pad8(v), rows = offs + 8 * (v + 1);
+  const int64_t tris = rows + Pad8(12 * t);
+  constexpr int32_t P = 3;
+  // Which rank throws, and what: the others read their parts.
+  auto refused_by = [&](const std::string& bytes, int32_t owner, const std::string& expect) {
+    Spit(bad, Mend(bytes));
+    for (int32_t r = 0; r < P; ++r) {
+      try {
+        ReadRankNeighbourhood(bad, r, P);
+        EXPECT_NE(r, owner) << expect;
+      } catch (const InputError& e) {
+        EXPECT_EQ(r, owner) << e.what();
+        EXPECT_TRUE(Has(e.what(), bad + ": ")) << e.what();
+        EXPECT_TRUE(Has(e.what(), expect)) << e.what();
+      }
+    }
+  };
+  // A boundary vertex flagged interior: only its owner can tell.
+  const int32_t bv =
+      static_cast<int32_t>(std::find(m.boundary.begin(), m.boundary.end(), 1) - m.boundary.begin());
+  std::string x = b;
+  x[flags + bv] = 0;
+  refused_by(x, RangeOwner(bv, v, P),
+             "vertex " + std::to_string(bv) +
+                 ": boundary flag 0, but its triangles make it a "
+                 "boundary vertex");
+  // A triangle's corner moved to another vertex: the old corner's row lists a triangle without it.
+  const int32_t tt = t / 2;
+  const int32_t old = m.tri[3 * tt];
+  int32_t other = m.tri[3 * tt + 1];
+  for (int32_t w = 0; w < v; ++w)
+    if (w != m.tri[3 * tt] && w != m.tri[3 * tt + 1] && w != m.tri[3 * tt + 2]) other = w;
+  x = b;
+  std::memcpy(&x[tris + 12 * tt], &other, 4);
+  {
+    Spit(bad, Mend(x));
+    bool seen = false;
+    for (int32_t r = 0; r < P; ++r) try {
+        ReadRankNeighbourhood(bad, r, P);
+      } catch (const InputError& e) {
+        seen = true;
+        const std::string w = e.what();
+        EXPECT_TRUE(
+            Has(w, "vertex " + std::to_string(old) + ": its v2t row lists triangle " +
+                       std::to_string(tt) + ", which does not") ||
+            Has(w, "triangle " + std::to_string(tt) + " has vertex " + std::to_string(other)))
+            << w;
+      }
+    EXPECT_TRUE(seen);
+  }
+  // A row out of order.
+  const int32_t rv = m.interior[m.interior.size() / 2];
+  x = b;
+  const int64_t a = m.v2t.off[rv];
+  std::swap(x[rows + 4 * a], x[rows + 4 * (a + 1)]);
+  std::swap(x[rows + 4 * a + 1], x[rows + 4 * (a + 1) + 1]);
+  std::swap(x[rows + 4 * a + 2], x[rows + 4 * (a + 1) + 2]);
+  std::swap(x[rows + 4 * a + 3], x[rows + 4 * (a + 1) + 3]);
+  refused_by(x, RangeOwner(rv, v, P), "vertex " + std::to_string(rv) + ": its v2t row lists");
+  // An empty row.
+  x = b;
+  std::memcpy(&x[offs + 8 * (rv + 1)], &a, 8);
+  {
+    Spit(bad, Mend(x));
+    EXPECT_THROW(ReadRankNeighbourhood(bad, RangeOwner(rv, v, P), P), InputError);
+  }
+  // Too many ranks.
+  EXPECT_THROW(ReadRankNeighbourhood(good, 0, static_cast<int32_t>(v) + 1), UsageError);
+}
+
+TEST(RankNeighbourhood, WhatNoRankSeesAloneIsRefusedOnEveryRank) {
+  auto share = [](uint64_t id, int64_t tris, int64_t entries, std::vector<int32_t> nbrs) {
+    RankShare s;
+    s.content_id = id, s.vertices = 10, s.triangles = 8;
+    s.owned_triangles = tris, s.row_entries = entries, s.neighbours = std::move(nbrs);
+    return s;
+  };
+  const std::vector<RankShare> good = {share(1, 5, 12, {1}), share(1, 3, 12, {0})};
+  EXPECT_EQ(CheckRankShares("f", good), (std::vector<std::vector<int32_t>>{{1}, {0}}));
+  auto error = [](const std::vector<RankShare>& s) {
+    try {
+      CheckRankShares("f.mrm", s);
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("(none)");
+  };
+  EXPECT_TRUE(Has(error({share(1, 5, 12, {1}), share(2, 3, 12, {0})}),
+                  "rank 1 read another mesh file than rank 0"))
+      << error({share(1, 5, 12, {1}), share(2, 3, 12, {0})});
+  EXPECT_TRUE(Has(error({share(1, 4, 12, {1}), share(1, 3, 12, {0})}),
+                  "found 7 triangles and 24 v2t entries, the header says 8"))
+      << error({share(1, 4, 12, {1}), share(1, 3, 12, {0})});
+  EXPECT_TRUE(Has(error({share(1, 5, 12, {1}), share(1, 3, 11, {0})}), "23 v2t entries"))
+      << error({share(1, 5, 12, {1}), share(1, 3, 11, {0})});
+  EXPECT_TRUE(Has(error({share(1, 5, 12, {1}), share(1, 3, 12, {})}), "ranks 0 and 1 disagree"))
+      << error({share(1, 5, 12, {1}), share(1, 3, 12, {})});
+  EXPECT_TRUE(Has(error({share(1, 5, 12, {2}), share(1, 3, 12, {})}), "ranks 0 and 2 disagree"))
+      << error({share(1, 5, 12, {2}), share(1, 3, 12, {})});
+}
+
+}  // namespace
+}  // namespace meshreuse
