@@ -132,9 +132,9 @@ RankNeighbourhood ReadRankNeighbourhood(const std::string& path, int32_t rank, i
   };
   std::vector<GhostRecord> ghost;
   if (lookup) {
-    std::vector<int32_t> owner(ghosts.size());
-    for (size_t i = 0; i < ghosts.size(); ++i) owner[i] = RangeOwner(ghosts[i], n, parts);
-    ghost = lookup(ghosts, owner, own);
+    GhostRequest req{path, nb.content_id, n, ghosts, std::vector<int32_t>(ghosts.size())};
+    for (size_t i = 0; i < ghosts.size(); ++i) req.owner[i] = RangeOwner(ghosts[i], n, parts);
+    ghost = lookup(req, own);
   } else {
     std::vector<double> gxy(2 * ghosts.size());
     std::vector<uint8_t> gflag(ghosts.size());
@@ -219,20 +219,32 @@ RankNeighbourhood ReadRankNeighbourhood(const std::string& path, int32_t rank, i
 }
 
 GhostLookup GhostExchange(HaloTransport& tx) {
-  return [&tx](const std::vector<int64_t>& wanted, const std::vector<int32_t>& owner,
-               const OwnedLookup& mine) {
+  return [&tx](const GhostRequest& req, const OwnedLookup& mine) {
     const int32_t P = tx.size(), me = tx.rank();
-    // Who I ask, and for how many: (rank, count) pairs, all-gathered.
-    std::vector<int64_t> need;
+    const std::vector<int64_t>& wanted = req.wanted;
+    const std::vector<int32_t>& owner = req.owner;
+    // The file's identity, then whom I ask and for how many: (rank, count) pairs, all-gathered.
+    std::vector<int64_t> need = {static_cast<int64_t>(req.content_id), req.vertices};
     for (size_t i = 0; i < wanted.size(); ++i) {
       if (owner[i] == me || owner[i] < 0 || owner[i] >= P)
         throw std::logic_error("GhostExchange: a ghost owned by its own rank or none");
-      if (need.empty() || need[need.size() - 2] != owner[i])
+      if (need.size() == 2 || need[need.size() - 2] != owner[i])
         need.push_back(owner[i]), need.push_back(0);
       ++need.back();
     }
     const std::vector<std::string> all =
         tx.AllGather(std::string(reinterpret_cast<const char*>(need.data()), 8 * need.size()));
+    std::vector<std::vector<int64_t>> asks(P);
+    for (int32_t p = 0; p < P; ++p) {
+      if (static_cast<int32_t>(all.size()) != P || all[p].size() % 16 || all[p].empty())
+        throw std::logic_error("GhostExchange: a malformed all-gather");
+      asks[p].resize(all[p].size() / 8);
+      std::memcpy(asks[p].data(), all[p].data(), all[p].size());
+      if (asks[p][0] != asks[0][0] || asks[p][1] != asks[0][1])
+        throw InputError(req.path, 0,
+                         "rank " + std::to_string(p) + " read another mesh file than rank 0 " +
+                             "(content ids differ): every rank must see the same file");
+    }
     // Requests out: the global ids (exact in a double: ids are below 2^31).
     std::vector<std::vector<double>> request(P), answer(P);
     for (size_t i = 0; i < wanted.size(); ++i)
@@ -241,11 +253,8 @@ GhostLookup GhostExchange(HaloTransport& tx) {
       if (!request[q].empty()) tx.Send(q, request[q].data(), request[q].size());
     // Answers to whoever asked me, in rank order.
     for (int32_t p = 0; p < P; ++p) {
-      if (static_cast<int32_t>(all.size()) != P || all[p].size() % 16)
-        throw std::logic_error("GhostExchange: a malformed all-gather");
-      std::vector<int64_t> pairs(all[p].size() / 8);
-      if (!pairs.empty()) std::memcpy(pairs.data(), all[p].data(), all[p].size());
-      for (size_t k = 0; k < pairs.size(); k += 2) {
+      const std::vector<int64_t>& pairs = asks[p];
+      for (size_t k = 2; k < pairs.size(); k += 2) {
         if (pairs[k] != me) continue;
         std::vector<double> ids(static_cast<size_t>(pairs[k + 1]));
         tx.Recv(p, ids.data(), ids.size());

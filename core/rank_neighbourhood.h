@@ -61,10 +61,18 @@ using OwnedLookup = std::function<GhostRecord(int64_t gid)>;
 // distributed smoother's: one request and one answer per neighbouring rank, what the owner read
 // and will check). Empty: each rank reads its ghosts from the file itself (blocks of 4 KiB around
 // each ghost: more bytes than the exchange moves, no communication).
-// `owner[i]` is the rank owning wanted[i] (non-decreasing).
-using GhostLookup = std::function<std::vector<GhostRecord>(const std::vector<int64_t>& wanted,
-                                                           const std::vector<int32_t>& owner,
-                                                           const OwnedLookup& mine)>;
+// What a rank asks of the others: the ghosts it needs (increasing global id) and their owners
+// (non-decreasing), with the file's name and content id, so an exchange can refuse ranks that read
+// different files before any of them answers for a vertex.
+struct GhostRequest {
+  std::string path;
+  uint64_t content_id = 0;
+  int64_t vertices = 0;
+  std::vector<int64_t> wanted;
+  std::vector<int32_t> owner;
+};
+using GhostLookup =
+    std::function<std::vector<GhostRecord>(const GhostRequest& request, const OwnedLookup& mine)>;
 
 class HaloTransport;
 // The exchange through a transport (halo_smoother.h; MPI or threads): one all-gather of who asks
