@@ -9,6 +9,7 @@
 #include "core/halo_smoother.h"
 #include "core/mesh_file.h"
 #include "core/quality.h"
+#include "core/radix_sort.h"
 
 namespace meshreuse {
 
@@ -19,14 +20,6 @@ int64_t RangeFirst(int32_t r, int64_t n, int32_t parts) {
 int32_t RangeOwner(int64_t v, int64_t n, int32_t parts) {
   return static_cast<int32_t>(v * parts / n);
 }
-
-namespace {
-
-int32_t LocalOf(const std::vector<int64_t>& gid, int64_t g) {
-  return static_cast<int32_t>(std::lower_bound(gid.begin(), gid.end(), g) - gid.begin());
-}
-
-}  // namespace
 
 RankNeighbourhood ReadRankNeighbourhood(const std::string& path, int32_t rank, int32_t parts,
                                         const GhostLookup& lookup) {
@@ -69,8 +62,7 @@ RankNeighbourhood ReadRankNeighbourhood(const std::string& path, int32_t rank, i
 
   // Every triangle the rows list, in increasing id.
   std::vector<int64_t> tris(rows.begin(), rows.end());
-  std::sort(tris.begin(), tris.end());
-  tris.erase(std::unique(tris.begin(), tris.end()), tris.end());
+  RadixSortUnique(&tris);
   std::vector<int32_t> corners(3 * tris.size());
   f.ReadAt(MeshFile::kTri, tris, corners.data());
   for (size_t i = 0; i < tris.size(); ++i) {
@@ -80,38 +72,48 @@ RankNeighbourhood ReadRankNeighbourhood(const std::string& path, int32_t rank, i
         fail("triangle " + std::to_string(tris[i]) + ": corner " + std::to_string(c[k]) +
              " outside 0.." + std::to_string(n - 1));
   }
-  auto corners_of = [&](int32_t t) {
-    return &corners[3 * (std::lower_bound(tris.begin(), tris.end(), t) - tris.begin())];
-  };
-  for (int64_t v = lo; v < hi; ++v)
-    for (int64_t k = off[v - lo]; k < off[v - lo + 1]; ++k) {
-      const int32_t t = rows[k - off.front()];
-      const int32_t* c = corners_of(t);
-      if (c[0] != v && c[1] != v && c[2] != v)
-        fail("vertex " + std::to_string(v) + ": its v2t row lists triangle " + std::to_string(t) +
-             ", which does not have it as a corner");
-    }
-  // The triangles holding each owned vertex must be its row: count them.
-  std::vector<int64_t> held(static_cast<size_t>(hi - lo), 0);
+  // Rows and triangles agree: every (owned corner, triangle read) pair is in the corner's row (a
+  // scan of a short row), and there are as many such pairs as row entries; so each row lists
+  // exactly the triangles that hold its vertex.
+  int64_t pairs = 0;
   for (size_t i = 0; i < tris.size(); ++i)
     for (int k = 0; k < 3; ++k) {
       const int32_t c = corners[3 * i + k];
-      if (c >= lo && c < hi && ++held[c - lo] > off[c - lo + 1] - off[c - lo])
+      if (c < lo || c >= hi) continue;
+      const int32_t* b = &rows[off[c - lo] - off.front()];
+      const int32_t* e = &rows[off[c - lo + 1] - off.front()];
+      if (std::find(b, e, static_cast<int32_t>(tris[i])) == e)
         fail("triangle " + std::to_string(tris[i]) + " has vertex " + std::to_string(c) +
              " as a corner but is not in its v2t row");
+      ++pairs;
     }
+  if (pairs != nb.row_entries)  // some row lists a triangle without its vertex: find it
+    for (int64_t v = lo; v < hi; ++v)
+      for (int64_t k = off[v - lo]; k < off[v - lo + 1]; ++k) {
+        const int32_t t = rows[k - off.front()];
+        const int32_t* c =
+            &corners[3 * (std::lower_bound(tris.begin(), tris.end(), t) - tris.begin())];
+        if (c[0] != v && c[1] != v && c[2] != v)
+          fail("vertex " + std::to_string(v) + ": its v2t row lists triangle " + std::to_string(t) +
+               ", which does not have it as a corner");
+      }
 
   // The vertices here: owned, and the ghosts (other corners), increasing global id.
   std::vector<int64_t> ghosts;
   for (int32_t c : corners)
     if (c < lo || c >= hi) ghosts.push_back(c);
-  std::sort(ghosts.begin(), ghosts.end());
-  ghosts.erase(std::unique(ghosts.begin(), ghosts.end()), ghosts.end());
+  RadixSortUnique(&ghosts);
   const auto split = std::lower_bound(ghosts.begin(), ghosts.end(), lo) - ghosts.begin();
   nb.gid.assign(ghosts.begin(), ghosts.begin() + split);
   for (int64_t v = lo; v < hi; ++v) nb.gid.push_back(v);
   nb.gid.insert(nb.gid.end(), ghosts.begin() + split, ghosts.end());
   const size_t total = nb.gid.size();
+  // Local ids: owned ones by offset, ghosts by search (few).
+  auto local_of = [&, before = split](int64_t g) -> int32_t {
+    if (g >= lo && g < hi) return static_cast<int32_t>(before + (g - lo));
+    const int64_t i = std::lower_bound(ghosts.begin(), ghosts.end(), g) - ghosts.begin();
+    return static_cast<int32_t>(g < lo ? i : i + (hi - lo));
+  };
 
   // The owned vertices' data, then the ghosts' from their owners (or the file).
   std::vector<uint8_t> flag(static_cast<size_t>(hi - lo));
@@ -158,7 +160,7 @@ RankNeighbourhood ReadRankNeighbourhood(const std::string& path, int32_t rank, i
     raw.xy[2 * l] = ghost[i].x, raw.xy[2 * l + 1] = ghost[i].y;
   }
   raw.tri.resize(corners.size());
-  for (size_t k = 0; k < corners.size(); ++k) raw.tri[k] = LocalOf(nb.gid, corners[k]);
+  for (size_t k = 0; k < corners.size(); ++k) raw.tri[k] = local_of(corners[k]);
   for (int64_t g : nb.gid) raw.vertex_tag.Push(g);  // BuildMesh's messages name global ids
   BuildReport report;
   nb.mesh = BuildMesh(std::move(raw), &report);
@@ -168,7 +170,7 @@ RankNeighbourhood ReadRankNeighbourhood(const std::string& path, int32_t rank, i
 
   // Boundary flags: the owned ones checked, the ghosts' taken from the file (their owners check).
   for (int64_t v = lo; v < hi; ++v) {
-    const uint8_t mine = nb.mesh.boundary[LocalOf(nb.gid, v)];
+    const uint8_t mine = nb.mesh.boundary[local_of(v)];
     if (flag[v - lo] != mine)
       fail("vertex " + std::to_string(v) + ": boundary flag " + std::to_string(flag[v - lo]) +
            ", but its triangles make it " + (mine ? "a boundary" : "an interior") + " vertex");
@@ -177,7 +179,7 @@ RankNeighbourhood ReadRankNeighbourhood(const std::string& path, int32_t rank, i
     if (ghost[i].boundary > 1)
       fail("vertex " + std::to_string(ghosts[i]) + ": boundary flag " +
            std::to_string(ghost[i].boundary) + " (0 or 1)");
-    nb.mesh.boundary[LocalOf(nb.gid, ghosts[i])] = ghost[i].boundary;
+    nb.mesh.boundary[local_of(ghosts[i])] = ghost[i].boundary;
   }
   nb.mesh.interior.clear();
   for (size_t l = 0; l < total; ++l)
@@ -188,14 +190,14 @@ RankNeighbourhood ReadRankNeighbourhood(const std::string& path, int32_t rank, i
   // Global row sizes (triangles at each corner) for the quality weights, as GlobalQualityWeight.
   std::vector<int64_t> row(total);
   for (size_t i = 0; i < ghosts.size(); ++i) {
-    const int64_t here = nb.mesh.v2t.RowSize(LocalOf(nb.gid, ghosts[i]));
+    const int64_t here = nb.mesh.v2t.RowSize(local_of(ghosts[i]));
     if (ghost[i].triangles < here)
       fail("vertex " + std::to_string(ghosts[i]) + ": its v2t row has " +
            std::to_string(ghost[i].triangles) + " triangles, fewer than the " +
            std::to_string(here) + " that hold it");
-    row[LocalOf(nb.gid, ghosts[i])] = ghost[i].triangles;
+    row[local_of(ghosts[i])] = ghost[i].triangles;
   }
-  for (int64_t v = lo; v < hi; ++v) row[LocalOf(nb.gid, v)] = off[v - lo + 1] - off[v - lo];
+  for (int64_t v = lo; v < hi; ++v) row[local_of(v)] = off[v - lo + 1] - off[v - lo];
   const double inv_v = 1.0 / static_cast<double>(n);
   nb.weight.resize(tris.size());
   for (size_t t = 0; t < tris.size(); ++t) {
@@ -205,7 +207,7 @@ RankNeighbourhood ReadRankNeighbourhood(const std::string& path, int32_t rank, i
     nb.owned_triangles += smallest >= lo && smallest < hi;
   }
   for (int64_t v = lo; v < hi; ++v) {
-    const int32_t l = LocalOf(nb.gid, v);
+    const int32_t l = local_of(v);
     for (const int32_t* u = nb.mesh.v2v.RowBegin(l); u != nb.mesh.v2v.RowEnd(l); ++u)
       if (nb.part[*u] != rank) {
         nb.neighbours.push_back(nb.part[*u]);

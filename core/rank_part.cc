@@ -9,6 +9,7 @@
 #include "core/error.h"
 #include "core/orderings/registry.h"
 #include "core/quality.h"
+#include "core/radix_sort.h"
 
 namespace meshreuse {
 
@@ -68,8 +69,7 @@ RankPart BuildPart(const Mesh& m, const std::vector<int32_t>& part, int32_t part
   for (int32_t v : mine)
     if (part[v] == rank)
       for (const int32_t* t = m.v2t.RowBegin(v); t != m.v2t.RowEnd(v); ++t) tris.push_back(*t);
-  std::sort(tris.begin(), tris.end());
-  tris.erase(std::unique(tris.begin(), tris.end()), tris.end());
+  RadixSortUnique(&tris);
   for (size_t i = 0; i < mine.size(); ++i) local[mine[i]] = static_cast<int32_t>(i);
   if (spec.name == "ori" || mine.empty()) {
     for (size_t i = 0; i < mine.size(); ++i) pos[i] = mine[i];
@@ -110,12 +110,19 @@ RankPart BuildPart(const Mesh& m, const std::vector<int32_t>& part, int32_t part
   // group with kInterleaved.
   const int8_t rank_of[3][4] = {{0, 1, 2, 3}, {1, 0, 2, 3}, {0, 0, 2, 3}};
   const int8_t* key = rank_of[static_cast<int>(placement)];
-  std::vector<int32_t> at(mine.size());
-  std::iota(at.begin(), at.end(), 0);
-  std::sort(at.begin(), at.end(), [&](int32_t a, int32_t b) {
-    const int8_t ga = key[group[a]], gb = key[group[b]];
-    return ga != gb ? ga < gb : pos[a] < pos[b];
-  });
+  // Sorted by (group key, position) in O(n): the vertices in position order (`ori`'s positions
+  // increase with i; any other ordering's are a permutation of 0..n-1), then a stable bucketing by
+  // key.
+  std::vector<int32_t> by_pos(mine.size());
+  if (spec.name == "ori" || mine.empty())
+    std::iota(by_pos.begin(), by_pos.end(), 0);
+  else
+    for (size_t i = 0; i < mine.size(); ++i) by_pos[pos[i]] = static_cast<int32_t>(i);
+  std::vector<int32_t> at;
+  at.reserve(mine.size());
+  for (int8_t k = 0; k < 4; ++k)
+    for (int32_t i : by_pos)
+      if (key[group[i]] == k) at.push_back(i);
   p.total = static_cast<int32_t>(mine.size());
   p.gid.resize(mine.size());
   p.xy.resize(2 * mine.size());

@@ -119,11 +119,15 @@ DistSmoothResult RunDistributedSmooth(const DistSmoothConfig& cfg, HaloTransport
     // checks what no rank can alone and gives every rank the part graph to colour.
     log.Say("reading rank " + std::to_string(rank) + "'s range of " + cfg.mesh);
     const RankNeighbourhood nb = ReadRankNeighbourhood(cfg.mesh, rank, parts, GhostExchange(tx));
+    log.Say("rank " + std::to_string(rank) + " read " + Grouped(nb.last - nb.first) +
+            " owned vertices and " + Grouped(nb.mesh.NumVertices() - (nb.last - nb.first)) +
+            " ghosts (" + Fixed(nb.bytes_read / 1048576.0, 1) + " MB of the file)");
     std::vector<RankShare> shares;
     for (const std::string& b : tx.AllGather(PackShare(ShareOf(nb))))
       shares.push_back(UnpackShare(b));
     const std::vector<std::vector<int32_t>> graph = CheckRankShares(cfg.mesh, shares);
     const std::vector<int32_t> colour = GreedyPartColouring(graph, &res.colours);
+    log.Say("laying out rank " + std::to_string(rank) + "'s part (" + cfg.ordering + ")");
     p = BuildRankPart(nb, colour, cfg.ordering, cfg.seed, cfg.placement);
     res.vertices = static_cast<int32_t>(nb.vertices);
     res.triangles = static_cast<int32_t>(nb.triangles);

@@ -8,8 +8,10 @@
 #   -np P, jacobi             == meshreuse smooth --mode jacobi, and the same quality and sweep
 #                                count for every P (stopped by --tol);
 # and that the comparison can fail (ordered at -np 2 differs from the storage-order sweep).
+# The distributed mesh file (FILE.mrm) read in ranges: equal to the whole read and to the serial
+# sweep along pi at -np 1..4; damaged, truncated and foreign files refused on every rank.
 # A scale smoke test at -np 2 on about 10^6 vertices (refined, no Triangle needed) with its memory
-# per rank checked; a rank killed mid-run ends the job naming the rank; bad input exits 2 naming
+# per rank checked (whole read and ranges); a rank killed mid-run ends the job naming the rank; bad input exits 2 naming
 # the file on every rank; never a hang (each run under `timeout`).
 # Usage: mpi_smooth.sh MESHREUSE MESHREUSE_MPI MPIEXEC DATA
 set -u
@@ -75,8 +77,49 @@ done
 check "hybrid" 0 run 2 "$mpi" smooth "$fine" --mode hybrid --max-iters 3 --out "$tmp/hyb" --quiet
 [[ -s "$tmp/hyb/ranks.csv" && -s "$tmp/hyb/run.json" ]] && pass=$((pass + 1)) || { fail=$((fail + 1)); echo "FAIL --out"; }
 
-# Scale smoke test: about 10^6 vertices at -np 2; each rank reads the whole mesh (the distributed
-# input is not built yet), so a rank's peak memory is checked against the serial smoother's.
+# The distributed mesh file: each rank reads its range and gets its ghosts from their owners; the
+# run equals the whole read with the Hilbert partition (the file is in Hilbert order) and the
+# serial sweep along its pi, at every P, ordering and placement; Jacobi equals serial Jacobi.
+check "convert to .mrm" 0 "$bin" mesh convert "$fine" -o "$tmp/fine.mrm" --quiet
+check "convert back" 0 "$bin" mesh convert "$tmp/fine.mrm" -o "$tmp/fineh" --quiet
+for np in 1 2 3 4; do
+  for layout in "--ordering ori" "--ordering grid-wave --cut-placement first"; do
+    check "mrm np $np $layout" 0 run $np "$mpi" smooth "$tmp/fine.mrm" $layout --max-iters 5 --tol -1 \
+      -o "$tmp/np.vtk" --pi-out "$tmp/pi" --quiet
+    check "whole read np $np $layout" 0 run $np "$mpi" smooth "$tmp/fineh.node" --partition hilbert \
+      $layout --max-iters 5 --tol -1 -o "$tmp/whole.vtk" --pi-out "$tmp/piw" --quiet
+    equal "mrm np $np $layout == whole read" "$tmp/whole.vtk" "$tmp/np.vtk"
+    tail -n +2 "$tmp/pi" >"$tmp/pi.body"
+    tail -n +2 "$tmp/piw" >"$tmp/piw.body"
+    equal "mrm np $np $layout: same pi" "$tmp/piw.body" "$tmp/pi.body"
+    check "serial along pi (mrm)" 0 "$bin" smooth "$tmp/fine.mrm" --visit-order "$tmp/pi" --max-iters 5 \
+      --tol -1 -o "$tmp/along.vtk" --quiet
+    equal "mrm np $np $layout == serial along pi" "$tmp/along.vtk" "$tmp/np.vtk"
+  done
+done
+check "serial jacobi (mrm)" 0 "$bin" smooth "$tmp/fine.mrm" --mode jacobi --max-iters 4 --tol -1 -o "$tmp/serial.vtk" --quiet
+check "mrm jacobi np 3" 0 run 3 "$mpi" smooth "$tmp/fine.mrm" --mode jacobi --max-iters 4 --tol -1 -o "$tmp/np.vtk" --quiet
+equal "mrm jacobi np 3 == serial jacobi" "$tmp/serial.vtk" "$tmp/np.vtk"
+check "mrm to mrm" 0 run 2 "$mpi" smooth "$tmp/fine.mrm" --max-iters 2 -o "$tmp/out.mrm" --quiet
+check "serial to mrm" 0 "$bin" smooth "$tmp/fine.mrm" --visit-order "$tmp/pi" --max-iters 2 -o "$tmp/serial.mrm" --quiet
+check "mrm output reads" 0 "$bin" mesh info "$tmp/out.mrm"
+# Damaged, truncated and foreign files: exit 2 on every rank, the file and the place named.
+size=$(stat -c %s "$tmp/fine.mrm")
+head -c $((size - 8)) "$tmp/fine.mrm" >"$tmp/trunc.mrm"
+check "truncated mrm" 2 run 3 "$mpi" smooth "$tmp/trunc.mrm" --quiet
+contains "truncated mrm" "meshreuse-mpi: rank 0: error: $tmp/trunc.mrm: byte"
+contains "truncated mrm" "truncated: "
+cp "$tmp/fine.mrm" "$tmp/bad.mrm"
+printf '\x55' | dd of="$tmp/bad.mrm" bs=1 seek=$((size * 3 / 4)) conv=notrunc status=none
+check "damaged mrm" 2 run 3 "$mpi" smooth "$tmp/bad.mrm" --quiet
+contains "damaged mrm" "does not match its hash"
+"$bin" mesh convert "$plate" -o "$tmp/other.mrm" --quiet
+check "ranks read different files" 2 timeout 120 "$mpiexec" --oversubscribe -np 1 "$mpi" smooth "$tmp/fine.mrm" --quiet : \
+  -np 1 "$mpi" smooth "$tmp/other.mrm" --quiet
+contains "ranks read different files" "rank 1 read another mesh file than rank 0"
+
+# Scale smoke test: about 10^6 vertices at -np 2; each rank reads the whole mesh, so a rank's
+# peak memory is checked against the serial smoother's; then the mesh file, read in ranges.
 check "refine 10^6" 0 "$bin" mesh refine "$plate" --levels 5 --jitter 0.3 -o "$tmp/big" --quiet
 check "serial 10^6" 0 /usr/bin/time -f "rss %M" "$bin" smooth "$tmp/big.node" --max-iters 3 --quiet
 serial_kb=$(awk '/^rss /{print $2}' "$tmp/out")
@@ -85,9 +128,17 @@ contains "np 2 10^6" "946,464 vertices"
 # bytes per owned vertex bounded in a Release build only (a sanitizer's shadow memory and red zones
 # triple it); the ratio to the serial smoother's peak holds in both.
 per_owned=600; "$bin" --version | grep -q Release || per_owned=1000000
-awk -v s="$serial_kb" -v b="$per_owned" '$1 ~ /^[01]$/ && NF == 17 {n++; if ($16 * 1024 > 1.5 * s) bad = 1; if ($17 > b) bad = 1}
+awk -v s="$serial_kb" -v b="$per_owned" '$1 ~ /^[01]$/ && NF == 18 {n++; if ($17 * 1024 > 1.5 * s) bad = 1; if ($18 > b) bad = 1}
   END {exit !(n == 2 && !bad)}' "$tmp/out" && pass=$((pass + 1)) || {
   fail=$((fail + 1)); echo "FAIL np 2 memory: serial ${serial_kb} kB"; cat "$tmp/out"; }
+# Read in ranges, a rank holds its part: each rank's peak at most 3/4 of the serial smoother's
+# (about half plus the MPI library), and it read about half of the file.
+check "big.mrm" 0 "$bin" mesh convert "$tmp/big.node" -o "$tmp/big.mrm" --quiet
+check "np 2 10^6 mrm" 0 run 2 "$mpi" smooth "$tmp/big.mrm" --max-iters 3 --quiet
+mrm_size=$(stat -c %s "$tmp/big.mrm")
+awk -v s="$serial_kb" -v f="$mrm_size" '$1 ~ /^[01]$/ && NF == 18 {n++; if ($17 * 1024 > 0.75 * s) bad = 1; if ($10 * 1048576 > 0.56 * f) bad = 1}
+  END {exit !(n == 2 && !bad)}' "$tmp/out" && pass=$((pass + 1)) || {
+  fail=$((fail + 1)); echo "FAIL np 2 mrm memory or reading: serial ${serial_kb} kB, file $mrm_size B"; cat "$tmp/out"; }
 
 # Failures: a killed rank ends the job naming it; bad input exits 2 on every rank, file named.
 MESHREUSE_MPI_KILL_RANK=1 run 3 "$mpi" smooth "$fine" --quiet >"$tmp/out" 2>&1
@@ -103,6 +154,10 @@ printf '1 3 0\n1 1 2 3\n' >"$tmp/tri.ele"
 check "more ranks than vertices" 2 run 4 "$mpi" smooth "$tmp/tri.node" --quiet
 contains "more ranks than vertices" "4 ranks for a mesh of 3 vertices"
 check "one triangle, no interior" 0 run 3 "$mpi" smooth "$tmp/tri.node" --quiet
+check "tri.mrm" 0 "$bin" mesh convert "$tmp/tri.node" -o "$tmp/tri.mrm" --quiet
+check "mrm more ranks than vertices" 2 run 4 "$mpi" smooth "$tmp/tri.mrm" --quiet
+contains "mrm more ranks than vertices" "4 ranks for a mesh of 3 vertices"
+check "mrm one triangle, no interior" 0 run 3 "$mpi" smooth "$tmp/tri.mrm" --quiet
 check "bad mode" 2 run 2 "$mpi" smooth "$fine" --mode gs --quiet
 contains "bad mode" "unknown distributed mode 'gs'"
 check "pi needs ordered" 2 run 1 "$mpi" smooth "$fine" --mode jacobi --pi-out "$tmp/pi2" --quiet
