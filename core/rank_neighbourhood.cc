@@ -98,6 +98,10 @@ RankNeighbourhood ReadRankNeighbourhood(const std::string& path, int32_t rank, i
                ", which does not have it as a corner");
       }
 
+  const size_t triangles_here = tris.size();
+  std::vector<int32_t>().swap(rows);  // the peak is the mesh built below: keep it lean
+  std::vector<int64_t>().swap(tris);
+
   // The vertices here: owned, and the ghosts (other corners), increasing global id.
   std::vector<int64_t> ghosts;
   for (int32_t c : corners)
@@ -161,6 +165,7 @@ RankNeighbourhood ReadRankNeighbourhood(const std::string& path, int32_t rank, i
   }
   raw.tri.resize(corners.size());
   for (size_t k = 0; k < corners.size(); ++k) raw.tri[k] = local_of(corners[k]);
+  std::vector<int32_t>().swap(corners);
   for (int64_t g : nb.gid) raw.vertex_tag.Push(g);  // BuildMesh's messages name global ids
   BuildReport report;
   nb.mesh = BuildMesh(std::move(raw), &report);
@@ -199,8 +204,8 @@ RankNeighbourhood ReadRankNeighbourhood(const std::string& path, int32_t rank, i
   }
   for (int64_t v = lo; v < hi; ++v) row[local_of(v)] = off[v - lo + 1] - off[v - lo];
   const double inv_v = 1.0 / static_cast<double>(n);
-  nb.weight.resize(tris.size());
-  for (size_t t = 0; t < tris.size(); ++t) {
+  nb.weight.resize(triangles_here);
+  for (size_t t = 0; t < triangles_here; ++t) {
     const int32_t* c = &nb.mesh.tri[3 * t];
     nb.weight[t] = QualityWeightOf(inv_v, row[c[0]], row[c[1]], row[c[2]]);
     const int64_t smallest = nb.gid[std::min(c[0], std::min(c[1], c[2]))];

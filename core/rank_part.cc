@@ -65,11 +65,16 @@ RankPart BuildPart(const Mesh& m, const std::vector<int32_t>& part, int32_t part
   // The position of each in the rank's ordering: `ori` keeps global ids; any other ordering runs
   // on the part with its ghost ring and every triangle with an owned corner, a mesh of its own.
   std::vector<int64_t> pos(mine.size());
-  std::vector<int32_t> tris;  // global ids of the triangles with an owned corner
-  for (int32_t v : mine)
-    if (part[v] == rank)
-      for (const int32_t* t = m.v2t.RowBegin(v); t != m.v2t.RowEnd(v); ++t) tris.push_back(*t);
-  RadixSortUnique(&tris);
+  std::vector<int32_t> tris;  // ids (in m) of the triangles with an owned corner
+  if (gid) {  // a neighbourhood holds those triangles only (and may have dropped its v2t)
+    tris.resize(static_cast<size_t>(m.NumTriangles()));
+    std::iota(tris.begin(), tris.end(), 0);
+  } else {
+    for (int32_t v : mine)
+      if (part[v] == rank)
+        for (const int32_t* t = m.v2t.RowBegin(v); t != m.v2t.RowEnd(v); ++t) tris.push_back(*t);
+    RadixSortUnique(&tris);
+  }
   for (size_t i = 0; i < mine.size(); ++i) local[mine[i]] = static_cast<int32_t>(i);
   if (spec.name == "ori" || mine.empty()) {
     for (size_t i = 0; i < mine.size(); ++i) pos[i] = mine[i];
@@ -190,6 +195,16 @@ RankPart BuildRankPart(const Mesh& m, const std::vector<int32_t>& part, int32_t 
                        const std::vector<int32_t>& colour, int32_t rank,
                        const std::string& ordering, uint64_t seed, CutPlacement placement) {
   return BuildPart(m, part, parts, colour, rank, ordering, seed, placement, nullptr, nullptr);
+}
+
+RankPart BuildRankPart(RankNeighbourhood&& nb, const std::vector<int32_t>& colour,
+                       const std::string& ordering, uint64_t seed, CutPlacement placement) {
+  // What the layout does not read goes first: the peak of a rank's set-up is here.
+  decltype(nb.mesh.v2t.off)().swap(nb.mesh.v2t.off);
+  decltype(nb.mesh.v2t.idx)().swap(nb.mesh.v2t.idx);
+  decltype(nb.mesh.interior)().swap(nb.mesh.interior);
+  return BuildRankPart(static_cast<const RankNeighbourhood&>(nb), colour, ordering, seed,
+                       placement);
 }
 
 RankPart BuildRankPart(const RankNeighbourhood& nb, const std::vector<int32_t>& colour,

@@ -118,7 +118,7 @@ DistSmoothResult RunDistributedSmooth(const DistSmoothConfig& cfg, HaloTransport
     // Each rank reads its range, gets its ghosts from their owners, and one all-gather of counts
     // checks what no rank can alone and gives every rank the part graph to colour.
     log.Say("reading rank " + std::to_string(rank) + "'s range of " + cfg.mesh);
-    const RankNeighbourhood nb = ReadRankNeighbourhood(cfg.mesh, rank, parts, GhostExchange(tx));
+    RankNeighbourhood nb = ReadRankNeighbourhood(cfg.mesh, rank, parts, GhostExchange(tx));
     log.Say("rank " + std::to_string(rank) + " read " + Grouped(nb.last - nb.first) +
             " owned vertices and " + Grouped(nb.mesh.NumVertices() - (nb.last - nb.first)) +
             " ghosts (" + Fixed(nb.bytes_read / 1048576.0, 1) + " MB of the file)");
@@ -128,11 +128,12 @@ DistSmoothResult RunDistributedSmooth(const DistSmoothConfig& cfg, HaloTransport
     const std::vector<std::vector<int32_t>> graph = CheckRankShares(cfg.mesh, shares);
     const std::vector<int32_t> colour = GreedyPartColouring(graph, &res.colours);
     log.Say("laying out rank " + std::to_string(rank) + "'s part (" + cfg.ordering + ")");
-    p = BuildRankPart(nb, colour, cfg.ordering, cfg.seed, cfg.placement);
-    res.vertices = static_cast<int32_t>(nb.vertices);
-    res.triangles = static_cast<int32_t>(nb.triangles);
+    const int64_t vertices = nb.vertices, triangles = nb.triangles, bytes_read = nb.bytes_read;
+    p = BuildRankPart(std::move(nb), colour, cfg.ordering, cfg.seed, cfg.placement);
+    res.vertices = static_cast<int32_t>(vertices);
+    res.triangles = static_cast<int32_t>(triangles);
     for (const RankShare& s : shares) res.cut_edges += s.cut_edges;
-    st.bytes_read = nb.bytes_read;
+    st.bytes_read = static_cast<uint64_t>(bytes_read);
   } else {
     m = LoadForRanks(cfg.mesh, parts, log);
     log.Say("partitioning " + std::to_string(m.NumVertices()) + " vertices into " +
