@@ -53,6 +53,28 @@ T Load(const char* p) {
 
 }  // namespace
 
+std::string RehashMeshFile(std::string b) {
+  if (b.size() < static_cast<size_t>(kMeshFileHeader)) return b;
+  const int64_t v = Load<int64_t>(b.data() + 16), t = Load<int64_t>(b.data() + 24);
+  if (v < 1 || v > kMaxId || t < 1 || 3 * t > kMaxId) return b;
+  int64_t off[MeshFile::kSections + 1];
+  Layout(v, t, off);
+  const int64_t end = off[MeshFile::kSections], blocks = Blocks(end);
+  if (static_cast<int64_t>(b.size()) != end + 8 * blocks + 8 * Pages(blocks)) return b;
+  std::vector<uint64_t> table;
+  for (int64_t a = kMeshFileHeader; a < end; a += kMeshFileBlock)
+    table.push_back(MeshFileBlockHash(
+        b.data() + a, static_cast<size_t>(std::min<int64_t>(end, a + kMeshFileBlock) - a)));
+  const std::vector<uint64_t> pages = MeshFilePageHashes(table);
+  std::memcpy(&b[end], table.data(), 8 * table.size());
+  std::memcpy(&b[end + 8 * table.size()], pages.data(), 8 * pages.size());
+  const uint64_t id = MeshFileContentId(v, t, pages);
+  std::memcpy(&b[32], &id, 8);
+  const uint64_t h = MeshFileHeaderHash(b.data());
+  std::memcpy(&b[120], &h, 8);
+  return b;
+}
+
 bool IsMeshFilePath(const std::string& path) {
   return path.size() > 4 && path.compare(path.size() - 4, 4, ".mrm") == 0;
 }
@@ -318,6 +340,52 @@ void MeshFile::ReadAt(Section s, const std::vector<int64_t>& at, void* out) {
     for (size_t k = i; k < j; ++k)
       std::memcpy(o + k * eb, run.data() + (Offset(s) + at[k] * eb - lo), static_cast<size_t>(eb));
     i = j;
+  }
+}
+
+void CheckMeshFileTopology(const std::string& path, const Mesh& m) {
+  MeshFile f(path);
+  const int64_t v = f.vertices(), t = f.triangles();
+  if (m.NumVertices() != v)  // BuildMesh dropped vertices no triangle uses
+    throw InputError(path, 0,
+                     std::to_string(v - m.NumVertices()) +
+                         " vertices lie in no triangle (a mesh file holds none)");
+  std::vector<uint8_t> flag(static_cast<size_t>(v));
+  f.Read(MeshFile::kBoundary, 0, v, flag.data());
+  for (int64_t i = 0; i < v; ++i)
+    if (flag[i] != m.boundary[i])
+      throw InputError(path, 0,
+                       "vertex " + std::to_string(i) + ": boundary flag " +
+                           std::to_string(flag[i]) + ", but its triangles make it " +
+                           (m.boundary[i] ? "a boundary" : "an interior") + " vertex");
+  // Rows compared in pieces, so the check costs no second copy of the adjacency.
+  constexpr int64_t kPiece = 1 << 20;
+  std::vector<int64_t> off;
+  for (int64_t a = 0; a <= v; a += kPiece) {
+    const int64_t n = std::min(kPiece, v + 1 - a);
+    off.resize(static_cast<size_t>(n));
+    f.Read(MeshFile::kV2tOff, a, n, off.data());
+    for (int64_t i = 0; i < n; ++i)
+      if (off[i] != m.v2t.off[a + i])
+        throw InputError(path, 0,
+                         "v2t row offset " + std::to_string(a + i) + " is " +
+                             std::to_string(off[i]) + ", the triangles make it " +
+                             std::to_string(m.v2t.off[a + i]));
+  }
+  std::vector<int32_t> idx;
+  for (int64_t a = 0; a < 3 * t; a += kPiece) {
+    const int64_t n = std::min(kPiece, 3 * t - a);
+    idx.resize(static_cast<size_t>(n));
+    f.Read(MeshFile::kV2t, a, n, idx.data());
+    for (int64_t i = 0; i < n; ++i)
+      if (idx[i] != m.v2t.idx[a + i]) {
+        const int64_t vert =
+            std::upper_bound(m.v2t.off.begin(), m.v2t.off.end(), a + i) - m.v2t.off.begin() - 1;
+        throw InputError(path, 0,
+                         "vertex " + std::to_string(vert) + ": its v2t row lists triangle " +
+                             std::to_string(idx[i]) + " where the triangles give " +
+                             std::to_string(m.v2t.idx[a + i]));
+      }
   }
 }
 

@@ -22,9 +22,9 @@
 // version, a damaged header, a size other than the header's sections add up to (truncated or
 // trailing bytes), a block table that is not the content id's, and every block whose bytes it uses
 // and whose hash differs: each rank verifies what it reads, so every byte of a distributed read is
-// verified by some rank. The topology the boundary flags and v2t rows claim is checked by the
-// readers that use them (rank_neighbourhood.h): the whole-file reader builds the mesh from xy and
-// tri alone, like every other format.
+// verified by some rank. The topology the boundary flags and v2t rows claim is checked by every
+// reader: a rank's (rank_neighbourhood.h) for its range, the whole-file reader against the mesh
+// it builds from xy and tri (CheckMeshFileTopology).
 #pragma once
 
 #include <cstddef>
@@ -52,6 +52,10 @@ void LayOutForRanks(Mesh* m);
 void WriteMeshFile(const Mesh& m, const std::string& path);
 // The whole file as a RawMesh (serial commands read FILE.mrm like any mesh).
 RawMesh ReadMeshFileRaw(const std::string& path);
+// The stored boundary flags and v2t rows against the mesh built from the file's xy and triangles
+// (ReadMesh calls it): a file a distributed read would refuse is refused by every reader.
+// InputError naming the first disagreement.
+void CheckMeshFileTopology(const std::string& path, const Mesh& m);
 
 // The checked reader. Sections by element; every read verifies the blocks it touches.
 class MeshFile {
@@ -109,5 +113,9 @@ uint64_t MeshFileContentId(int64_t vertices, int64_t triangles,
                            const std::vector<uint64_t>& page_hashes);
 // The hash of a header's first 120 bytes.
 uint64_t MeshFileHeaderHash(const char* header);
+// A file's bytes with fresh block, page and header hashes (for the tests and the fuzzer that damage
+// a file and want the damage to reach the checks behind the hashes); bytes too short for the
+// sizes their header announces come back unchanged.
+std::string RehashMeshFile(std::string bytes);
 
 }  // namespace meshreuse

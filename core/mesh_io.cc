@@ -43,6 +43,7 @@ RawMesh ReadRawMesh(const std::string& path) {
 Mesh ReadMesh(const std::string& path, std::vector<std::string>* warnings) {
   BuildReport report;
   Mesh m = BuildMesh(ReadRawMesh(path), &report);
+  if (IsMeshFilePath(path)) CheckMeshFileTopology(path, m);
   if (warnings)
     for (std::string& w : report.warnings) warnings->push_back(std::move(w));
   return m;

@@ -21,7 +21,7 @@ CC=clang CXX=clang++ cmake -S . -B build/fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo 
 cmake --build build/fuzz -j"$(nproc 2>/dev/null || echo 2)" >build/fuzz.build.log 2>&1 ||
   { tail -n 40 build/fuzz.build.log; exit 1; }
 
-harnesses=(triangle gmsh trace external permutation poly summary visit_order)
+harnesses=(triangle gmsh trace external permutation poly summary visit_order mesh_file)
 c=build/fuzz/corpus
 rm -rf build/fuzz/logs build/fuzz/artifacts
 mkdir -p build/fuzz/artifacts build/fuzz/logs
@@ -64,6 +64,16 @@ rm -f "$u64seed" "$u64seed.pz"
 # ids are row-major; a near miss otherwise, which the fuzzer mends), with a comment.
 /usr/bin/python3 -c 'print("# pi\n" + "\n".join(str(j * 21 + i) for j in range(1, 15) for i in range(1, 20)))' >"$c/visit_order/seed-rows"
 printf '0\n1\n1\n' >"$c/visit_order/seed-repeat"
+# Mesh files: good ones as they are (\000) and to be rehashed (\001), and the broken fixtures.
+if [[ -x build/release/cli/meshreuse ]]; then
+  for m in two_interior.node plate41.msh; do
+    build/release/cli/meshreuse mesh convert "tests/data/$m" -o "$c/mesh_file/good.mrm" --quiet >/dev/null 2>&1 || continue
+    { printf '\000'; cat "$c/mesh_file/good.mrm"; } >"$c/mesh_file/seed-${m%.*}"
+    { printf '\001'; cat "$c/mesh_file/good.mrm"; } >"$c/mesh_file/seed-${m%.*}-rehash"
+    rm -f "$c/mesh_file/good.mrm"
+  done
+fi
+for f in tests/data/broken/*.mrm; do { printf '\001'; cat "$f"; } >"$c/mesh_file/seed-$(basename "$f")"; done
 # Summaries: their payloads (the harness writes the header), from chunks of a mesh trace.
 if [[ -x build/release/cli/meshreuse && -s $c/trace/seed-two_interior.trace ]]; then
   for k in 0/1 1/2; do

@@ -42,25 +42,7 @@ int64_t DataEnd(int64_t v, int64_t t) {
 
 // Recomputes the block table, content id and header hash of a file's bytes: a damage that the
 // hashes no longer see, for the checks behind them.
-std::string Mend(std::string b) {
-  int64_t v, t;
-  std::memcpy(&v, b.data() + 16, 8);
-  std::memcpy(&t, b.data() + 24, 8);
-  const int64_t end = DataEnd(v, t);
-  std::vector<uint64_t> table;
-  for (int64_t a = 128; a < end; a += kMeshFileBlock) {
-    const int64_t e = std::min<int64_t>(end, a + kMeshFileBlock);
-    table.push_back(MeshFileBlockHash(b.data() + a, static_cast<size_t>(e - a)));
-  }
-  const std::vector<uint64_t> pages = MeshFilePageHashes(table);
-  std::memcpy(&b[end], table.data(), 8 * table.size());
-  std::memcpy(&b[end + 8 * table.size()], pages.data(), 8 * pages.size());
-  const uint64_t id = MeshFileContentId(v, t, pages);
-  std::memcpy(&b[32], &id, 8);
-  const uint64_t h = MeshFileHeaderHash(b.data());
-  std::memcpy(&b[120], &h, 8);
-  return b;
-}
+std::string Mend(const std::string& b) { return RehashMeshFile(b); }
 
 std::string ErrorOf(const std::function<void()>& f) {
   try {
@@ -113,6 +95,21 @@ TEST(MeshFile, SectionsAreTheMeshsArraysAndTheSizeIsTheLayouts) {
     EXPECT_TRUE(
         std::equal(back.v2v.idx.begin(), back.v2v.idx.end(), m.v2v.idx.begin(), m.v2v.idx.end()));
   }
+}
+
+TEST(MeshFile, RehashingAWrittenFileChangesNothing) {
+  TempDir dir;
+  const std::string p = dir / "m.mrm";
+  WriteMeshFile(Bigger(), p);
+  const std::string b = Slurp(p);
+  EXPECT_TRUE(RehashMeshFile(b) == b);
+  std::string x = b;
+  x[200] ^= 1;
+  EXPECT_FALSE(RehashMeshFile(x) == x);  // the damaged block's hash, the page's, the id, the header's
+  const Mesh m = Bigger();
+  const size_t end = static_cast<size_t>(DataEnd(m.NumVertices(), m.NumTriangles()));
+  EXPECT_TRUE(RehashMeshFile(x).compare(128, end - 128, x, 128, end - 128) == 0)
+      << "only hashes change: the data stays";
 }
 
 TEST(MeshFile, RangesAndScatteredReadsEqualElementReads) {
