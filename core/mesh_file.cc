@@ -53,6 +53,115 @@ T Load(const char* p) {
 
 }  // namespace
 
+namespace {
+
+// A descriptor closed on every path out.
+struct OpenFd {
+  int fd;
+  OpenFd(const std::string& path, int flags) : fd(::open(path.c_str(), flags | O_CLOEXEC)) {
+    if (fd < 0) throw EnvironmentError(path, std::string("cannot open: ") + std::strerror(errno));
+  }
+  ~OpenFd() { ::close(fd); }
+  OpenFd(const OpenFd&) = delete;
+  OpenFd& operator=(const OpenFd&) = delete;
+};
+
+void PreadFully(int fd, char* p, int64_t n, int64_t at, const std::string& path) {
+  for (int64_t got = 0; got < n;) {
+    const ssize_t r = ::pread(fd, p + got, static_cast<size_t>(n - got), at + got);
+    if (r <= 0) throw EnvironmentError(path, "cannot read back what was written");
+    got += r;
+  }
+}
+
+void PwriteFully(int fd, const char* p, int64_t n, int64_t at, const std::string& path) {
+  for (int64_t put = 0; put < n;) {
+    const ssize_t r = ::pwrite(fd, p + put, static_cast<size_t>(n - put), at + put);
+    if (r <= 0)
+      throw EnvironmentError(path, std::string("cannot write: ") + std::strerror(errno));
+    put += r;
+  }
+}
+
+// V and T from a header this process (or the copy it came from) wrote: only sizes are taken.
+void Sizes(int fd, const std::string& path, int64_t* v, int64_t* t) {
+  char h[kMeshFileHeader];
+  PreadFully(fd, h, kMeshFileHeader, 0, path);
+  *v = Load<int64_t>(h + 16), *t = Load<int64_t>(h + 24);
+  if (*v < 1 || *v > kMaxId || *t < 1 || 3 * *t > kMaxId)
+    throw std::logic_error(path + ": not a mesh file this process wrote");
+}
+
+}  // namespace
+
+void CopyFileBytes(const std::string& from, const std::string& to, int64_t a, int64_t b) {
+  OpenFd in(from, O_RDONLY), out(to, O_WRONLY);
+  std::vector<char> buf(size_t{1} << 22);
+  for (int64_t at = a; at < b;) {
+    const int64_t n = std::min<int64_t>(static_cast<int64_t>(buf.size()), b - at);
+    PreadFully(in.fd, buf.data(), n, at, from);
+    PwriteFully(out.fd, buf.data(), n, at, to);
+    at += n;
+  }
+}
+
+void WriteMeshFileCoordinates(const std::string& path, int64_t first,
+                              const std::vector<double>& xy) {
+  OpenFd out(path, O_WRONLY);
+  PwriteFully(out.fd, reinterpret_cast<const char*>(xy.data()),
+              static_cast<int64_t>(8 * xy.size()), kMeshFileHeader + 16 * first, path);
+}
+
+int64_t CoordinateBlocks(int64_t vertices) {
+  return (16 * vertices + kMeshFileBlock - 1) / kMeshFileBlock;
+}
+
+std::vector<uint64_t> HashMeshFileBlocks(const std::string& path, int64_t first, int64_t end) {
+  OpenFd f(path, O_RDONLY);
+  int64_t v, t, off[MeshFile::kSections + 1];
+  Sizes(f.fd, path, &v, &t);
+  Layout(v, t, off);
+  const int64_t data_end = off[MeshFile::kSections];
+  std::vector<uint64_t> out;
+  std::vector<char> block(kMeshFileBlock);
+  for (int64_t k = first; k < end; ++k) {
+    const int64_t a = kMeshFileHeader + k * kMeshFileBlock;
+    const int64_t n = std::min<int64_t>(kMeshFileBlock, data_end - a);
+    PreadFully(f.fd, block.data(), n, a, path);
+    out.push_back(MeshFileBlockHash(block.data(), static_cast<size_t>(n)));
+  }
+  return out;
+}
+
+void FinishMeshFile(const std::string& path, const std::vector<uint64_t>& hashes) {
+  OpenFd f(path, O_RDWR);
+  int64_t v, t, off[MeshFile::kSections + 1];
+  Sizes(f.fd, path, &v, &t);
+  Layout(v, t, off);
+  const int64_t end = off[MeshFile::kSections], blocks = Blocks(end);
+  if (static_cast<int64_t>(hashes.size()) > blocks)
+    throw std::logic_error("FinishMeshFile: more hashes than blocks");
+  PwriteFully(f.fd, reinterpret_cast<const char*>(hashes.data()),
+              static_cast<int64_t>(8 * hashes.size()), end, path);
+  // The page table from the whole block table, a page at a time.
+  std::vector<uint64_t> pages, page;
+  for (int64_t p = 0; p < blocks; p += kMeshFilePage) {
+    page.resize(static_cast<size_t>(std::min<int64_t>(kMeshFilePage, blocks - p)));
+    PreadFully(f.fd, reinterpret_cast<char*>(page.data()), 8 * static_cast<int64_t>(page.size()),
+               end + 8 * p, path);
+    pages.push_back(MeshFileBlockHash(reinterpret_cast<const char*>(page.data()), 8 * page.size()));
+  }
+  PwriteFully(f.fd, reinterpret_cast<const char*>(pages.data()),
+              static_cast<int64_t>(8 * pages.size()), end + 8 * blocks, path);
+  char h[kMeshFileHeader];
+  PreadFully(f.fd, h, kMeshFileHeader, 0, path);
+  const uint64_t id = MeshFileContentId(v, t, pages);
+  std::memcpy(h + 32, &id, 8);
+  const uint64_t hh = MeshFileHeaderHash(h);
+  std::memcpy(h + 120, &hh, 8);
+  PwriteFully(f.fd, h, kMeshFileHeader, 0, path);
+}
+
 std::string RehashMeshFile(std::string b) {
   if (b.size() < static_cast<size_t>(kMeshFileHeader)) return b;
   const int64_t v = Load<int64_t>(b.data() + 16), t = Load<int64_t>(b.data() + 24);

@@ -113,6 +113,23 @@ uint64_t MeshFileContentId(int64_t vertices, int64_t triangles,
                            const std::vector<uint64_t>& page_hashes);
 // The hash of a header's first 120 bytes.
 uint64_t MeshFileHeaderHash(const char* header);
+// Writing a smoothed mesh file from many ranks at once, no rank holding the mesh (the distributed
+// smoother's -o FILE.mrm): the output starts as a copy of the input (each rank copies a byte
+// range), each rank then writes its owned range of coordinates, hashes a share of the coordinate
+// section's blocks, and one rank writes those hashes into the table and renews the page table,
+// content id and header hash. Between the steps every rank must have finished the previous one.
+// Bytes [a, b) of `from` to the same place in `to` (which exists; nothing truncated).
+void CopyFileBytes(const std::string& from, const std::string& to, int64_t a, int64_t b);
+// Coordinates of vertices [first, first + xy.size() / 2) into the mesh file at `path`.
+void WriteMeshFileCoordinates(const std::string& path, int64_t first, const std::vector<double>& xy);
+// The blocks holding the coordinates of `vertices` vertices: [0, CoordinateBlocks(vertices)).
+int64_t CoordinateBlocks(int64_t vertices);
+// Fresh hashes of blocks [first, end) of the file at `path` (its header read for the sizes).
+std::vector<uint64_t> HashMeshFileBlocks(const std::string& path, int64_t first, int64_t end);
+// Writes `hashes` over blocks [0, hashes.size()) of the table, then the page table, content id and
+// header hash.
+void FinishMeshFile(const std::string& path, const std::vector<uint64_t>& hashes);
+
 // A file's bytes with fresh block, page and header hashes (for the tests and the fuzzer that damage
 // a file and want the damage to reach the checks behind the hashes); bytes too short for the
 // sizes their header announces come back unchanged.

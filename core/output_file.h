@@ -43,6 +43,9 @@ class AtomicOutput {
   std::FILE* file() const { return f_; }
   const std::string& path() const { return path_; }
   bool in_place() const { return in_place_; }  // a device or FIFO: no temporary
+  // The temporary's path (empty in place): where other processes may write before Commit (the
+  // ranks of a distributed mesh file, mesh_file.h).
+  const std::string& temporary() const { return tmp_; }
   // Flushes and closes the file (EnvironmentError on a write error: disk full); then renames the
   // temporary into place unless `defer_rename` (CommitAll renames a group once all are closed).
   void Commit(bool defer_rename = false);

@@ -1,9 +1,12 @@
 // RunDistributedSmooth (distributed_smooth.h): read, partition, lay out, smooth, gather.
 #include "reports/distributed_smooth.h"
 
+#include <sys/stat.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cstring>
+#include <memory>
 #include <stdexcept>
 
 #include "core/error.h"
@@ -85,6 +88,57 @@ double Since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
+// The smoothed mesh file written by every rank (mesh_file.h): a copy of the input in P byte
+// ranges, each rank's owned coordinates over it, each rank's share of the coordinate blocks
+// hashed, rank 0 renewing the tables and renaming the temporary into place. False (nothing done)
+// when the output is a device or FIFO: rank 0 then writes what it gathers.
+bool WriteInRanges(const DistSmoothConfig& cfg, const RankPart& p, HaloTransport& tx,
+                   const Log& log, DistSmoothResult* res) {
+  const int32_t P = tx.size(), r = tx.rank();
+  std::unique_ptr<AtomicOutput> out;
+  std::string tmp;
+  if (r == 0) {
+    out = std::make_unique<AtomicOutput>(cfg.output);
+    tmp = out->temporary();
+  }
+  tmp = tx.AllGather(tmp)[0];
+  if (tmp.empty()) return false;
+  auto barrier = [&tx] { tx.AllGather(std::string()); };
+  log.Say("writing " + cfg.output + " from every rank");
+  struct stat st {};
+  if (::stat(cfg.mesh.c_str(), &st) != 0)
+    throw EnvironmentError(cfg.mesh, std::string("cannot stat: ") + std::strerror(errno));
+  const int64_t size = st.st_size;
+  CopyFileBytes(cfg.mesh, tmp, size * r / P, size * (r + 1) / P);
+  barrier();
+  int64_t first = INT64_MAX;  // the owned ids are a range: [first, first + owned)
+  for (int32_t k = 0; k < p.owned; ++k) first = std::min(first, p.gid[k]);
+  std::vector<double> xy(2 * static_cast<size_t>(p.owned));
+  for (int32_t k = 0; k < p.owned; ++k) {
+    xy[2 * (p.gid[k] - first)] = p.xy[2 * int64_t{k}];
+    xy[2 * (p.gid[k] - first) + 1] = p.xy[2 * int64_t{k} + 1];
+  }
+  if (p.owned) WriteMeshFileCoordinates(tmp, first, xy);
+  barrier();
+  const int64_t blocks = CoordinateBlocks(res->vertices);
+  const std::vector<uint64_t> mine = HashMeshFileBlocks(tmp, blocks * r / P, blocks * (r + 1) / P);
+  const std::vector<std::string> all = tx.Gather(
+      std::string(reinterpret_cast<const char*>(mine.data()), 8 * mine.size()));
+  if (r == 0) {
+    std::vector<uint64_t> hashes;
+    for (const std::string& b : all) {
+      const size_t at = hashes.size();
+      hashes.resize(at + b.size() / 8);
+      if (!b.empty()) std::memcpy(&hashes[at], b.data(), b.size());
+    }
+    FinishMeshFile(tmp, hashes);
+    out->Commit();
+    log.Say("wrote " + cfg.output);
+    res->written.push_back(cfg.output);
+  }
+  return true;
+}
+
 }  // namespace
 
 bool ReadsRanges(const DistSmoothConfig& cfg) {
@@ -164,12 +218,17 @@ DistSmoothResult RunDistributedSmooth(const DistSmoothConfig& cfg, HaloTransport
   st.bytes_sent = res.result.values_sent * sizeof(double);
   st.peak_rss_bytes = PeakRssBytes();
 
+  // A mesh file read in ranges is written by every rank at once (mesh_file.h); -o in any other
+  // format, or onto a device, is gathered.
+  const bool parallel_out =
+      ReadsRanges(cfg) && IsMeshFilePath(cfg.output) && WriteInRanges(cfg, p, tx, log, &res);
+
   // Rank 0 gathers the moved vertices (boundary ones never move), pi's pieces and the stats.
   Packer out;
   out.Put(st);
   out.Put(p.colour);
   // The moves only when something needs them (-o, --pi-out): 24 bytes a vertex on rank 0.
-  const size_t moved = cfg.output.empty() && cfg.pi_out.empty() ? 0 : p.movable;
+  const size_t moved = (cfg.output.empty() || parallel_out) && cfg.pi_out.empty() ? 0 : p.movable;
   out.PutVector(p.gid.data(), moved);
   out.PutVector(p.xy.data(), 2 * moved);
   out.Put<int64_t>(p.noncut);
@@ -177,7 +236,8 @@ DistSmoothResult RunDistributedSmooth(const DistSmoothConfig& cfg, HaloTransport
   if (rank != 0) return res;
   // A distributed read leaves no rank the whole mesh: rank 0 reads it now to write it (a mesh that
   // fits one node; the ranks' moves are what it gathered).
-  if (ReadsRanges(cfg) && !cfg.output.empty()) m = LoadForRanks(cfg.mesh, parts, log);
+  if (ReadsRanges(cfg) && !cfg.output.empty() && !parallel_out)
+    m = LoadForRanks(cfg.mesh, parts, log);
   std::vector<RankMoves> moves(parts);
   for (int32_t r = 0; r < parts; ++r) {
     Unpacker in(all[r]);
@@ -193,7 +253,7 @@ DistSmoothResult RunDistributedSmooth(const DistSmoothConfig& cfg, HaloTransport
       m.xy[2 * mv.gid[k] + 1] = xy[2 * k + 1];
     }
   }
-  if (!cfg.output.empty())
+  if (!cfg.output.empty() && !parallel_out)
     for (const std::string& f : WriteMesh(m, cfg.output)) {
       log.Say("wrote " + f);
       res.written.push_back(f);

@@ -1,9 +1,9 @@
 #!/usr/bin/env bash
 # Fuzzes every reader with libFuzzer (clang, AddressSanitizer + UndefinedBehaviorSanitizer): the
 # Triangle pair, Gmsh, the binary trace, other tools' traces (text, u32, u64, parda, oracle,
-# lackey; plain or zstd, one frame or several, pzstd's too), permutation files, .poly outlines
-# chunk summaries and visit orders (harnesses in tests/fuzz/, each running everything downstream of the reader
-# on what it accepts).
+# lackey; plain or zstd, one frame or several, pzstd's too), permutation files, .poly outlines,
+# chunk summaries, visit orders and distributed mesh files (harnesses in tests/fuzz/, each running
+# everything downstream of the reader on what it accepts).
 # Seeds come from tests/data; corpora grow in build/fuzz/corpus/ and are kept between runs.
 # Limits: 10 s per input, 512 MB of RSS (ASan's quarantine at 32 MB), no single allocation above
 # 64 MB (a header's count must never be trusted for memory). Fails (exit 1) on any finding;

@@ -100,9 +100,16 @@ done
 check "serial jacobi (mrm)" 0 "$bin" smooth "$tmp/fine.mrm" --mode jacobi --max-iters 4 --tol -1 -o "$tmp/serial.vtk" --quiet
 check "mrm jacobi np 3" 0 run 3 "$mpi" smooth "$tmp/fine.mrm" --mode jacobi --max-iters 4 --tol -1 -o "$tmp/np.vtk" --quiet
 equal "mrm jacobi np 3 == serial jacobi" "$tmp/serial.vtk" "$tmp/np.vtk"
-check "mrm to mrm" 0 run 2 "$mpi" smooth "$tmp/fine.mrm" --max-iters 2 -o "$tmp/out.mrm" --quiet
-check "serial to mrm" 0 "$bin" smooth "$tmp/fine.mrm" --visit-order "$tmp/pi" --max-iters 2 -o "$tmp/serial.mrm" --quiet
+# -o FILE.mrm written by every rank at once: byte for byte the serial smoother's file along pi.
+for np in 1 3; do
+  check "mrm to mrm np $np" 0 run $np "$mpi" smooth "$tmp/fine.mrm" --max-iters 3 --tol -1 -o "$tmp/out.mrm" \
+    --pi-out "$tmp/pi" --quiet
+  check "serial to mrm" 0 "$bin" smooth "$tmp/fine.mrm" --visit-order "$tmp/pi" --max-iters 3 --tol -1 \
+    -o "$tmp/serial.mrm" --quiet
+  equal "mrm written by $np ranks == serial along pi" "$tmp/serial.mrm" "$tmp/out.mrm"
+done
 check "mrm output reads" 0 "$bin" mesh info "$tmp/out.mrm"
+ls "$tmp"/*.tmp.* &>/dev/null && { fail=$((fail + 1)); echo "FAIL a temporary left behind"; } || pass=$((pass + 1))
 # Damaged, truncated and foreign files: exit 2 on every rank, the file and the place named.
 size=$(stat -c %s "$tmp/fine.mrm")
 head -c $((size - 8)) "$tmp/fine.mrm" >"$tmp/trunc.mrm"
