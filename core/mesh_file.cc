@@ -88,7 +88,7 @@ void Sizes(int fd, const std::string& path, int64_t* v, int64_t* t) {
   char h[kMeshFileHeader];
   PreadFully(fd, h, kMeshFileHeader, 0, path);
   *v = Load<int64_t>(h + 16), *t = Load<int64_t>(h + 24);
-  if (*v < 1 || *v > kMaxId || *t < 1 || 3 * *t > kMaxId)
+  if (*v < 1 || *v > kMaxId || *t < 1 || *t > kMaxId / 3)
     throw std::logic_error(path + ": not a mesh file this process wrote");
 }
 
@@ -165,7 +165,7 @@ void FinishMeshFile(const std::string& path, const std::vector<uint64_t>& hashes
 std::string RehashMeshFile(std::string b) {
   if (b.size() < static_cast<size_t>(kMeshFileHeader)) return b;
   const int64_t v = Load<int64_t>(b.data() + 16), t = Load<int64_t>(b.data() + 24);
-  if (v < 1 || v > kMaxId || t < 1 || 3 * t > kMaxId) return b;
+  if (v < 1 || v > kMaxId || t < 1 || t > kMaxId / 3) return b;
   int64_t off[MeshFile::kSections + 1];
   Layout(v, t, off);
   const int64_t end = off[MeshFile::kSections], blocks = Blocks(end);
@@ -307,7 +307,7 @@ MeshFile::MeshFile(const std::string& path) : path_(path) {
   content_id_ = Load<uint64_t>(h + 32);
   if (vertices_ < 1 || vertices_ > kMaxId)
     Fail(16, std::to_string(vertices_) + " vertices: expected 1.." + std::to_string(kMaxId));
-  if (triangles_ < 1 || 3 * triangles_ > kMaxId)
+  if (triangles_ < 1 || triangles_ > kMaxId / 3)
     Fail(24, std::to_string(triangles_) + " triangles: expected 1.." + std::to_string(kMaxId / 3));
   for (int i = 40; i < 120; ++i)
     if (h[i] != 0) Fail(i, "a reserved header byte is not zero");

@@ -73,6 +73,11 @@ def main():
     struct.pack_into("<q", b, 16, 2000000000)
     struct.pack_into("<Q", b, 120, block_hash(bytes(b[:120])))
     files["mrm_huge_count.mrm"] = bytes(b)
+    # A triangle count whose 3 T overflows 64 bits (found by fuzz_mesh_file), its hash fresh.
+    b = bytearray(g)
+    struct.pack_into("<q", b, 24, 7598809990106710024)
+    struct.pack_into("<Q", b, 120, block_hash(bytes(b[:120])))
+    files["mrm_overflow_count.mrm"] = bytes(b)
     # Mended: a boundary vertex flagged interior, a corner out of range.
     b = bytearray(g)
     b[flags + 0] = 0  # vertex 0 lies on the boundary
