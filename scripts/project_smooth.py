@@ -63,6 +63,10 @@ def main():
                 "messages": [int(x["messages"]) for x in rk],
                 "bytes_sent": [int(x["bytes_sent"]) for x in rk],
                 "peak_rss_mb": max(float(x["peak_rss_mb"]) for x in rk),
+                # a distributed read (mesh file, ranges): each rank holds its part only
+                "ranges": all(x.get("read_mb", "-") != "-" for x in rk),
+                "rss_bytes_per_owned": max(float(x["rss_bytes_per_owned"]) for x in rk
+                                           if x["rss_bytes_per_owned"] != "-"),
             })
         else:
             summ = read_csv(os.path.join(d, "summary.csv"))[0]
@@ -123,8 +127,12 @@ def main():
                            for r in strong if r["ranks"] > 1) if pmax > 1 else 5.5
     msgs = statistics.median(max(r["messages"]) / r["sweeps"] for r in strong if r["ranks"] == pmax)
     rss = statistics.median(r["peak_rss_mb"] * 2**20 / r["vertices"] for r in strong if r["ranks"] == 1)
+    ranges = all(r.get("ranges") for r in strong)
+    # Read in ranges, a rank's peak is its part's: bytes per owned vertex at the most ranks.
+    per_owned = statistics.median(r["rss_bytes_per_owned"] for r in strong if r["ranks"] == pmax)
     const = {"t_v_1_rank_s": tv1, f"t_v_{pmax}_ranks_s": tvp, "ghost_coefficient": cg,
              "messages_per_rank_per_sweep": msgs, "peak_bytes_per_vertex_1_rank": rss,
+             "ranges_read": ranges, f"peak_bytes_per_owned_vertex_{pmax}_ranks": per_owned,
              "alpha_s": a.alpha, "beta_bytes_per_s": a.beta, "cores": a.cores,
              "transport": a.transport}
     with open(os.path.join(a.out, "constants.json"), "w") as f:
@@ -133,16 +141,19 @@ def main():
     out = [f"Model for V = {V:.3g} vertices (constants measured here: t_v = {tvp * 1e9:.1f} ns per "
            f"moved vertex per sweep at {pmax} ranks, {tv1 * 1e9:.1f} ns at 1; ghosts = "
            f"{cg:.2f} sqrt(V/P); {msgs:.1f} messages per rank per sweep; alpha = {a.alpha:g} s, "
-           f"beta = {a.beta:g} B/s; {rss:.0f} B per vertex of the whole mesh):", "",
+           f"beta = {a.beta:g} B/s; " +
+           (f"each rank reads its range: {per_owned:.0f} B per owned vertex at {pmax} ranks):"
+            if ranges else f"every rank reads the whole mesh: {rss:.0f} B per vertex of it):"), "",
            "| ranks | vertices/rank | compute ms/sweep | messages + ghosts + all-reduce ms | "
-           "total ms/sweep | efficiency | whole mesh per rank (as built) |",
+           "total ms/sweep | efficiency | memory per rank |",
            "|---|---|---|---|---|---|---|"]
     for p in (64, 128, 256, 512, 1024):
         comp = tvp * V / p
         comm = msgs * a.alpha + cg * math.sqrt(V / p) * 16 / a.beta + 2 * math.log2(p) * a.alpha
         tot = comp + comm
         out.append(f"| {p} | {V / p:.3g} | {comp * 1e3:.1f} | {comm * 1e3:.3f} | {tot * 1e3:.1f} | "
-                   f"{100 * comp / tot:.1f}% | {rss * V / 1e9:.0f} GB |")
+                   f"{100 * comp / tot:.1f}% | "
+                   f"{(per_owned * V / p if ranges else rss * V) / 1e9:.1f} GB |")
     with open(os.path.join(a.out, "projection.md"), "w") as f:
         f.write("\n".join(out) + "\n")
     print("\n".join(lines + out))

@@ -10,10 +10,13 @@
 # sweeps (never stopped early), --repeat times, interleaved with the serial smoother
 # (`meshreuse smooth --quality per-sweep`, the same global quality per sweep). Records the
 # median wall ms per sweep, each rank's CPU and wait seconds, messages, bytes and peak memory.
+# --mesh-file: the mesh converted once to the distributed mesh file (FILE.mrm, Hilbert order), each
+# rank reading only its range (--partition ranges) and the serial smoother reading the same file,
+# so memory per rank is its part's and the projection's memory column is per rank.
 # Writes OUT/runs.json, OUT/constants.json, OUT/scaling.md and OUT/projection.md.
 #
 # Usage: scripts/scale_smooth.sh [--levels K] [--mesh FILE] [--max-ranks P] [--weak]
-#          [--transport threads|mpi] [--sweeps S] [--repeat R] [--ordering NAME]
+#          [--transport threads|mpi] [--sweeps S] [--repeat R] [--ordering NAME] [--mesh-file]
 #          [--partition hilbert|metis] [--project-vertices V] [--alpha S] [--beta B/S] [--out DIR]
 #   defaults: --levels 5 (946,464 vertices), --sweeps 10, --repeat 3, --ordering ori, hilbert,
 #   projection of 10^9 vertices, alpha 2e-6 s, beta 1e10 bytes/s, OUT out/scale_smooth
@@ -21,7 +24,7 @@ set -euo pipefail
 caller=$PWD
 cd "$(dirname "$0")/.."
 levels=5 mesh="" max_ranks="" weak=0 transport=threads sweeps=10 repeat=3 ordering=ori
-partition=hilbert pv=1000000000 alpha=2e-6 beta=1e10 out="out/scale_smooth"
+partition=hilbert mesh_file=0 pv=1000000000 alpha=2e-6 beta=1e10 out="out/scale_smooth"
 usage() { sed -n '2,20p' "$0" | sed 's/^# \{0,1\}//'; }
 die() { echo "scale_smooth.sh: $*" >&2; exit 2; }
 while (($#)); do
@@ -30,6 +33,7 @@ while (($#)); do
     --mesh) mesh=$2; shift ;;
     --max-ranks) max_ranks=$2; shift ;;
     --weak) weak=1 ;;
+    --mesh-file) mesh_file=1 ;;
     --transport) transport=$2; shift ;;
     --sweeps) sweeps=$2; shift ;;
     --repeat) repeat=$2; shift ;;
@@ -73,9 +77,19 @@ refined() {  # refined K : plate41 refined K times with jitter, written once
   fi
   echo "$f.node"
 }
+as_file() {  # as_file MESH : MESH itself, or (--mesh-file) its mesh file, written once
+  local m=$1 f=$out/$(basename "${1%.*}").mrm
+  if ((mesh_file == 0)); then echo "$m"; return; fi
+  if [[ ! -e $f ]]; then
+    echo "scale_smooth.sh: converting $(basename "$m") to $f" >&2
+    "$bin" mesh convert "$m" -o "$f" --quiet >/dev/null
+  fi
+  echo "$f"
+}
+((mesh_file == 0)) || partition=ranges
 runs=()
 one() {  # one KIND MESH P REP : a distributed run (P ranks) and, for P = 1, the serial one
-  local kind=$1 m=$2 p=$3 k=$4 d=$out/$1-$(basename "$2" .node)-p$3-$4
+  local kind=$1 m=$2 p=$3 k=$4 d=$out/$1-$(basename "${2%.*}")-p$3-$4
   rm -rf "$d"
   echo "scale_smooth.sh: $kind, $(basename "$m"), $p ranks, run $k of $repeat" >&2
   local common=(--ordering "$ordering" --max-iters "$sweeps" --tol -1 --quiet --out "$d")
@@ -90,12 +104,12 @@ one() {  # one KIND MESH P REP : a distributed run (P ranks) and, for P = 1, the
     runs+=("$kind-serial:1:$d-serial")
   fi
 }
-strong_mesh=${mesh:-$(refined "$levels")}
+strong_mesh=$(as_file "${mesh:-$(refined "$levels")}")
 for ((k = 1; k <= repeat; k++)); do
   for ((p = 1; p <= max_ranks; p *= 2)); do one strong "$strong_mesh" $p $k; done
   if ((weak)); then
     for ((p = 1, l = levels; p <= max_ranks && l <= 8; p *= 4, l++)); do
-      one weak "$(refined $l)" $p $k
+      one weak "$(as_file "$(refined $l)")" $p $k
     done
   fi
 done
