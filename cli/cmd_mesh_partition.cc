@@ -26,7 +26,8 @@ int MeshPartition(const Args& args) {
   desc.add_options()("mesh", po::value(&in)->required(), "input mesh")(
       "parts,P", po::value(&parts)->default_value(2), "number of parts")(
       "method", po::value(&method)->default_value("hilbert"),
-      "hilbert (contiguous ranges of the Hilbert order) or metis (METIS k-way, seeded)")(
+      "hilbert (contiguous ranges of the Hilbert order), metis (METIS k-way, seeded), scotch "
+      "(Scotch, seeded) or ranges (contiguous ranges of the stored ids)")(
       "seed", po::value(&seed)->default_value(1), "METIS's seed")(
       "levels,K", po::value(&ro.levels)->default_value(0),
       "partition MESH, then give the parts of its refinement into 4^K (mesh refine --levels K)")(
@@ -36,7 +37,8 @@ int MeshPartition(const Args& args) {
   pos.add("mesh", 1);
   po::variables_map vm;
   if (!ParseOptions(args,
-                    "mesh partition MESH --parts P [--method hilbert|metis] [--levels K] [-o FILE]",
+                    "mesh partition MESH --parts P [--method hilbert|metis|scotch|ranges] "
+                    "[--levels K] [-o FILE]",
                     "Partitions the vertices for smoothing across ranks and prints what the "
                     "partition costs a distributed sweep: cut edges, owned, cut and ghost vertices "
                     "per part, balance, and the colours of a greedy colouring of the part graph "
@@ -46,14 +48,13 @@ int MeshPartition(const Args& args) {
                     "triangle's smallest corner's.",
                     desc, pos, vm))
     return 0;
-  if (method != "hilbert" && method != "metis")
-    throw UsageError("--method must be hilbert or metis, not '" + method + "'");
+  if (method != "hilbert" && method != "metis" && method != "scotch" && method != "ranges")
+    throw UsageError("--method must be hilbert, metis, scotch or ranges, not '" + method + "'");
   if (!out.empty()) CheckOutputPath(out, "-o", InputFiles({in}));
   const Progress progress(vm.count("quiet") > 0);
   const Mesh coarse = LoadMesh(in, MakeLog(progress));
   const RefinedSize size = RefinedSizeOf(coarse, ro);  // checks --levels and the sizes
-  std::vector<int32_t> part =
-      method == "hilbert" ? HilbertRangeParts(coarse, parts) : MetisParts(coarse, parts, seed);
+  std::vector<int32_t> part = PartsByMethod(coarse, method, parts, seed);
   Mesh fine;
   const Mesh* m = &coarse;
   if (ro.levels > 0) {

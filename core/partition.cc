@@ -2,12 +2,19 @@
 #include "core/partition.h"
 
 #include <algorithm>
+#include <cstdint>
+#include <cstdio>
+#include <stdexcept>
 
 #include "core/error.h"
 #include "core/orderings/metis_graph.h"
 #include "core/orderings/registry.h"
 #include "core/rank_neighbourhood.h"
 #include "core/stdout_guard.h"
+
+extern "C" {
+#include <scotch.h>
+}
 
 namespace meshreuse {
 
@@ -57,15 +64,60 @@ std::vector<int32_t> RangeParts(const Mesh& m, int32_t parts) {
   return part;
 }
 
+std::vector<int32_t> ScotchParts(const Mesh& m, int32_t parts, uint64_t seed) {
+  CheckParts(m, parts);
+  const int32_t n = m.NumVertices();
+  if (parts == 1) return std::vector<int32_t>(n, 0);
+  std::vector<SCOTCH_Num> vert(m.v2v.off.begin(), m.v2v.off.end());
+  std::vector<SCOTCH_Num> edge(m.v2v.idx.begin(), m.v2v.idx.end());
+  std::vector<SCOTCH_Num> out(static_cast<size_t>(n));
+  auto check = [](int rc, const char* what) {
+    if (rc != 0) throw std::runtime_error(std::string("Scotch: ") + what + " failed");
+  };
+  const StdoutToStderr quiet;  // one partitioner at a time in a process; Scotch's errors on stderr
+  SCOTCH_Graph g;
+  SCOTCH_Strat strat;
+  SCOTCH_Context ctx;
+  check(SCOTCH_graphInit(&g), "graphInit");
+  check(SCOTCH_stratInit(&strat), "stratInit");
+  check(SCOTCH_contextInit(&ctx), "contextInit");
+  struct Cleanup {
+    SCOTCH_Graph* g;
+    SCOTCH_Strat* s;
+    SCOTCH_Context* c;
+    ~Cleanup() {
+      SCOTCH_contextExit(c);
+      SCOTCH_stratExit(s);
+      SCOTCH_graphExit(g);
+    }
+  } cleanup{&g, &strat, &ctx};
+  // Deterministic and seeded, so every rank computes the same parts independently.
+  check(SCOTCH_contextOptionSetNum(&ctx, SCOTCH_OPTIONNUMDETERMINISTIC, 1), "deterministic");
+  check(SCOTCH_contextOptionSetNum(&ctx, SCOTCH_OPTIONNUMRANDOMFIXEDSEED, 1), "fixed seed");
+  SCOTCH_contextRandomSeed(&ctx, static_cast<SCOTCH_Num>(seed & 0x7FFFFFFF));
+  SCOTCH_contextRandomReset(&ctx);
+  check(SCOTCH_graphBuild(&g, 0, n, vert.data(), nullptr, nullptr, nullptr,
+                          static_cast<SCOTCH_Num>(edge.size()), edge.data(), nullptr),
+        "graphBuild");
+  SCOTCH_Graph bound;
+  check(SCOTCH_contextBindGraph(&ctx, &g, &bound), "contextBindGraph");
+  check(SCOTCH_stratGraphMapBuild(&strat, SCOTCH_STRATBALANCE, parts, 0.03), "stratGraphMapBuild");
+  const int rc = SCOTCH_graphPart(&bound, parts, &strat, out.data());
+  SCOTCH_graphExit(&bound);
+  check(rc, "graphPart");
+  return std::vector<int32_t>(out.begin(), out.end());
+}
+
 void CheckPartitionMethod(const std::string& method) {
-  if (method != "hilbert" && method != "metis" && method != "ranges")
-    throw UsageError("--partition must be hilbert, metis or ranges, not '" + method + "'");
+  if (method != "hilbert" && method != "metis" && method != "scotch" && method != "ranges")
+    throw UsageError("--partition must be hilbert, metis, scotch or ranges, not '" + method + "'");
 }
 
 std::vector<int32_t> PartsByMethod(const Mesh& m, const std::string& method, int32_t parts,
                                    uint64_t seed) {
   CheckPartitionMethod(method);
   if (method == "ranges") return RangeParts(m, parts);
+  if (method == "scotch") return ScotchParts(m, parts, seed);
   return method == "metis" ? MetisParts(m, parts, seed) : HilbertRangeParts(m, parts);
 }
 

@@ -1,8 +1,8 @@
 // Vertex partitions for smoothing across ranks (issue 23, ../shared/scale-out.md section 3b):
 // contiguous ranges of the Hilbert order (the default: no dependency, balanced to one vertex, one
-// file for any P), METIS k-way (better cuts, one node), and what a partition costs a distributed
-// sweep: cut edges, ghosts per part, balance, and the greedy colouring of the part graph that
-// orders the cut vertices' rounds. Parts inherited through refinement: core/refine.h.
+// file for any P), METIS k-way and Scotch (better cuts, one node), and what a partition costs a
+// distributed sweep: cut edges, ghosts per part, balance, and the greedy colouring of the part
+// graph that orders the cut vertices' rounds. Parts inherited through refinement: core/refine.h.
 #pragma once
 
 #include <cstdint>
@@ -15,6 +15,10 @@ namespace meshreuse {
 
 // Part p holds Hilbert positions [n p / P, n (p + 1) / P). P in 1..n (UsageError otherwise).
 std::vector<int32_t> HilbertRangeParts(const Mesh& m, int32_t parts);
+// Scotch's graph partitioning (SCOTCH_graphPart with its balance strategy, 3% imbalance allowed)
+// into `parts` parts, deterministic and seeded, so every rank computes the same parts; the free
+// (CeCILL-C) alternative to METIS, with 64-bit indices (Debian's scotch-int64 build).
+std::vector<int32_t> ScotchParts(const Mesh& m, int32_t parts, uint64_t seed);
 // METIS_PartGraphKway into `parts` parts, seeded (one part: all zero).
 std::vector<int32_t> MetisParts(const Mesh& m, int32_t parts, uint64_t seed);
 
@@ -23,7 +27,7 @@ std::vector<int32_t> MetisParts(const Mesh& m, int32_t parts, uint64_t seed);
 // Hilbert order.
 std::vector<int32_t> RangeParts(const Mesh& m, int32_t parts);
 
-// "hilbert", "metis" or "ranges" (UsageError naming --partition otherwise).
+// "hilbert", "metis", "scotch" or "ranges" (UsageError naming --partition otherwise).
 void CheckPartitionMethod(const std::string& method);
 std::vector<int32_t> PartsByMethod(const Mesh& m, const std::string& method, int32_t parts,
                                    uint64_t seed);

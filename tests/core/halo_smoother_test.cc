@@ -100,8 +100,11 @@ HaloOptions Sweeps(int k, HaloMode mode = HaloMode::kOrdered) {
   return o;
 }
 
-std::vector<int32_t> PartsOf(const Mesh& m, int32_t P, bool metis) {
-  return metis ? MetisParts(m, P, 3) : HilbertRangeParts(m, P);
+// method 0: Hilbert ranges, 1 (or true): METIS, 2: Scotch.
+std::vector<int32_t> PartsOf(const Mesh& m, int32_t P, int method) {
+  return method == 2 ? ScotchParts(m, P, 3)
+         : method    ? MetisParts(m, P, 3)
+                     : HilbertRangeParts(m, P);
 }
 
 TEST(RankPart, LayoutGroupsRowsAndLinksAgree) {
@@ -150,7 +153,7 @@ TEST(HaloSmoother, OrderedEqualsSerialGaussSeidelAlongPi) {
   int differs_from_storage_order = 0, differs_from_hybrid = 0, cases = 0;
   for (const Mesh& m : MeshCorpus())
     for (int32_t P : {1, 2, 3, 4, 5})
-      for (bool metis : {false, true}) {
+      for (int metis : {0, 1, 2}) {  // Hilbert, METIS, Scotch
         if (P > m.NumVertices()) continue;
         const std::string ordering = P % 2 ? "ori" : metis ? "random" : "bfs";
         const std::vector<int32_t> part = PartsOf(m, P, metis);

@@ -3,7 +3,7 @@
 # comparing the written meshes byte for byte:
 #   -np 1, ordered, ori       == meshreuse smooth (today's smoother) on a Gmsh file and a refined mesh;
 #   -np P, ordered            == meshreuse smooth --visit-order PI, PI written by the run (--pi-out),
-#                                Hilbert and METIS partitions, orderings inside the parts;
+#                                Hilbert, METIS and Scotch partitions, orderings inside the parts;
 #   --cut-placement first and interleaved at -np 3 == the serial sweep along their own PI;
 #   -np P, jacobi             == meshreuse smooth --mode jacobi, and the same quality and sweep
 #                                count for every P (stopped by --tol);
@@ -39,7 +39,7 @@ for mesh in "$plate" "$fine"; do
   equal "np 1 == serial ($n)" "$tmp/serial.vtk" "$tmp/np1.vtk"
   for np in 2 3 4; do
     for layout in "--partition hilbert --ordering ori" "--partition metis --ordering bfs" \
-                  "--partition hilbert --ordering grid-wave"; do
+                  "--partition hilbert --ordering grid-wave" "--partition scotch --ordering ori"; do
       check "np $np $layout $n" 0 run $np "$mpi" smooth "$mesh" $layout --max-iters 6 --tol -1 \
         -o "$tmp/np.vtk" --pi-out "$tmp/pi" --quiet
       check "serial along pi" 0 "$bin" smooth "$mesh" --visit-order "$tmp/pi" --max-iters 6 \
