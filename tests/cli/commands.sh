@@ -70,7 +70,10 @@ contains "partition" "parts 2 (hilbert)"
 [[ $(grep -vc '^#' "$tmp/p.txt") == 8 ]] && pass=$((pass + 1)) || { fail=$((fail + 1)); echo "FAIL partition: not 8 parts in p.txt"; }
 check "partition inherited" 0 "$bin" mesh partition "$data/two_interior.node" --parts 3 --method metis --levels 2 --quiet
 contains "partition inherited" "vertices 77, parts 3 (metis, inherited through 2 levels)"
-check "partition bad method" 2 "$bin" mesh partition "$data/two_interior.node" --method scotch --quiet
+check "partition bad method" 2 "$bin" mesh partition "$data/two_interior.node" --method chaco --quiet
+contains "partition bad method" "--method must be hilbert, metis, scotch or ranges, not 'chaco'"
+check "partition scotch" 0 "$bin" mesh partition "$data/two_interior.node" --parts 2 --method scotch --quiet
+contains "partition scotch" "vertices 8, parts 2 (scotch)"
 check "partition too many" 2 "$bin" mesh partition "$data/two_interior.node" --parts 9 --quiet
 
 check "smooth" 0 "$bin" smooth "$data/two_interior.node" --max-iters 3 --tol -1 -o "$tmp/s.vtk" --out "$tmp/res" --quiet
