@@ -12,6 +12,7 @@
 #include "core/partition.h"
 #include "core/refine.h"
 #include "core/table.h"
+#include "reports/distributed_smooth.h"
 #include "reports/inputs.h"
 
 namespace meshreuse::cli {
@@ -27,7 +28,9 @@ int MeshPartition(const Args& args) {
       "parts,P", po::value(&parts)->default_value(2), "number of parts")(
       "method", po::value(&method)->default_value("hilbert"),
       "hilbert (contiguous ranges of the Hilbert order), metis (METIS k-way, seeded), scotch "
-      "(Scotch, seeded) or ranges (contiguous ranges of the stored ids)")(
+      "(Scotch, seeded), ranges (contiguous ranges of the stored ids) or gmsh (Gmsh's own, for "
+      "MESH "
+      "a file of a split set PREFIX_K.msh, `gmsh -part P -part_split`)")(
       "seed", po::value(&seed)->default_value(1), "METIS's seed")(
       "levels,K", po::value(&ro.levels)->default_value(0),
       "partition MESH, then give the parts of its refinement into 4^K (mesh refine --levels K)")(
@@ -37,7 +40,7 @@ int MeshPartition(const Args& args) {
   pos.add("mesh", 1);
   po::variables_map vm;
   if (!ParseOptions(args,
-                    "mesh partition MESH --parts P [--method hilbert|metis|scotch|ranges] "
+                    "mesh partition MESH --parts P [--method hilbert|metis|scotch|ranges|gmsh] "
                     "[--levels K] [-o FILE]",
                     "Partitions the vertices for smoothing across ranks and prints what the "
                     "partition costs a distributed sweep: cut edges, owned, cut and ghost vertices "
@@ -48,13 +51,22 @@ int MeshPartition(const Args& args) {
                     "triangle's smallest corner's.",
                     desc, pos, vm))
     return 0;
-  if (method != "hilbert" && method != "metis" && method != "scotch" && method != "ranges")
-    throw UsageError("--method must be hilbert, metis, scotch or ranges, not '" + method + "'");
+  if (method != "hilbert" && method != "metis" && method != "scotch" && method != "ranges" &&
+      method != "gmsh")
+    throw UsageError("--method must be hilbert, metis, scotch, ranges or gmsh, not '" + method +
+                     "'");
   if (!out.empty()) CheckOutputPath(out, "-o", InputFiles({in}));
   const Progress progress(vm.count("quiet") > 0);
-  const Mesh coarse = LoadMesh(in, MakeLog(progress));
+  // gmsh: the parts of the Gmsh split set MESH belongs to (reports/distributed_smooth.h).
+  PartitionedMesh pm;
+  if (method == "gmsh")
+    pm = LoadPartitioned(in, method, parts, seed, MakeLog(progress));
+  else
+    pm.mesh = LoadMesh(in, MakeLog(progress));
+  const Mesh& coarse = pm.mesh;
   const RefinedSize size = RefinedSizeOf(coarse, ro);  // checks --levels and the sizes
-  std::vector<int32_t> part = PartsByMethod(coarse, method, parts, seed);
+  std::vector<int32_t> part =
+      method == "gmsh" ? std::move(pm.part) : PartsByMethod(coarse, method, parts, seed);
   Mesh fine;
   const Mesh* m = &coarse;
   if (ro.levels > 0) {

@@ -103,7 +103,7 @@ void WriteRunJson(const std::string& dir, const std::string& tool, const Json& c
 void AddRankOptions(po::options_description& desc, RankOptionText* text, const char* ranks) {
   desc.add_options()("ranks", po::value(&text->ranks), ranks)(
       "partition", po::value(&text->partition)->default_value("hilbert"),
-      "with --ranks: hilbert, metis, scotch or ranges")(
+      "with --ranks: hilbert, metis, scotch, ranges or gmsh (a Gmsh split set's own)")(
       "cut-placement", po::value(&text->placement)->default_value("last"),
       "with --ranks: where each part keeps its cut vertices: last, first or interleaved "
       "(meshreuse-mpi smooth --help)");

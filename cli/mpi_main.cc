@@ -188,22 +188,23 @@ class KillingTransport : public MpiTransport {
 };
 
 void Usage(std::FILE* out) {
-  std::fprintf(out,
-               "usage: mpirun -np P meshreuse-mpi analyze TRACE [--format F] [options of "
-               "`meshreuse analyze`]\n       mpirun -np P meshreuse-mpi analyze MESH "
-               "--orderings ONE [-k K] [--threads T] [...]\n\nThe exact reuse analysis of one "
-               "input across P ranks: of a plain trace file (a meshreuse trace, a fixed-record, "
-               "text or lackey one) rank r reads only its part (records [N r/P, N (r+1)/P), or "
-               "the lines that begin in its bytes); of a mesh, rank r regenerates its part of the "
-               "traced smoother's stream (no file). Rank 0 prints and writes what `meshreuse "
-               "analyze` would. --rank-stats FILE: each rank's CPU seconds per phase, bytes sent "
-               "and peak memory.\n\n       mpirun -np P meshreuse-mpi smooth MESH [--partition "
-               "hilbert|metis|scotch|ranges] [--ordering NAME] [--mode ordered|jacobi|hybrid] [-o "
-               "OUT] [--pi-out "
-               "FILE]\n\nLaplacian smoothing across P ranks (every rank reads MESH and keeps its "
-               "part): ordered Gauss-Seidel equals the serial sweep along the order --pi-out "
-               "writes, bit for bit; jacobi the serial Jacobi. `meshreuse-mpi smooth --help` for "
-               "every option.\n");
+  std::fprintf(
+      out,
+      "usage: mpirun -np P meshreuse-mpi analyze TRACE [--format F] [options of "
+      "`meshreuse analyze`]\n       mpirun -np P meshreuse-mpi analyze MESH "
+      "--orderings ONE [-k K] [--threads T] [...]\n\nThe exact reuse analysis of one "
+      "input across P ranks: of a plain trace file (a meshreuse trace, a fixed-record, "
+      "text or lackey one) rank r reads only its part (records [N r/P, N (r+1)/P), or "
+      "the lines that begin in its bytes); of a mesh, rank r regenerates its part of the "
+      "traced smoother's stream (no file). Rank 0 prints and writes what `meshreuse "
+      "analyze` would. --rank-stats FILE: each rank's CPU seconds per phase, bytes sent "
+      "and peak memory.\n\n       mpirun -np P meshreuse-mpi smooth MESH [--partition "
+      "hilbert|metis|scotch|ranges|gmsh] [--ordering NAME] [--mode ordered|jacobi|hybrid] [-o "
+      "OUT] [--pi-out "
+      "FILE]\n\nLaplacian smoothing across P ranks (every rank reads MESH and keeps its "
+      "part): ordered Gauss-Seidel equals the serial sweep along the order --pi-out "
+      "writes, bit for bit; jacobi the serial Jacobi. `meshreuse-mpi smooth --help` for "
+      "every option.\n");
 }
 
 }  // namespace

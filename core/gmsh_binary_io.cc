@@ -275,7 +275,8 @@ class GmshBinaryReader {
         raw_.tri.reserve(
             std::max(raw_.tri.size() + 3 * static_cast<size_t>(n), 2 * raw_.tri.capacity()));
       for (int64_t i = 0; i < n; ++i) {
-        Size("an element tag");
+        const int64_t element_tag = Size("an element tag");
+        if (triangle) raw_.triangle_tag.Push(element_tag);
         for (int k = 0; k < per; ++k) {
           const int64_t tag = Size("a node tag");
           const int32_t id = IdOf(tag);

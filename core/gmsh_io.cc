@@ -191,7 +191,7 @@ class GmshReader {
   }
 
   // `nodes` are the element's node tags; corners of a triangle are the first three.
-  void AddElement(int64_t type, const std::string_view* nodes, int n_nodes) {
+  void AddElement(int64_t tag, int64_t type, const std::string_view* nodes, int n_nodes) {
     if (type != 2 && type != 9) {
       for (int k = 0; k < n_nodes; ++k) f_.ParseInt(nodes[k], "a node tag");
       ++skipped_;
@@ -210,6 +210,7 @@ class GmshReader {
     }
     if (raw_.tri.size() / 3 > static_cast<size_t>(INT32_MAX)) f_.Fail("too many triangles");
     raw_.triangle_line.Push(f_.line());
+    raw_.triangle_tag.Push(tag);
   }
 
   void ReadElements2() {
@@ -220,13 +221,13 @@ class GmshReader {
       const int cols = Split(Item("$Elements", i, n, "elements"), tok);
       if (cols > kMaxCols) f_.Fail("element line too long");
       if (cols < 3) f_.Fail("an element line should read 'tag type ntags tags... nodes...'");
-      f_.ParseInt(tok[0], "the element tag");
+      const int64_t tag = f_.ParseInt(tok[0], "the element tag");
       const int64_t type = f_.ParseInt(tok[1], "the element type");
       const int64_t ntags = Count(tok[2], "the number of tags");
       if (ntags > cols - 3)  // no arithmetic on the file's count before it is bounded
         f_.Fail("the element line is shorter than its " + std::to_string(ntags) + " tags");
       for (int64_t k = 0; k < ntags; ++k) f_.ParseInt(tok[3 + k], "an element tag");
-      AddElement(type, tok + 3 + ntags, static_cast<int>(cols - 3 - ntags));
+      AddElement(tag, type, tok + 3 + ntags, static_cast<int>(cols - 3 - ntags));
     }
   }
 
@@ -250,8 +251,7 @@ class GmshReader {
         const int cols = Split(Item("$Elements", i, n, "elements of the block"), tok);
         if (cols > kMaxCols) f_.Fail("element line too long");
         if (cols < 2) f_.Fail("an element line should read 'tag node...'");
-        f_.ParseInt(tok[0], "the element tag");
-        AddElement(type, tok + 1, cols - 1);
+        AddElement(f_.ParseInt(tok[0], "the element tag"), type, tok + 1, cols - 1);
       }
       if (n > total - seen)  // each block's count is bounded before it is added
         f_.Fail("the blocks hold more elements than the section header's " + std::to_string(total));

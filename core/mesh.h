@@ -78,6 +78,7 @@ struct RawMesh {
   RunIndex vertex_line;               // source line per vertex
   RunIndex triangle_line;             // source line per triangle
   RunIndex vertex_tag;                // the file's own vertex number, for messages
+  RunIndex triangle_tag;              // Gmsh's element tag per triangle (empty for other formats)
   std::vector<std::string> warnings;  // from the reader (e.g. skipped element types)
 };
 

@@ -109,8 +109,10 @@ std::vector<int32_t> ScotchParts(const Mesh& m, int32_t parts, uint64_t seed) {
 }
 
 void CheckPartitionMethod(const std::string& method) {
-  if (method != "hilbert" && method != "metis" && method != "scotch" && method != "ranges")
-    throw UsageError("--partition must be hilbert, metis, scotch or ranges, not '" + method + "'");
+  if (method != "hilbert" && method != "metis" && method != "scotch" && method != "ranges" &&
+      method != "gmsh")
+    throw UsageError("--partition must be hilbert, metis, scotch, ranges or gmsh, not '" + method +
+                     "'");
 }
 
 std::vector<int32_t> PartsByMethod(const Mesh& m, const std::string& method, int32_t parts,
@@ -118,6 +120,8 @@ std::vector<int32_t> PartsByMethod(const Mesh& m, const std::string& method, int
   CheckPartitionMethod(method);
   if (method == "ranges") return RangeParts(m, parts);
   if (method == "scotch") return ScotchParts(m, parts, seed);
+  if (method == "gmsh")
+    throw UsageError("--partition gmsh takes its parts from a Gmsh split set (PREFIX_K.msh)");
   return method == "metis" ? MetisParts(m, parts, seed) : HilbertRangeParts(m, parts);
 }
 

@@ -10,6 +10,7 @@
 #include <stdexcept>
 
 #include "core/error.h"
+#include "core/gmsh_split.h"
 #include "core/mesh_file.h"
 #include "core/mesh_io.h"
 #include "core/orderings/registry.h"
@@ -122,8 +123,8 @@ bool WriteInRanges(const DistSmoothConfig& cfg, const RankPart& p, HaloTransport
   barrier();
   const int64_t blocks = CoordinateBlocks(res->vertices);
   const std::vector<uint64_t> mine = HashMeshFileBlocks(tmp, blocks * r / P, blocks * (r + 1) / P);
-  const std::vector<std::string> all = tx.Gather(
-      std::string(reinterpret_cast<const char*>(mine.data()), 8 * mine.size()));
+  const std::vector<std::string> all =
+      tx.Gather(std::string(reinterpret_cast<const char*>(mine.data()), 8 * mine.size()));
   if (r == 0) {
     std::vector<uint64_t> hashes;
     for (const std::string& b : all) {
@@ -154,6 +155,38 @@ Mesh LoadForRanks(const std::string& path, int32_t parts, const Log& log) {
     throw UsageError(std::to_string(parts) + " ranks for a mesh of " +
                      std::to_string(m.NumVertices()) + " vertices: at most one rank per vertex");
   return m;
+}
+
+PartitionedMesh LoadPartitioned(const std::string& path, const std::string& method, int32_t parts,
+                                uint64_t seed, const Log& log) {
+  PartitionedMesh pm;
+  if (method != "gmsh") {
+    pm.mesh = LoadForRanks(path, parts, log);
+    log.Say("partitioning " + std::to_string(pm.mesh.NumVertices()) + " vertices into " +
+            std::to_string(parts) + " parts (" + method + ")");
+    pm.part = PartsByMethod(pm.mesh, method, parts, seed);
+    return pm;
+  }
+  log.Say("reading the Gmsh split set of " + path);
+  GmshSplit split = ReadGmshSplit(path);
+  for (const std::string& w : split.raw.warnings) log.Warn(w);
+  if (split.parts != parts)
+    throw UsageError("--partition gmsh: " + path + " belongs to a set of " +
+                     std::to_string(split.parts) + " parts (" + split.files.front() + ".." +
+                     split.files.back() + "): run " + std::to_string(split.parts) + " ranks, not " +
+                     std::to_string(parts));
+  BuildReport report;
+  pm.mesh = BuildMesh(std::move(split.raw), &report);
+  for (const std::string& w : report.warnings) log.Warn(w);
+  pm.part = std::move(split.part);
+  if (!report.kept.empty()) {  // nodes no triangle uses (lines' and points') were dropped
+    std::vector<int32_t> kept(report.kept.size());
+    for (size_t v = 0; v < kept.size(); ++v) kept[v] = pm.part[report.kept[v]];
+    pm.part.swap(kept);
+  }
+  ApplyPermutationInPlace(&pm.mesh, Permutation::Identity(pm.mesh.NumVertices()),
+                          TriangleOrder::kSorted);
+  return pm;
 }
 
 DistSmoothResult RunDistributedSmooth(const DistSmoothConfig& cfg, HaloTransport& tx,
@@ -189,10 +222,9 @@ DistSmoothResult RunDistributedSmooth(const DistSmoothConfig& cfg, HaloTransport
     for (const RankShare& s : shares) res.cut_edges += s.cut_edges;
     st.bytes_read = static_cast<uint64_t>(bytes_read);
   } else {
-    m = LoadForRanks(cfg.mesh, parts, log);
-    log.Say("partitioning " + std::to_string(m.NumVertices()) + " vertices into " +
-            std::to_string(parts) + " parts (" + cfg.partition + ")");
-    const std::vector<int32_t> part = PartsByMethod(m, cfg.partition, parts, cfg.seed);
+    PartitionedMesh pm = LoadPartitioned(cfg.mesh, cfg.partition, parts, cfg.seed, log);
+    m = std::move(pm.mesh);
+    const std::vector<int32_t>& part = pm.part;
     const PartitionStats ps = MeasurePartition(m, part, parts);
     p = BuildRankPart(m, part, parts, ps.colour, rank, cfg.ordering, cfg.seed, cfg.placement);
     res.vertices = m.NumVertices(), res.triangles = m.NumTriangles();

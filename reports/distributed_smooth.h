@@ -52,6 +52,15 @@ struct DistSmoothResult {
 };
 
 void CheckDistSmoothConfig(const DistSmoothConfig& cfg);  // UsageError
+// MESH and its partition as every rank computes them: LoadForRanks and PartsByMethod, or for
+// `gmsh` the Gmsh split set MESH belongs to, merged, with Gmsh's parts (core/gmsh_split.h; the
+// set's part count must be `parts`).
+struct PartitionedMesh {
+  Mesh mesh;
+  std::vector<int32_t> part;
+};
+PartitionedMesh LoadPartitioned(const std::string& path, const std::string& method, int32_t parts,
+                                uint64_t seed, const Log& log);
 // Whether each rank reads only its range of MESH (a mesh file, FILE.mrm, with --partition
 // ranges: core/rank_neighbourhood.h) rather than the whole mesh.
 bool ReadsRanges(const DistSmoothConfig& cfg);

@@ -21,8 +21,9 @@ void CheckRankParts(int32_t ranks, const std::string& partition,
 
 void StreamRankParts(const RankLocalityConfig& cfg, const Log& log,
                      const std::function<AccessConsumer&(int32_t rank)>& to) {
-  const Mesh m = LoadForRanks(cfg.mesh, cfg.ranks, log);
-  const std::vector<int32_t> part = PartsByMethod(m, cfg.partition, cfg.ranks, cfg.seed);
+  const PartitionedMesh pm = LoadPartitioned(cfg.mesh, cfg.partition, cfg.ranks, cfg.seed, log);
+  const Mesh& m = pm.mesh;
+  const std::vector<int32_t>& part = pm.part;
   const PartitionStats ps = MeasurePartition(m, part, cfg.ranks);
   SmoothOptions sweeps = cfg.sweeps;
   sweeps.quality = QualityMode::kPerSweep;  // what a rank does: moves, then one quality pass

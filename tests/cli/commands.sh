@@ -71,7 +71,7 @@ contains "partition" "parts 2 (hilbert)"
 check "partition inherited" 0 "$bin" mesh partition "$data/two_interior.node" --parts 3 --method metis --levels 2 --quiet
 contains "partition inherited" "vertices 77, parts 3 (metis, inherited through 2 levels)"
 check "partition bad method" 2 "$bin" mesh partition "$data/two_interior.node" --method chaco --quiet
-contains "partition bad method" "--method must be hilbert, metis, scotch or ranges, not 'chaco'"
+contains "partition bad method" "--method must be hilbert, metis, scotch, ranges or gmsh, not 'chaco'"
 check "partition scotch" 0 "$bin" mesh partition "$data/two_interior.node" --parts 2 --method scotch --quiet
 contains "partition scotch" "vertices 8, parts 2 (scotch)"
 check "partition too many" 2 "$bin" mesh partition "$data/two_interior.node" --parts 9 --quiet

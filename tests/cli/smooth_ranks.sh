@@ -76,8 +76,18 @@ check "analyze --ranks metis" 0 "$bin" analyze "$fine" --ranks 2 --partition met
 check "analyze --ranks of a trace" 2 "$bin" analyze "$tmp/r1.vtk" --ranks 2
 check "analyze --ranks with threads" 2 "$bin" analyze "$fine" --ranks 2 --threads 2
 contains "analyze --ranks with threads: said" "--ranks"
-check "analyze bad partition" 2 "$bin" analyze "$fine" --ranks 2 --partition scotch
-contains "analyze bad partition: said" "--partition"
+check "analyze bad partition" 2 "$bin" analyze "$fine" --ranks 2 --partition chaco
+contains "analyze bad partition: said" "--partition must be hilbert, metis, scotch, ranges or gmsh"
+# Gmsh's split set as ranks: the unsplit file along pi; analysed per rank with Gmsh's parts.
+check "gmsh split as threads" 0 "$bin" smooth-ranks "$data/plate_split_3.msh" --ranks 3 --partition gmsh \
+  --max-iters 4 --tol -1 -o "$tmp/gs.vtk" --pi-out "$tmp/gspi" --quiet
+check "unsplit along pi" 0 "$bin" smooth "$data/plate41.msh" --visit-order "$tmp/gspi" --max-iters 4 --tol -1 \
+  -o "$tmp/gsa.vtk" --quiet
+if cmp -s "$tmp/gs.vtk" "$tmp/gsa.vtk"; then pass=$((pass + 1)); else fail=$((fail + 1)); echo "FAIL gmsh split != unsplit along pi"; fi
+check "gmsh split analysed per rank" 0 "$bin" analyze "$data/plate_split_1.msh" --ranks 3 --partition gmsh --csv --quiet
+[[ $(grep -o "rank [0-2] of 3" "$tmp/out" | sort -u | wc -l) -eq 3 ]] && pass=$((pass + 1)) || { fail=$((fail + 1)); echo "FAIL gmsh split: 3 rank rows"; head "$tmp/out"; }
+check "gmsh split partition stats" 0 "$bin" mesh partition "$data/plate_split_2.msh" --parts 3 --method gmsh --quiet
+contains "gmsh split partition stats" "vertices 995, parts 3 (gmsh)"
 
 # ... and simulated: one row per rank and level; the L1 accesses of each rank are its analysed
 # line accesses (the same stream into two consumers).

@@ -5,6 +5,7 @@
 #   -np P, ordered            == meshreuse smooth --visit-order PI, PI written by the run (--pi-out),
 #                                Hilbert, METIS and Scotch partitions, orderings inside the parts;
 #   --cut-placement first and interleaved at -np 3 == the serial sweep along their own PI;
+#   Gmsh's split set (plate.geo in 3) with --partition gmsh == the unsplit file along PI;
 #   -np P, jacobi             == meshreuse smooth --mode jacobi, and the same quality and sweep
 #                                count for every P (stopped by --tol);
 # and that the comparison can fail (ordered at -np 2 differs from the storage-order sweep).
@@ -50,6 +51,16 @@ for mesh in "$plate" "$fine"; do
   # The reference can tell: the storage-order sweep is another order, other bits.
   if cmp -s "$tmp/serial.vtk" "$tmp/np.vtk"; then fail=$((fail + 1)); echo "FAIL ordered np 4 equals the storage-order sweep"; else pass=$((pass + 1)); fi
 done
+
+# Gmsh's own partition: the split set Gmsh wrote (plate.geo in 3 parts), read and smoothed on 3
+# ranks, equals the unsplit file (plate41.msh, the same Gmsh run without -part) along pi.
+check "gmsh split np 3" 0 run 3 "$mpi" smooth "$data/plate_split_1.msh" --partition gmsh --max-iters 5 \
+  --tol -1 -o "$tmp/np.vtk" --pi-out "$tmp/pi" --quiet
+check "unsplit along pi" 0 "$bin" smooth "$plate" --visit-order "$tmp/pi" --max-iters 5 --tol -1 \
+  -o "$tmp/along.vtk" --quiet
+equal "gmsh split np 3 == unsplit along pi" "$tmp/along.vtk" "$tmp/np.vtk"
+check "gmsh split, wrong rank count" 2 run 2 "$mpi" smooth "$data/plate_split_2.msh" --partition gmsh --quiet
+contains "gmsh split, wrong rank count" "belongs to a set of 3 parts"
 
 # The cut-vertex placements over MPI: each equals the serial sweep along its pi.
 for placement in first interleaved; do
