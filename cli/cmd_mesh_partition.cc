@@ -7,6 +7,7 @@
 
 #include "cli/common.h"
 #include "core/error.h"
+#include "core/gmsh_split.h"
 #include "core/mesh_io.h"
 #include "core/output_file.h"
 #include "core/partition.h"
@@ -19,7 +20,7 @@ namespace meshreuse::cli {
 
 int MeshPartition(const Args& args) {
   po::options_description desc("options");
-  std::string in, out, method;
+  std::string in, out, method, split;
   int32_t parts = 2;
   uint64_t seed = 1;
   RefineOptions ro;
@@ -29,19 +30,21 @@ int MeshPartition(const Args& args) {
       "method", po::value(&method)->default_value("hilbert"),
       "hilbert (contiguous ranges of the Hilbert order), metis (METIS k-way, seeded), scotch "
       "(Scotch, seeded), ranges (contiguous ranges of the stored ids) or gmsh (Gmsh's own, for "
-      "MESH "
-      "a file of a split set PREFIX_K.msh, `gmsh -part P -part_split`)")(
+      "MESH a file of a split set PREFIX_K.msh, `gmsh -part P -part_split`)")(
       "seed", po::value(&seed)->default_value(1), "METIS's seed")(
       "levels,K", po::value(&ro.levels)->default_value(0),
       "partition MESH, then give the parts of its refinement into 4^K (mesh refine --levels K)")(
       "output,o", po::value(&out), "write one part per vertex, a line each, here")(
-      "quiet,q", "no progress on stderr");
+      "split", po::value(&split),
+      "write the mesh as a Gmsh split set PREFIX1.msh .. PREFIX<P>.msh (partitioned MSH 4.1; a "
+      "triangle in its smallest corner's part) for Gmsh and any reader of its format; give "
+      "PREFIX, e.g. out/plate_")("quiet,q", "no progress on stderr");
   po::positional_options_description pos;
   pos.add("mesh", 1);
   po::variables_map vm;
   if (!ParseOptions(args,
                     "mesh partition MESH --parts P [--method hilbert|metis|scotch|ranges|gmsh] "
-                    "[--levels K] [-o FILE]",
+                    "[--levels K] [-o FILE] [--split PREFIX]",
                     "Partitions the vertices for smoothing across ranks and prints what the "
                     "partition costs a distributed sweep: cut edges, owned, cut and ghost vertices "
                     "per part, balance, and the colours of a greedy colouring of the part graph "
@@ -56,6 +59,17 @@ int MeshPartition(const Args& args) {
     throw UsageError("--method must be hilbert, metis, scotch, ranges or gmsh, not '" + method +
                      "'");
   if (!out.empty()) CheckOutputPath(out, "-o", InputFiles({in}));
+  if (!split.empty()) {
+    if (split.back() == '/') throw UsageError("--split '" + split + "': the prefix names no file");
+    // Every file it will write, against the input (a whole split set with --method gmsh).
+    std::vector<std::string> inputs = {in};
+    const size_t us = in.rfind('_');
+    if (method == "gmsh" && us != std::string::npos)
+      for (int32_t p = 1; p <= parts; ++p)
+        inputs.push_back(in.substr(0, us + 1) + std::to_string(p) + ".msh");
+    for (int32_t p = 1; p <= parts; ++p)
+      CheckOutputPath(split + std::to_string(p) + ".msh", "--split", inputs);
+  }
   const Progress progress(vm.count("quiet") > 0);
   // gmsh: the parts of the Gmsh split set MESH belongs to (reports/distributed_smooth.h).
   PartitionedMesh pm;
@@ -89,6 +103,9 @@ int MeshPartition(const Args& args) {
       Grouped(m->NumVertices()).c_str(), parts, method.c_str(),
       ro.levels > 0 ? (", inherited through " + std::to_string(ro.levels) + " levels").c_str() : "",
       Grouped(s.cut_edges).c_str(), Grouped(max_ghosts).c_str(), s.imbalance(), s.colours);
+  if (!split.empty())
+    for (const std::string& f : WriteGmshSplit(*m, part, parts, split))
+      std::printf("wrote %s\n", f.c_str());
   if (!out.empty()) {
     std::string text = "# meshreuse partition: " + std::to_string(parts) + " parts (" + method +
                        (ro.levels > 0 ? ", levels " + std::to_string(ro.levels) : "") + ") of " +

@@ -5,14 +5,18 @@
 
 #include <algorithm>
 #include <array>
+#include <cstdio>
 #include <cstring>
 #include <fstream>
+#include <functional>
 #include <map>
 #include <numeric>
+#include <stdexcept>
 #include <unordered_map>
 
 #include "core/error.h"
 #include "core/mesh_io.h"
+#include "core/output_file.h"
 
 namespace meshreuse {
 
@@ -171,6 +175,70 @@ GmshSplit ReadGmshSplit(const std::string& path) {
     s.raw.triangle_tag.Push(tris[t].tag);
   }
   return s;
+}
+
+std::vector<std::string> WriteGmshSplit(const Mesh& m, const std::vector<int32_t>& part,
+                                        int32_t parts, const std::string& prefix) {
+  if (static_cast<int64_t>(part.size()) != m.NumVertices() || parts < 1)
+    throw std::invalid_argument("WriteGmshSplit: a part per vertex and at least one part");
+  const int32_t nt = m.NumTriangles();
+  std::vector<std::vector<int32_t>> tris(parts);  // per part, increasing triangle id
+  for (int32_t t = 0; t < nt; ++t) {
+    const int32_t* c = &m.tri[3 * int64_t{t}];
+    const int32_t p = part[std::min(c[0], std::min(c[1], c[2]))];
+    if (p < 0 || p >= parts) throw std::invalid_argument("WriteGmshSplit: a part out of range");
+    tris[p].push_back(t);
+  }
+  std::vector<std::pair<std::string, std::function<void(std::FILE*)>>> files;
+  std::vector<std::string> names;
+  for (int32_t p = 0; p < parts; ++p) {
+    names.push_back(prefix + std::to_string(p + 1) + ".msh");
+    files.emplace_back(names.back(), [&, p](std::FILE* f) {
+      std::vector<int32_t> nodes;
+      for (int32_t t : tris[p])
+        for (int k = 0; k < 3; ++k) nodes.push_back(m.tri[3 * int64_t{t} + k]);
+      std::sort(nodes.begin(), nodes.end());
+      nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
+      double lo[2] = {0, 0}, hi[2] = {0, 0};
+      for (size_t i = 0; i < nodes.size(); ++i)
+        for (int d = 0; d < 2; ++d) {
+          const double x = m.xy[2 * int64_t{nodes[i]} + d];
+          lo[d] = i ? std::min(lo[d], x) : x;
+          hi[d] = i ? std::max(hi[d], x) : x;
+        }
+      std::fprintf(f, "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n");
+      // The model: one surface (entity 1) without bounding curves; part p + 1 is its piece.
+      std::fprintf(f, "$Entities\n0 0 1 0\n1 %.17g %.17g 0 %.17g %.17g 0 0 0\n$EndEntities\n",
+                   lo[0], lo[1], hi[0], hi[1]);
+      // Part p + 1's surface: entity p + 2 (tags apart from the model's surface 1).
+      std::fprintf(f,
+                   "$PartitionedEntities\n%d\n0\n0 0 1 0\n%d 2 1 1 %d %.17g %.17g 0 %.17g %.17g 0 "
+                   "0 0\n$EndPartitionedEntities\n",
+                   parts, p + 2, p + 1, lo[0], lo[1], hi[0], hi[1]);
+      const size_t n = nodes.size();
+      std::fprintf(f, "$Nodes\n%d %zu %d %d\n", n ? 1 : 0, n, n ? nodes.front() + 1 : 0,
+                   n ? nodes.back() + 1 : 0);
+      if (n) {
+        std::fprintf(f, "2 %d 0 %zu\n", p + 2, n);
+        for (int32_t v : nodes) std::fprintf(f, "%d\n", v + 1);
+        for (int32_t v : nodes)
+          std::fprintf(f, "%.17g %.17g 0\n", m.xy[2 * int64_t{v}], m.xy[2 * int64_t{v} + 1]);
+      }
+      std::fprintf(f, "$EndNodes\n");
+      const std::vector<int32_t>& ts = tris[p];
+      std::fprintf(f, "$Elements\n%d %zu %d %d\n", ts.empty() ? 0 : 1, ts.size(),
+                   ts.empty() ? 0 : ts.front() + 1, ts.empty() ? 0 : ts.back() + 1);
+      if (!ts.empty()) {
+        std::fprintf(f, "2 %d 2 %zu\n", p + 2, ts.size());
+        for (int32_t t : ts)
+          std::fprintf(f, "%d %d %d %d\n", t + 1, m.tri[3 * int64_t{t}] + 1,
+                       m.tri[3 * int64_t{t} + 1] + 1, m.tri[3 * int64_t{t} + 2] + 1);
+      }
+      std::fprintf(f, "$EndElements\n");
+    });
+  }
+  WriteAtomicallyAll(files);
+  return names;
 }
 
 }  // namespace meshreuse

@@ -25,6 +25,17 @@ struct GmshSplit {
   std::vector<std::string> files;  // PREFIX_1.msh .. PREFIX_N.msh
 };
 
+// Writes `m` as a split set PREFIX1.msh .. PREFIX<parts>.msh in Gmsh's partitioned MSH 4.1 (for
+// Gmsh, viewing, and any reader of its format): part k's file holds the triangles of part k-1 (a
+// triangle goes to its smallest corner's part, the distributed smoother's rule) and their corners,
+// node tag = vertex id + 1, element tag = triangle id + 1, one partitioned surface entity per part
+// (tag k + 1, parent the model's surface 1) in $PartitionedEntities (Gmsh 4.8 reads the files as
+// partitioned: "3 partitions, 1 partition entity"). All files are written as a unit.
+// Read back with ReadGmshSplit: the same mesh; each vertex then goes to the lowest part holding
+// one of its triangles, which may differ from `part`. Returns the files.
+std::vector<std::string> WriteGmshSplit(const Mesh& m, const std::vector<int32_t>& part,
+                                        int32_t parts, const std::string& prefix);
+
 // Whether `path` is PREFIX_K.msh (K >= 1) with PREFIX_1.msh beside it.
 bool IsGmshSplitPath(const std::string& path);
 // Any file of the set names the set. InputError naming the file and the problem.

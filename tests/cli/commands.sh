@@ -75,6 +75,20 @@ contains "partition bad method" "--method must be hilbert, metis, scotch, ranges
 check "partition scotch" 0 "$bin" mesh partition "$data/two_interior.node" --parts 2 --method scotch --quiet
 contains "partition scotch" "vertices 8, parts 2 (scotch)"
 check "partition too many" 2 "$bin" mesh partition "$data/two_interior.node" --parts 9 --quiet
+# A Gmsh split set written and read back; Gmsh itself reads it as partitioned where installed.
+check "partition --split" 0 "$bin" mesh partition "$data/plate41.msh" --parts 3 --method metis --split "$tmp/sp_" --quiet
+contains "partition --split" "wrote $tmp/sp_3.msh"
+check "split read back" 0 "$bin" mesh partition "$tmp/sp_2.msh" --parts 3 --method gmsh --quiet
+contains "split read back" "vertices 995, parts 3 (gmsh)"
+check "split onto its input" 2 "$bin" mesh partition "$tmp/sp_1.msh" --parts 3 --method gmsh --split "$tmp/sp_" --quiet
+contains "split onto its input" "is the input"
+check "split prefix a folder" 2 "$bin" mesh partition "$data/plate41.msh" --parts 2 --split "$tmp/" --quiet
+if command -v gmsh >/dev/null; then
+  check "gmsh reads the split set" 0 gmsh "$tmp/sp_1.msh" -0 -o "$tmp/gmsh_check.msh"
+  contains "gmsh reads the split set" "3 partitions"
+else
+  echo "commands: skipped Gmsh reading a written split set (no gmsh here; apt-get install gmsh)"
+fi
 
 check "smooth" 0 "$bin" smooth "$data/two_interior.node" --max-iters 3 --tol -1 -o "$tmp/s.vtk" --out "$tmp/res" --quiet
 contains "smooth" "sweeps 3 (max-iters reached)"
