@@ -5,6 +5,8 @@
 
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <stdexcept>
 #include <string>
 
@@ -35,6 +37,19 @@ class TempDir {
  private:
   std::filesystem::path path_;
 };
+
+// A file's bytes, and bytes written as a file (the tests that damage binary files).
+inline std::string ReadBytes(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), {});
+}
+inline void WriteBytes(const std::string& path, const std::string& bytes) {
+  std::ofstream(path, std::ios::binary | std::ios::trunc)
+      .write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+}
+inline bool HasText(const std::string& s, const std::string& part) {
+  return s.find(part) != std::string::npos;
+}
 
 inline std::string DataPath(const std::string& name) {
   return std::string(MESHREUSE_TEST_DATA) + "/" + name;

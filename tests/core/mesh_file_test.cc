@@ -23,26 +23,10 @@ namespace meshreuse {
 namespace {
 using namespace testing;
 
-bool Has(const std::string& s, const std::string& part) {
-  return s.find(part) != std::string::npos;
-}
-
-std::string Slurp(const std::string& p) {
-  std::ifstream in(p, std::ios::binary);
-  return std::string(std::istreambuf_iterator<char>(in), {});
-}
-void Spit(const std::string& p, const std::string& b) {
-  std::ofstream(p, std::ios::binary | std::ios::trunc).write(b.data(), b.size());
-}
-
 int64_t Pad8(int64_t n) { return (n + 7) / 8 * 8; }
 int64_t DataEnd(int64_t v, int64_t t) {
   return 128 + 16 * v + Pad8(v) + 8 * (v + 1) + 2 * Pad8(12 * t);
 }
-
-// Recomputes the block table, content id and header hash of a file's bytes: a damage that the
-// hashes no longer see, for the checks behind them.
-std::string Mend(const std::string& b) { return RehashMeshFile(b); }
 
 std::string ErrorOf(const std::function<void()>& f) {
   try {
@@ -69,7 +53,7 @@ TEST(MeshFile, SectionsAreTheMeshsArraysAndTheSizeIsTheLayouts) {
     const int64_t v = m.NumVertices(), t = m.NumTriangles();
     const int64_t end = DataEnd(v, t);
     const int64_t blocks = (end - 128 + 4095) / 4096, pages = (blocks + 511) / 512;
-    EXPECT_EQ(static_cast<int64_t>(Slurp(p).size()), end + 8 * blocks + 8 * pages);
+    EXPECT_EQ(static_cast<int64_t>(ReadBytes(p).size()), end + 8 * blocks + 8 * pages);
     MeshFile f(p);
     ASSERT_EQ(f.vertices(), v);
     ASSERT_EQ(f.triangles(), t);
@@ -101,11 +85,12 @@ TEST(MeshFile, RehashingAWrittenFileChangesNothing) {
   TempDir dir;
   const std::string p = dir / "m.mrm";
   WriteMeshFile(Bigger(), p);
-  const std::string b = Slurp(p);
+  const std::string b = ReadBytes(p);
   EXPECT_TRUE(RehashMeshFile(b) == b);
   std::string x = b;
   x[200] ^= 1;
-  EXPECT_FALSE(RehashMeshFile(x) == x);  // the damaged block's hash, the page's, the id, the header's
+  EXPECT_FALSE(RehashMeshFile(x) ==
+               x);  // the damaged block's hash, the page's, the id, the header's
   const Mesh m = Bigger();
   const size_t end = static_cast<size_t>(DataEnd(m.NumVertices(), m.NumTriangles()));
   EXPECT_TRUE(RehashMeshFile(x).compare(128, end - 128, x, 128, end - 128) == 0)
@@ -150,12 +135,12 @@ TEST(MeshFile, DamagedFilesAreRefusedByName) {
   const Mesh m = Bigger();
   const std::string good = dir / "good.mrm", bad = dir / "bad.mrm";
   WriteMeshFile(m, good);
-  const std::string b = Slurp(good);
+  const std::string b = ReadBytes(good);
   auto refuse = [&](const std::string& bytes, const std::string& expect) {
-    Spit(bad, bytes);
+    WriteBytes(bad, bytes);
     const std::string e = ErrorOf([&] { ReadMeshFileRaw(bad); });
-    EXPECT_TRUE(Has(e, bad + ": ")) << e << expect;
-    EXPECT_TRUE(Has(e, expect)) << e;
+    EXPECT_TRUE(HasText(e, bad + ": ")) << e << expect;
+    EXPECT_TRUE(HasText(e, expect)) << e;
   };
   refuse(b.substr(0, b.size() - 1), "truncated: ");
   refuse(b.substr(0, 100), "shorter than the 128-byte header");
@@ -168,7 +153,7 @@ TEST(MeshFile, DamagedFilesAreRefusedByName) {
   refuse(x, "the header's hash does not match");
   x = b;
   x[8] = 2;  // version 2, hashes mended
-  refuse(Mend(x), "version 2");
+  refuse(RehashMeshFile(x), "version 2");
   x = b;
   x[b.size() - 3] ^= 1;  // the page table
   refuse(x, "does not belong to this header's content id");
@@ -189,25 +174,25 @@ TEST(MeshFile, DamagedFilesAreRefusedByName) {
     std::vector<double> xy(2 * v);
     EXPECT_NO_THROW(f.Read(MeshFile::kXy, 0, v, xy.data()));
     std::vector<int32_t> tri(3 * t);
-    EXPECT_TRUE(
-        Has(ErrorOf([&] { f.Read(MeshFile::kTri, 0, t, tri.data()); }), "does not match its hash"))
+    EXPECT_TRUE(HasText(ErrorOf([&] { f.Read(MeshFile::kTri, 0, t, tri.data()); }),
+                        "does not match its hash"))
         << ErrorOf([&] { f.Read(MeshFile::kTri, 0, t, tri.data()); });
   }
   // Mended damage reaches the mesh's own checks: a corner out of range, a non-finite coordinate.
   x = b;
   const int32_t huge = 1 << 30;
   std::memcpy(&x[at - at % 4], &huge, 4);
-  refuse(Mend(x), "outside 0..");
+  refuse(RehashMeshFile(x), "outside 0..");
   x = b;
   const double nan = std::nan("");
   std::memcpy(&x[128 + 16 * 7], &nan, 8);
-  Spit(bad, Mend(x));
-  EXPECT_TRUE(Has(ErrorOf([&] { ReadMesh(bad); }), "non-finite"))
+  WriteBytes(bad, RehashMeshFile(x));
+  EXPECT_TRUE(HasText(ErrorOf([&] { ReadMesh(bad); }), "non-finite"))
       << ErrorOf([&] { ReadMesh(bad); });
   // Not a regular file.
-  EXPECT_TRUE(Has(ErrorOf([&] { MeshFile f(dir.path().string()); }), "not a regular file"))
+  EXPECT_TRUE(HasText(ErrorOf([&] { MeshFile f(dir.path().string()); }), "not a regular file"))
       << ErrorOf([&] { MeshFile f(dir.path().string()); });
-  EXPECT_TRUE(Has(ErrorOf([&] { MeshFile f(dir / "missing.mrm"); }), "cannot open"))
+  EXPECT_TRUE(HasText(ErrorOf([&] { MeshFile f(dir / "missing.mrm"); }), "cannot open"))
       << ErrorOf([&] { MeshFile f(dir / "missing.mrm"); });
 }
 

@@ -24,21 +24,7 @@ namespace meshreuse {
 namespace {
 using namespace testing;
 
-bool Has(const std::string& s, const std::string& part) {
-  return s.find(part) != std::string::npos;
-}
-
-std::string Slurp(const std::string& p) {
-  std::ifstream in(p, std::ios::binary);
-  return std::string(std::istreambuf_iterator<char>(in), {});
-}
-void Spit(const std::string& p, const std::string& b) {
-  std::ofstream(p, std::ios::binary | std::ios::trunc).write(b.data(), b.size());
-}
 int64_t Pad8(int64_t n) { return (n + 7) / 8 * 8; }
-
-// Fresh hashes for damaged bytes (as mesh_file_test's): the damage reaches the topology checks.
-std::string Mend(const std::string& b) { return RehashMeshFile(b); }
 
 void ExpectSameParts(const RankPart& a, const RankPart& b) {
   EXPECT_EQ(a.rank, b.rank);
@@ -124,7 +110,7 @@ TEST(RankNeighbourhood, GhostsFromTheirOwnersEqualTheFilesAndReadingIsTheRanksSh
   LayOutForRanks(&m);
   const std::string p = dir / "m.mrm";
   WriteMeshFile(m, p);
-  const double size = static_cast<double>(Slurp(p).size());
+  const double size = static_cast<double>(ReadBytes(p).size());
   for (int32_t P : {1, 2, 4, 7}) {
     std::vector<RankNeighbourhood> got(P);
     HaloThreads::Run(P, [&](HaloTransport& tx) {
@@ -154,22 +140,22 @@ TEST(RankNeighbourhood, InconsistentFilesAreRefusedByTheOwner) {
   LayOutForRanks(&m);
   const std::string good = dir / "good.mrm", bad = dir / "bad.mrm";
   WriteMeshFile(m, good);
-  const std::string b = Slurp(good);
+  const std::string b = ReadBytes(good);
   const int64_t v = m.NumVertices(), t = m.NumTriangles();
   const int64_t flags = 128 + 16 * v, offs = flags + Pad8(v), rows = offs + 8 * (v + 1);
   const int64_t tris = rows + Pad8(12 * t);
   constexpr int32_t P = 3;
   // Which rank throws, and what: the others read their parts.
   auto refused_by = [&](const std::string& bytes, int32_t owner, const std::string& expect) {
-    Spit(bad, Mend(bytes));
+    WriteBytes(bad, RehashMeshFile(bytes));
     for (int32_t r = 0; r < P; ++r) {
       try {
         ReadRankNeighbourhood(bad, r, P);
         EXPECT_NE(r, owner) << expect;
       } catch (const InputError& e) {
         EXPECT_EQ(r, owner) << e.what();
-        EXPECT_TRUE(Has(e.what(), bad + ": ")) << e.what();
-        EXPECT_TRUE(Has(e.what(), expect)) << e.what();
+        EXPECT_TRUE(HasText(e.what(), bad + ": ")) << e.what();
+        EXPECT_TRUE(HasText(e.what(), expect)) << e.what();
       }
     }
   };
@@ -191,7 +177,7 @@ TEST(RankNeighbourhood, InconsistentFilesAreRefusedByTheOwner) {
   x = b;
   std::memcpy(&x[tris + 12 * tt], &other, 4);
   {
-    Spit(bad, Mend(x));
+    WriteBytes(bad, RehashMeshFile(x));
     bool seen = false;
     for (int32_t r = 0; r < P; ++r) try {
         ReadRankNeighbourhood(bad, r, P);
@@ -199,9 +185,9 @@ TEST(RankNeighbourhood, InconsistentFilesAreRefusedByTheOwner) {
         seen = true;
         const std::string w = e.what();
         EXPECT_TRUE(
-            Has(w, "vertex " + std::to_string(old) + ": its v2t row lists triangle " +
-                       std::to_string(tt) + ", which does not") ||
-            Has(w, "triangle " + std::to_string(tt) + " has vertex " + std::to_string(other)))
+            HasText(w, "vertex " + std::to_string(old) + ": its v2t row lists triangle " +
+                           std::to_string(tt) + ", which does not") ||
+            HasText(w, "triangle " + std::to_string(tt) + " has vertex " + std::to_string(other)))
             << w;
       }
     EXPECT_TRUE(seen);
@@ -219,7 +205,7 @@ TEST(RankNeighbourhood, InconsistentFilesAreRefusedByTheOwner) {
   x = b;
   std::memcpy(&x[offs + 8 * (rv + 1)], &a, 8);
   {
-    Spit(bad, Mend(x));
+    WriteBytes(bad, RehashMeshFile(x));
     EXPECT_THROW(ReadRankNeighbourhood(bad, RangeOwner(rv, v, P), P), InputError);
   }
   // Too many ranks.
@@ -243,17 +229,17 @@ TEST(RankNeighbourhood, WhatNoRankSeesAloneIsRefusedOnEveryRank) {
     }
     return std::string("(none)");
   };
-  EXPECT_TRUE(Has(error({share(1, 5, 12, {1}), share(2, 3, 12, {0})}),
-                  "rank 1 read another mesh file than rank 0"))
+  EXPECT_TRUE(HasText(error({share(1, 5, 12, {1}), share(2, 3, 12, {0})}),
+                      "rank 1 read another mesh file than rank 0"))
       << error({share(1, 5, 12, {1}), share(2, 3, 12, {0})});
-  EXPECT_TRUE(Has(error({share(1, 4, 12, {1}), share(1, 3, 12, {0})}),
-                  "found 7 triangles and 24 v2t entries, the header says 8"))
+  EXPECT_TRUE(HasText(error({share(1, 4, 12, {1}), share(1, 3, 12, {0})}),
+                      "found 7 triangles and 24 v2t entries, the header says 8"))
       << error({share(1, 4, 12, {1}), share(1, 3, 12, {0})});
-  EXPECT_TRUE(Has(error({share(1, 5, 12, {1}), share(1, 3, 11, {0})}), "23 v2t entries"))
+  EXPECT_TRUE(HasText(error({share(1, 5, 12, {1}), share(1, 3, 11, {0})}), "23 v2t entries"))
       << error({share(1, 5, 12, {1}), share(1, 3, 11, {0})});
-  EXPECT_TRUE(Has(error({share(1, 5, 12, {1}), share(1, 3, 12, {})}), "ranks 0 and 1 disagree"))
+  EXPECT_TRUE(HasText(error({share(1, 5, 12, {1}), share(1, 3, 12, {})}), "ranks 0 and 1 disagree"))
       << error({share(1, 5, 12, {1}), share(1, 3, 12, {})});
-  EXPECT_TRUE(Has(error({share(1, 5, 12, {2}), share(1, 3, 12, {})}), "ranks 0 and 2 disagree"))
+  EXPECT_TRUE(HasText(error({share(1, 5, 12, {2}), share(1, 3, 12, {})}), "ranks 0 and 2 disagree"))
       << error({share(1, 5, 12, {2}), share(1, 3, 12, {})});
 }
 

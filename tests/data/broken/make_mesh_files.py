@@ -3,6 +3,7 @@
     make_mesh_files.py GOOD.mrm OUTDIR
 (GOOD.mrm: `meshreuse mesh convert tests/data/two_interior.node -o GOOD.mrm`). Those marked
 "mended" get fresh block, page and header hashes, so the damage reaches the checks behind them."""
+import os
 import struct
 import sys
 
@@ -10,12 +11,10 @@ M = (1 << 64) - 1
 BLOCK, PAGE, HEADER = 4096, 512, 128
 
 
-def mix64(x):
-    x ^= x >> 30
-    x = (x * 0xBF58476D1CE4E5B9) & M
-    x ^= x >> 27
-    x = (x * 0x94D049BB133111EB) & M
-    return x ^ (x >> 31)
+# SplitMix64's finaliser (core/mix.h), shared with the summaries' fixtures.
+sys.dont_write_bytecode = True  # no __pycache__ beside the fixtures
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from make_summaries import mix as mix64  # noqa: E402
 
 
 def block_hash(b):
