@@ -125,7 +125,9 @@ TEST(MeshFile, RangesAndScatteredReadsEqualElementReads) {
       const int64_t count = static_cast<int64_t>(rng() % (n - first + 1));
       std::vector<char> range(static_cast<size_t>(count * eb));
       f.Read(sec, first, count, range.data());
-      EXPECT_EQ(std::memcmp(range.data(), all.data() + first * eb, count * eb), 0);
+      if (count) {
+        EXPECT_EQ(std::memcmp(range.data(), all.data() + first * eb, count * eb), 0);
+      }
     }
   }
 }

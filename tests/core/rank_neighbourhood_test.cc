@@ -36,12 +36,16 @@ void ExpectSameParts(const RankPart& a, const RankPart& b) {
   EXPECT_EQ(a.total, b.total);
   EXPECT_EQ(a.gid, b.gid);
   ASSERT_EQ(a.xy.size(), b.xy.size());
-  EXPECT_EQ(std::memcmp(a.xy.data(), b.xy.data(), a.xy.size() * sizeof(double)), 0);
+  if (!a.xy.empty()) {
+    EXPECT_EQ(std::memcmp(a.xy.data(), b.xy.data(), a.xy.size() * sizeof(double)), 0);
+  }
   EXPECT_TRUE(std::equal(a.v2v.off.begin(), a.v2v.off.end(), b.v2v.off.begin(), b.v2v.off.end()));
   EXPECT_TRUE(std::equal(a.v2v.idx.begin(), a.v2v.idx.end(), b.v2v.idx.begin(), b.v2v.idx.end()));
   EXPECT_EQ(a.tri, b.tri);
   ASSERT_EQ(a.weight.size(), b.weight.size());
-  EXPECT_EQ(std::memcmp(a.weight.data(), b.weight.data(), a.weight.size() * sizeof(double)), 0);
+  if (!a.weight.empty()) {  // a part may own no triangle (memcmp of null is undefined)
+    EXPECT_EQ(std::memcmp(a.weight.data(), b.weight.data(), a.weight.size() * sizeof(double)), 0);
+  }
   ASSERT_EQ(a.links.size(), b.links.size());
   for (size_t i = 0; i < a.links.size(); ++i) {
     EXPECT_EQ(a.links[i].rank, b.links[i].rank);
@@ -122,7 +126,9 @@ TEST(RankNeighbourhood, GhostsFromTheirOwnersEqualTheFilesAndReadingIsTheRanksSh
       ASSERT_EQ(nb.gid, file.gid);
       EXPECT_EQ(std::memcmp(nb.mesh.xy.data(), file.mesh.xy.data(), 8 * nb.mesh.xy.size()), 0);
       EXPECT_EQ(nb.mesh.boundary, file.mesh.boundary);
-      EXPECT_EQ(std::memcmp(nb.weight.data(), file.weight.data(), 8 * nb.weight.size()), 0);
+      if (!nb.weight.empty()) {
+        EXPECT_EQ(std::memcmp(nb.weight.data(), file.weight.data(), 8 * nb.weight.size()), 0);
+      }
       EXPECT_EQ(nb.part, file.part);
       // Its share of the vertex-indexed sections and of the triangles, plus the blocks its range
       // straddles and the pages of the block table: within 4% of the file beyond 1/P.
