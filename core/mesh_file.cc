@@ -431,7 +431,7 @@ void MeshFile::ReadAt(Section s, const std::vector<int64_t>& at, void* out) {
   auto block_of = [](int64_t byte) { return (byte - kMeshFileHeader) / kMeshFileBlock; };
   std::vector<char> run;
   // Runs of elements whose blocks touch or adjoin: each run is one read of whole blocks, so no
-  // block is read twice however the elements straddle them.
+  // block is read twice however the elements straddle them (but where a 16 MiB run ends).
   for (size_t i = 0; i < at.size();) {
     size_t j = i;
     int64_t last = -1;
@@ -439,7 +439,9 @@ void MeshFile::ReadAt(Section s, const std::vector<int64_t>& at, void* out) {
       if (at[j] < 0 || at[j] >= Elements(s) || (j && at[j] < at[j - 1]))
         throw std::logic_error("MeshFile::ReadAt: positions out of range or not increasing");
       const int64_t a = Offset(s) + at[j] * eb;
-      if (j > i && block_of(a) > last + 1) break;
+      // A run ends at a gap, or at 16 MiB: the run's buffer is memory beside what it fills.
+      if (j > i && (block_of(a) > last + 1 || last - block_of(Offset(s) + at[i] * eb) >= 4096))
+        break;
       last = std::max(last, block_of(a + eb - 1));
     }
     const int64_t lo = kMeshFileHeader + block_of(Offset(s) + at[i] * eb) * kMeshFileBlock;
