@@ -78,6 +78,18 @@ check "analyze --ranks with threads" 2 "$bin" analyze "$fine" --ranks 2 --thread
 contains "analyze --ranks with threads: said" "--ranks"
 check "analyze bad partition" 2 "$bin" analyze "$fine" --ranks 2 --partition chaco
 contains "analyze bad partition: said" "--partition must be hilbert, metis, scotch, ranges or gmsh"
+# A mesh file read in ranges by thread ranks (ghosts through the threads' mailboxes): the serial
+# sweep along pi, and -o FILE.mrm written by every rank equal to the serial smoother's file.
+check "mrm" 0 "$bin" mesh convert "$fine" -o "$tmp/fine.mrm" --quiet
+for r in 1 3; do
+  check "mrm as $r threads" 0 "$bin" smooth-ranks "$tmp/fine.mrm" --ranks $r --max-iters 3 --tol -1 \
+    -o "$tmp/rt.mrm" --pi-out "$tmp/rtpi" --quiet
+  contains "mrm as $r threads: ranges" "ranges partition"
+  check "mrm serial along pi" 0 "$bin" smooth "$tmp/fine.mrm" --visit-order "$tmp/rtpi" --max-iters 3 --tol -1 \
+    -o "$tmp/rs.mrm" --quiet
+  if [[ -s $tmp/rt.mrm ]] && cmp -s "$tmp/rt.mrm" "$tmp/rs.mrm"; then pass=$((pass + 1)); else fail=$((fail + 1)); echo "FAIL mrm as $r threads != serial along pi"; fi
+done
+
 # Gmsh's split set as ranks: the unsplit file along pi; analysed per rank with Gmsh's parts.
 check "gmsh split as threads" 0 "$bin" smooth-ranks "$data/plate_split_3.msh" --ranks 3 --partition gmsh \
   --max-iters 4 --tol -1 -o "$tmp/gs.vtk" --pi-out "$tmp/gspi" --quiet
