@@ -55,12 +55,6 @@ struct GhostRecord {
 };
 // A rank's answer for one of its owned vertices (InputError for a vertex it does not own).
 using OwnedLookup = std::function<GhostRecord(int64_t gid)>;
-// The records of `wanted` (ghosts, increasing global id), in order. Called once per rank, after
-// the rank has read its own range, with `mine` answering for it: every rank of a job calls it at
-// the same point, so an implementation can exchange requests and answers between ranks (the
-// distributed smoother's: one request and one answer per neighbouring rank, what the owner read
-// and will check). Empty: each rank reads its ghosts from the file itself (blocks of 4 KiB around
-// each ghost: more bytes than the exchange moves, no communication).
 // What a rank asks of the others: the ghosts it needs (increasing global id) and their owners
 // (non-decreasing), with the file's name and content id, so an exchange can refuse ranks that read
 // different files before any of them answers for a vertex.
@@ -71,14 +65,20 @@ struct GhostRequest {
   std::vector<int64_t> wanted;
   std::vector<int32_t> owner;
 };
+// The records of the request's ghosts, in order. Called once per rank, after the rank has read its
+// own range, with `mine` answering for it: every rank of a job calls it at the same point, so an
+// implementation can exchange requests and answers between ranks (the distributed smoother's: one
+// request and one answer per neighbouring rank, what the owner read and will check). Empty: each
+// rank reads its ghosts from the file itself, the blocks around each ghost, no communication (on
+// a 400 x 320 synthetic mesh, a 9.2 MB file, at 4 ranks a rank then read 33-35% of the file
+// against its 25%).
 using GhostLookup =
     std::function<std::vector<GhostRecord>(const GhostRequest& request, const OwnedLookup& mine)>;
 
 class HaloTransport;
 // The exchange through a transport (halo_smoother.h; MPI or threads): one all-gather of who asks
 // whom for how many, then per neighbouring rank one request (the global ids) and one answer (x, y,
-// triangles, flag per ghost) -- about 40 bytes a ghost, against 3 blocks of 4 KiB a ghost when each
-// rank reads its ghosts from the file. Every rank of the transport must read at once.
+// triangles, flag per ghost) -- 40 bytes a ghost. Every rank of the transport must read at once.
 GhostLookup GhostExchange(HaloTransport& tx);
 
 // Throws InputError for a damaged or inconsistent file, UsageError when `parts` exceeds the
