@@ -28,11 +28,9 @@ int DistSmoothCommand(const Args& args, HaloTransport& tx) {
       "hilbert: contiguous ranges of the Hilbert order (balanced to a vertex); metis: METIS "
       "k-way, seeded; scotch: Scotch, seeded; gmsh: Gmsh's own, MESH being any file PREFIX_K.msh "
       "of a split set (`gmsh -part P -part_split`; P ranks); ranges: contiguous ranges of the "
-      "stored ids. For a "
-      "mesh file (FILE.mrm, "
-      "written by `meshreuse mesh convert MESH -o FILE.mrm` in Hilbert order) the default is "
-      "ranges, and each rank then reads only its range and ghost ring (the other methods read "
-      "the whole file on every rank)")(
+      "stored ids. For a mesh file (FILE.mrm, written by `meshreuse mesh convert MESH -o "
+      "FILE.mrm` in Hilbert order) the default is ranges, and each rank then reads only its "
+      "range and ghost ring (the other methods read the whole file on every rank)")(
       "ordering", po::value(&cfg.ordering)->default_value("ori"),
       ("each rank's layout of its part: " + OrderingNames()).c_str())(
       "seed", po::value(&seed)->default_value("1"), "seed of METIS and seeded orderings")(
@@ -49,7 +47,8 @@ int DistSmoothCommand(const Args& args, HaloTransport& tx) {
       "max-iters", po::value(&cfg.smooth.max_iters)->default_value(100),
       "at most this many sweeps")(
       "output,o", po::value(&cfg.output),
-      "write the smoothed mesh (PATH.vtk, PATH.mrm or a .node/.ele prefix), gathered on rank 0")(
+      "write the smoothed mesh (PATH.vtk, PATH.mrm or a .node/.ele prefix), gathered on rank 0; "
+      "a mesh file read in ranges and written as PATH.mrm is written by every rank at once")(
       "pi-out", po::value(&cfg.pi_out),
       "write the serial visit order this run equals (ordered mode): `meshreuse smooth MESH "
       "--visit-order FILE` reproduces the run bit for bit")(
