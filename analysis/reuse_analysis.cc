@@ -97,7 +97,7 @@ void ReuseAnalysis::Consume(const Access* a, size_t n) {
     for (size_t i = 0; i < n; ++i) {
       const Access& x = a[i];
       if (x.element != Access::kNoElement) AddElement(x.thread, x.element);
-      if (x.kind == static_cast<uint8_t>(AccessKind::kCoordWrite)) ++moves_[x.thread];
+      if (x.kind == static_cast<uint8_t>(AccessKind::kAdjacency)) ++moves_[x.thread];
       AddAccess(x.thread, x.address, x.size);
     }
     return;
@@ -115,7 +115,7 @@ void ReuseAnalysis::Consume(const Access* a, size_t n) {
         if (!e) e = &ElementStream(t);
         e->Add(x.element);
       }
-      moves += x.kind == static_cast<uint8_t>(AccessKind::kCoordWrite);
+      moves += x.kind == static_cast<uint8_t>(AccessKind::kAdjacency);
       if (l) {
         const uint64_t first = LineId(x.address >> line_shift_);
         const uint64_t last = LineId((x.address + (x.size ? x.size - 1 : 0)) >> line_shift_);

@@ -164,7 +164,8 @@ class ReuseAnalysis : public AccessConsumer {
   const StreamAnalysis* stream(int t, Granularity g) const {
     return g == Granularity::kElement ? element(t) : line(t);
   }
-  uint64_t moves(int t) const { return moves_[t]; }  // coordinate writes: vertices moved
+  // vertices moved: their row-offset reads (one per move; a rank's unpacks write coordinates too)
+  uint64_t moves(int t) const { return moves_[t]; }
 
   // One row per distance bin (exact below `exact_below`, powers of two beyond) and one "cold" row:
   // input, ordering, thread, granularity, lo, hi, count.

@@ -9,13 +9,15 @@
 #include <array>
 #include <cstdint>
 
+#include "core/schedule.h"
+
 namespace meshreuse {
 
 // The element kind of an access: which touch of a vertex record it is, or none.
 enum class AccessKind : uint8_t {
   kAdjacency = 0,   // reading the vertex's adjacency row (its offset into the neighbour list)
   kCoordRead = 1,   // reading a vertex's coordinates
-  kCoordWrite = 2,  // writing the moved vertex's coordinates
+  kCoordWrite = 2,  // writing the moved vertex's coordinates (a ghost's, when a rank unpacks it)
   kNone = 3,        // an access to mesh data that is not a touch of a vertex record
   kFetch = 4,       // an instruction fetch (only in other tools' traces: lackey's I lines)
 };
@@ -34,8 +36,13 @@ enum class Array : uint8_t {
   kCoords = 8,      // xy (Jacobi: the buffer read)
   kCoordsNext = 9,  // Jacobi only: the buffer written
   kLoopBound = 10,  // the sweep loop's end bound, a local read once per iteration (smoother.h)
+  // A distributed rank's ghost messages (halo_smoother.h), every link's in one array each:
+  kSendIndex = 11,   // local ids of the owned vertices sent
+  kSendBuffer = 12,  // their coordinates as sent
+  kRecvIndex = 13,   // local ids of the ghosts received
+  kRecvBuffer = 14,  // their coordinates as received
 };
-inline constexpr int kArrays = 11;
+inline constexpr int kArrays = 15;
 
 struct MemRef {
   const void* address;
@@ -80,7 +87,11 @@ class AddressCanonicalizer {
         continue;
       }
       canon_[i] = next;
-      next = (next + layout_.bytes[i] + 4095) / 4096 * 4096 + 4096;
+      // The bound's slots (64 B per thread) take the room of an array of their own.
+      const uint64_t bytes = i == static_cast<int>(Array::kLoopBound)
+                                 ? uint64_t{64} * static_cast<uint64_t>(kMaxThreads)
+                                 : layout_.bytes[i];
+      next = (next + bytes + 4095) / 4096 * 4096 + 4096;
     }
   }
   uint64_t operator()(int thread, const MemRef& r) const {
@@ -115,9 +126,9 @@ struct SweepRegion {
 };
 
 inline const char* ArrayName(Array a) {
-  static constexpr const char* kNames[kArrays] = {"interior", "v2v.off", "v2v.idx", "v2t.off",
-                                                  "v2t.idx",  "tri",     "tq",      "w",
-                                                  "xy",       "xy.next", "bound"};
+  static constexpr const char* kNames[kArrays] = {
+      "interior", "v2v.off", "v2v.idx",  "v2t.off",  "v2t.idx",  "tri",      "tq",      "w",
+      "xy",       "xy.next", "bound",    "send.idx", "send.buf", "recv.idx", "recv.buf"};
   const int i = static_cast<int>(a);
   return i >= 0 && i < kArrays ? kNames[i] : "?";
 }

@@ -216,28 +216,6 @@ RankPart BuildRankPart(const RankNeighbourhood& nb, const std::vector<int32_t>& 
                    nb.gid.data(), nb.weight.data());
 }
 
-Mesh RankMesh(const RankPart& p) {
-  Mesh m;
-  m.xy = p.xy;
-  m.tri.assign(p.tri.begin(), p.tri.end());
-  const int32_t n = p.total;
-  m.boundary.assign(static_cast<size_t>(n), 1);
-  m.v2v.off.assign(static_cast<size_t>(n) + 1, 0);
-  m.v2v.idx = p.v2v.idx;
-  for (int32_t v = 0; v < n; ++v)
-    m.v2v.off[v + 1] = v < p.movable ? p.v2v.off[v + 1] : m.v2v.off[v];
-  m.interior.resize(static_cast<size_t>(p.movable));
-  for (int32_t v = 0; v < p.movable; ++v) m.interior[v] = v, m.boundary[v] = 0;
-  // v2t: triangles in increasing id per vertex (a counting sort over the corners)
-  m.v2t.off.assign(static_cast<size_t>(n) + 1, 0);
-  for (int32_t c : m.tri) ++m.v2t.off[c + 1];
-  for (int32_t v = 0; v < n; ++v) m.v2t.off[v + 1] += m.v2t.off[v];
-  m.v2t.idx.resize(m.tri.size());
-  std::vector<int64_t> at(m.v2t.off.begin(), m.v2t.off.end() - 1);
-  for (size_t k = 0; k < m.tri.size(); ++k) m.v2t.idx[at[m.tri[k]]++] = static_cast<int32_t>(k / 3);
-  return m;
-}
-
 std::vector<int64_t> VisitOrderOf(const std::vector<RankMoves>& ranks) {
   std::vector<int64_t> pi;
   int32_t colours = 0;

@@ -82,16 +82,6 @@ RankPart BuildRankPart(RankNeighbourhood&& nb, const std::vector<int32_t>& colou
                        const std::string& ordering = "ori", uint64_t seed = 1,
                        CutPlacement placement = CutPlacement::kLast);
 
-// The part as a Mesh of its own in local ids, for running the serial smoother's traced sweep on it
-// (per-rank locality, reports/rank_locality.h): the owned vertices' and ghosts' coordinates, the
-// owned triangles, the movable vertices' rows as the rank sweeps them (by global id, so unlike
-// BuildMesh's not in increasing local id) and empty rows for the rest, v2t from the owned
-// triangles, `interior` = the movable vertices in local order and every other vertex a boundary
-// one. A per-sweep Gauss-Seidel sweep of it (QualityMode::kPerSweep) makes the rank's moves in the
-// rank's order reading the rank's rows, then one pass over the owned triangles: the rank's own
-// accesses, but for the interior list's reads, the quality pass's stores and the ghost messages.
-Mesh RankMesh(const RankPart& p);
-
 // What π needs of one rank: its colour, placement, number of non-cut vertices and its movable
 // vertices' global ids in local order.
 struct RankMoves {

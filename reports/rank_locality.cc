@@ -1,7 +1,11 @@
 // Per-rank locality: see rank_locality.h.
 #include "reports/rank_locality.h"
 
+#include <limits>
+#include <stdexcept>
+
 #include "core/error.h"
+#include "core/halo_smoother.h"
 #include "core/partition.h"
 #include "core/rank_part.h"
 #include "reports/distributed_smooth.h"
@@ -19,25 +23,72 @@ void CheckRankParts(int32_t ranks, const std::string& partition,
       throw UsageError("--ranks: " + in + " is not a mesh (each rank's part is a mesh's)");
 }
 
+namespace {
+
+// The transport of a rank traced alone: what it sends is dropped, what it receives is its ghosts'
+// current values (as if their owners had not moved them), and the sum over ranks is its own. The
+// addresses a rank touches do not depend on the values, the geometry stays a mesh's, and the
+// stream config asks for a fixed number of sweeps (the stop rule never reads the sums).
+class SoloTransport : public HaloTransport {
+ public:
+  explicit SoloTransport(const RankPart& p) : p_(p) {}
+  int32_t rank() const override { return p_.rank; }
+  int32_t size() const override { return p_.parts; }
+  void Send(int32_t, const double*, size_t) override {}
+  void Recv(int32_t from, double* data, size_t n) override {
+    for (const RankLink& l : p_.links) {
+      if (l.rank != from) continue;
+      if (n != 2 * l.recv.size()) throw std::logic_error("SoloTransport: message size mismatch");
+      for (size_t j = 0; j < l.recv.size(); ++j) {
+        data[2 * j] = p_.xy[2 * int64_t{l.recv[j]}];
+        data[2 * j + 1] = p_.xy[2 * int64_t{l.recv[j]} + 1];
+      }
+      return;
+    }
+    throw std::logic_error("SoloTransport: no link to rank " + std::to_string(from));
+  }
+  void Flush() override {}
+  FixedSum SumAll(const FixedSum& mine) override { return mine; }
+  std::vector<std::string> Gather(const std::string&) override {
+    throw std::logic_error("SoloTransport: a traced rank gathers nothing");
+  }
+  std::vector<std::string> AllGather(const std::string&) override {
+    throw std::logic_error("SoloTransport: a traced rank gathers nothing");
+  }
+
+ private:
+  const RankPart& p_;
+};
+
+}  // namespace
+
+HaloOptions RankStreamOptions(const SmoothOptions& sweeps) {
+  HaloOptions o;
+  o.max_iters = sweeps.max_iters;
+  o.tol = -std::numeric_limits<double>::infinity();
+  o.mode = sweeps.mode == UpdateMode::kJacobi ? HaloMode::kJacobi : HaloMode::kOrdered;
+  return o;
+}
+
 void StreamRankParts(const RankLocalityConfig& cfg, const Log& log,
                      const std::function<AccessConsumer&(int32_t rank)>& to) {
   const PartitionedMesh pm = LoadPartitioned(cfg.mesh, cfg.partition, cfg.ranks, cfg.seed, log);
   const Mesh& m = pm.mesh;
   const std::vector<int32_t>& part = pm.part;
   const PartitionStats ps = MeasurePartition(m, part, cfg.ranks);
-  SmoothOptions sweeps = cfg.sweeps;
-  sweeps.quality = QualityMode::kPerSweep;  // what a rank does: moves, then one quality pass
-  sweeps.threads = 1;
+  const HaloOptions opt = RankStreamOptions(cfg.sweeps);
   for (int32_t r = 0; r < cfg.ranks; ++r) {
-    const RankPart p =
+    RankPart p =
         BuildRankPart(m, part, cfg.ranks, ps.colour, r, cfg.ordering, cfg.seed, cfg.placement);
-    Mesh local = RankMesh(p);
     log.Say("rank " + std::to_string(r) + " of " + std::to_string(cfg.ranks) + ": " +
             std::to_string(p.owned) + " owned, " + std::to_string(p.ghosts()) + " ghosts, " +
-            std::to_string(sweeps.max_iters) + " sweep(s) in " + cfg.ordering + " order");
-    StreamMesh(local, sweeps,
-               cfg.mesh + " [rank " + std::to_string(r) + " of " + std::to_string(cfg.ranks) + "]",
-               cfg.ordering, to(r));
+            std::to_string(opt.max_iters) + " " + HaloModeName(opt.mode) + " sweep(s) in " +
+            cfg.ordering + " order");
+    SoloTransport tx(p);
+    StreamRankPart(p, opt, tx,
+                   cfg.mesh + " [rank " + std::to_string(r) + " of " + std::to_string(cfg.ranks) +
+                       "]",
+                   cfg.ordering, to(r));
   }
 }
 

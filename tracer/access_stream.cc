@@ -111,6 +111,33 @@ SmoothResult StreamMesh(Mesh& mesh, const SmoothOptions& sweeps, const std::stri
   return r;
 }
 
+StreamInfo RankStreamInfo(const RankPart& part, const HaloOptions& opt) {
+  StreamInfo info;
+  info.vertices = part.total;
+  info.canonical = true;
+  const HaloSweepCounts c = TracedPerSweep(part);
+  const int sweeps = std::max(0, opt.max_iters);
+  info.sweep_records.assign(sweeps, {c.refs});
+  info.sweep_elements.assign(sweeps, {c.elements});
+  info.records = c.refs * static_cast<uint64_t>(sweeps);
+  return info;
+}
+
+HaloResult StreamRankPart(RankPart& part, const HaloOptions& opt, HaloTransport& tx,
+                          const std::string& label, const std::string& ordering,
+                          AccessConsumer& to) {
+  StreamInfo info = RankStreamInfo(part, opt);
+  info.input = label;
+  info.ordering = ordering;
+  to.Begin(info);
+  std::vector<Access> buf(kBatch);
+  BatchSink sink{to, buf.data(), 0, {}, kSerialShares, {}};
+  HaloResult r = SmoothRankPart(part, opt, tx, sink);
+  sink.Flush();
+  to.End();
+  return r;
+}
+
 void StreamTraceFile(const std::string& path, AccessConsumer& to, const ProgressFn& progress,
                      const RecordRange* range) {
   TraceReader r(path);
