@@ -31,13 +31,18 @@ UpdateMode ParseUpdateMode(const std::string& s) {
   throw UsageError("unknown update mode '" + s + "' (expected gauss-seidel or jacobi)");
 }
 
-std::vector<uint64_t> AccessesPerSweep(const Mesh& m, int threads) {
+std::vector<uint64_t> AccessesPerSweep(const Mesh& m, int threads, UpdateMode mode) {
   std::vector<uint64_t> n(threads < 1 ? 1 : threads, 0);
+  const int p = static_cast<int>(n.size());
+  const bool gs = mode == UpdateMode::kGaussSeidel;
   const int64_t ni = static_cast<int64_t>(m.interior.size());
   for (int64_t k = 0; k < ni; ++k) {
     const int32_t v = m.interior[k];
-    n[StaticOwner(k, ni, static_cast<int>(n.size()))] +=
-        2 + m.v2v.RowSize(v) + 3 * m.v2t.RowSize(v);
+    n[StaticOwner(k, ni, p)] += 2 + m.v2v.RowSize(v) + (gs ? 3 * m.v2t.RowSize(v) : 0);
+  }
+  if (!gs) {
+    const int64_t nt = m.NumTriangles();
+    for (int64_t t = 0; t < nt; ++t) n[StaticOwner(t, nt, p)] += 3;
   }
   return n;
 }

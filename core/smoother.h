@@ -515,9 +515,11 @@ SmoothResult Smooth(Mesh& mesh, const SmoothOptions& opt, Sink& sink,
   return r;
 }
 
-// Element touches per Gauss-Seidel sweep, per thread of the static schedule (see the sequence
-// above): sum over the thread's interior vertices of 2 + deg(v) + 3 * triangles(v).
-std::vector<uint64_t> AccessesPerSweep(const Mesh& m, int threads = 1);
+// Element touches per sweep, per thread of the static schedule (see the sequence above):
+// Gauss-Seidel, sum over the thread's interior vertices of 2 + deg(v) + 3 * triangles(v); Jacobi,
+// 2 + deg(v) per interior vertex and 3 per triangle of the thread's share of the quality pass.
+std::vector<uint64_t> AccessesPerSweep(const Mesh& m, int threads = 1,
+                                       UpdateMode mode = UpdateMode::kGaussSeidel);
 // Loads and stores (the address stream) per sweep, per thread: Gauss-Seidel 7 + 2 deg(v) +
 // 13 triangles(v) per interior vertex (the 7th: the loop bound) plus 1; Jacobi 5 + 2 deg(v) per
 // interior vertex plus 12 per triangle of the thread's share of the quality pass, plus 2.

@@ -431,6 +431,20 @@ void SetAnalysis(const AnalyzeConfig& cfg, Granularity g, SummaryFile* s) {
 }
 
 // Chunk r of P of `total` records (or bytes): [total r / P, total (r + 1) / P).
+MeshChunkSweeps SweepsOfMeshChunk(const StreamInfo& whole, UpdateMode mode, uint64_t first,
+                                  uint64_t end) {
+  MeshChunkSweeps run;
+  if (first >= end || whole.sweep_records.empty()) return run;  // nothing to regenerate
+  uint64_t per_sweep = 0;
+  for (uint64_t n : whole.sweep_records[0]) per_sweep += n;
+  if (per_sweep == 0) return run;
+  run.from = static_cast<int>(first / per_sweep) + 1;
+  run.to = static_cast<int>((end - 1) / per_sweep) + 1;
+  if (mode == UpdateMode::kJacobi && run.from % 2 == 0) --run.from;
+  run.skipped = static_cast<uint64_t>(run.from - 1) * per_sweep;
+  return run;
+}
+
 void Cut(uint64_t total, uint32_t r, uint32_t p, SummaryFile* s) {
   using U = unsigned __int128;
   s->first = static_cast<uint64_t>(U{total} * r / p);
@@ -490,15 +504,26 @@ void Collect(ReuseAnalysis& a, SummaryFile* out) {
 
 // Passes records [first, end) of a stream on to `to`, counting where the records before them
 // leave each thread's element and line streams (the chunk's profile offsets, set on `to` before
-// its first access). The records after `end` are dropped (the smoother runs to the end).
+// its first access). The stream fed to it may begin after record 0: `skipped` records, which left
+// the streams at `element` and `line`, come before it. `to` begins with `whole`, the info of the
+// stream from record 0. Records after `end` are dropped (the smoother finishes its last sweep).
 class RangeGate : public AccessConsumer {
  public:
-  RangeGate(ReuseAnalysis& to, uint64_t first, uint64_t end, uint32_t line_bytes)
-      : to_(to), first_(first), end_(end), shift_(__builtin_ctz(line_bytes)) {}
-  void Begin(const StreamInfo& info) override {
-    to_.Begin(info);
-    element_.assign(info.threads, 0);
-    line_.assign(info.threads, 0);
+  RangeGate(ReuseAnalysis& to, const StreamInfo& whole, uint64_t first, uint64_t end,
+            uint32_t line_bytes, uint64_t skipped, std::vector<uint64_t> element,
+            std::vector<uint64_t> line)
+      : to_(to),
+        whole_(whole),
+        first_(first),
+        end_(end),
+        seen_(skipped),
+        shift_(__builtin_ctz(line_bytes)),
+        element_(std::move(element)),
+        line_(std::move(line)) {}
+  void Begin(const StreamInfo&) override {
+    to_.Begin(whole_);
+    element_.resize(whole_.threads, 0);
+    line_.resize(whole_.threads, 0);
   }
   void Consume(const Access* a, size_t n) override {
     size_t i = 0;
@@ -518,7 +543,8 @@ class RangeGate : public AccessConsumer {
 
  private:
   ReuseAnalysis& to_;
-  uint64_t first_, end_, seen_ = 0;
+  const StreamInfo& whole_;
+  uint64_t first_, end_, seen_;
   int shift_;
   bool started_ = false;
   std::vector<uint64_t> element_, line_;
@@ -526,7 +552,12 @@ class RangeGate : public AccessConsumer {
 
 // A chunk of the access stream of a mesh smoothed in the analysis' order: records [N r/P,
 // N (r+1)/P) of what `meshreuse trace MESH` would write, regenerated without a file (the stream
-// depends on topology and canonical addresses only). The rank traces up to its range's end.
+// depends on topology and canonical addresses only). Every sweep makes the same accesses, but for
+// Jacobi's two buffers, which alternate (sweep s touches what sweep s - 2 touched): so the rank
+// runs the traced smoother from the sweep its range starts in (one earlier for an even Jacobi
+// sweep) to the one it ends in, at most one sweep more than its range, and counts the sweeps
+// before by their closed forms (AccessesPerSweep; one line per access, since no access of the
+// smoother straddles two lines: the merge checks each chunk's offset).
 SummaryFile SummarizeMeshChunk(const AnalyzeConfig& cfg, uint32_t r, uint32_t p, const Log& log) {
   const std::string& in = cfg.inputs[0];
   const std::string& ord = cfg.orderings[0];
@@ -542,14 +573,27 @@ SummaryFile SummarizeMeshChunk(const AnalyzeConfig& cfg, uint32_t r, uint32_t p,
                 TriangleOrderName(cfg.triangle_order);
   s.id.fingerprint = MeshFingerprint(m, &s.id.input_bytes);
   SetAnalysis(cfg, cfg.granularity ? *cfg.granularity : Granularity::kBoth, &s);
-  const uint64_t total = MeshStreamInfo(m, sweeps).records;
+  StreamInfo whole = MeshStreamInfo(m, sweeps);
+  whole.input = in;
+  whole.ordering = ParseOrderingSpec(ord).label;
+  const uint64_t total = whole.records;
   Cut(total, r, p, &s);
+  const MeshChunkSweeps run = SweepsOfMeshChunk(whole, sweeps.mode, s.first, s.end);
+  const std::vector<uint64_t> elements = AccessesPerSweep(m, whole.threads, sweeps.mode);
+  std::vector<uint64_t> element_before(whole.threads), line_before(whole.threads);
+  const uint64_t before = static_cast<uint64_t>(run.from - 1);
+  for (int t = 0; t < whole.threads && before > 0; ++t)
+    element_before[t] = before * elements[t], line_before[t] = before * whole.sweep_records[0][t];
   ReuseAnalysis a(ChunkOptions(cfg, s));
-  RangeGate gate(a, s.first, s.end, cfg.line_bytes);
+  RangeGate gate(a, whole, s.first, s.end, cfg.line_bytes, run.skipped, element_before,
+                 line_before);
   log.Say("analysing chunk " + ChunkName(r, p) + " of " + in + " in " + ord + " order: records " +
           std::to_string(s.first) + ".." + std::to_string(s.end) + " of " + std::to_string(total) +
-          " (regenerated by the traced smoother)");
-  StreamMesh(m, sweeps, in, ParseOrderingSpec(ord).label, gate);
+          " (regenerated by the traced smoother, sweeps " + std::to_string(run.from) + ".." +
+          std::to_string(run.to) + " of " + std::to_string(sweeps.max_iters) + ")");
+  SmoothOptions part = sweeps;
+  part.max_iters = run.to - run.from + 1;
+  StreamMesh(m, part, in, whole.ordering, gate);
   a.End();
   Collect(a, &s);
   return s;

@@ -12,7 +12,7 @@
 // result equals the serial analyzer's whatever machine ran which chunk.
 // The profile places accesses by their position in their stream: a chunk of a meshreuse trace
 // reads back to the start of the sweep it begins in (at most one sweep more) to count where its
-// streams start; line positions assume no access straddling two lines before the chunk, and the
+// streams start, a chunk of a mesh's stream regenerates from there (SweepsOfMeshChunk); line positions assume no access straddling two lines before the chunk, and the
 // merge checks that assumption against the true positions and refuses, saying so, if it fails.
 // The file (version 1, little-endian): magic "MRSUMRY\0", u32 version, u32 0, u64 payload bytes,
 // u64 checksum of the payload, then the payload (identity, chunk, stream info, streams). A
@@ -89,6 +89,17 @@ SummaryFile ReadSummary(const std::string& path);  // InputError naming the file
 
 // Chunk r of P of cfg.inputs[0] (one trace), analysed into its summary.
 SummaryFile SummarizeChunk(const AnalyzeConfig& cfg, uint32_t r, uint32_t p, const Log& log);
+
+// The sweeps a chunk of records [first, end) of a mesh's stream (`whole`: MeshStreamInfo)
+// regenerates: from the one `first` lies in (the one before it for an even Jacobi sweep, whose
+// buffers the odd sweeps share) to the one `end - 1` lies in, and the records before `from`.
+// An empty chunk regenerates none (from 1, to 0).
+struct MeshChunkSweeps {
+  int from = 1, to = 0;
+  uint64_t skipped = 0;
+};
+MeshChunkSweeps SweepsOfMeshChunk(const StreamInfo& whole, UpdateMode mode, uint64_t first,
+                                  uint64_t end);
 // The chunk run: writes cfg.summary_out.
 void RunChunk(const AnalyzeConfig& cfg, const Log& log);
 

@@ -8,6 +8,7 @@
 
 #include "core/error.h"
 #include "core/input_file.h"
+#include "core/mesh_file.h"
 #include "core/schedule.h"
 #include "tracer/foreign_trace.h"
 #include "tracer/trace_reader.h"
@@ -229,7 +230,7 @@ InputKind ClassifyInput(const std::string& path) {
   auto ends = [&](const std::string& x) {
     return path.size() >= x.size() && path.compare(path.size() - x.size(), x.size(), x) == 0;
   };
-  if (path != "-" && (ends(".node") || ends(".ele") || ends(".msh") ||
+  if (path != "-" && (ends(".node") || ends(".ele") || ends(".msh") || IsMeshFilePath(path) ||
                       ::access((path + ".node").c_str(), F_OK) == 0))
     return InputKind::kMesh;
   // Anything else given by name is read as a meshreuse trace, whose reader says "not a meshreuse

@@ -111,8 +111,8 @@ void StreamForeignTrace(const std::string& path, const TraceFormat& format, bool
                         AccessConsumer& to, const ProgressFn& progress = {},
                         const RecordRange* range = nullptr);
 
-// What a path given without --format is: a mesh (by its name: .node, .ele, .msh, or a prefix P
-// with P.node), standard input ("-": a text trace of ids), or else a meshreuse trace.
+// What a path given without --format is: a mesh (by its name: .node, .ele, .msh, .mrm, or a
+// prefix P with P.node), standard input ("-": a text trace of ids), or else a meshreuse trace.
 enum class InputKind { kMesh, kTrace, kText };
 InputKind ClassifyInput(const std::string& path);
 

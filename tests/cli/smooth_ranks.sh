@@ -90,6 +90,17 @@ for r in 1 3; do
   if [[ -s $tmp/rt.mrm ]] && cmp -s "$tmp/rt.mrm" "$tmp/rs.mrm"; then pass=$((pass + 1)); else fail=$((fail + 1)); echo "FAIL mrm as $r threads != serial along pi"; fi
 done
 
+# A mesh file is a mesh to the analyzer, the simulator and the tracer (found by its name): the same
+# tables as the same mesh in text.
+check "mrm back to text" 0 "$bin" mesh convert "$tmp/fine.mrm" -o "$tmp/back" --quiet
+check "mrm analysed" 0 "$bin" analyze "$tmp/fine.mrm" -k 2 --csv --quiet
+cut -d, -f2- "$tmp/out" >"$tmp/a.mrm.csv"
+check "text analysed" 0 "$bin" analyze "$tmp/back.node" -k 2 --csv --quiet
+cut -d, -f2- "$tmp/out" >"$tmp/a.node.csv"
+if [[ $(wc -l <"$tmp/a.mrm.csv") -gt 2 ]] && cmp -s "$tmp/a.mrm.csv" "$tmp/a.node.csv"; then pass=$((pass + 1)); else fail=$((fail + 1)); echo "FAIL mrm analysed != text analysed"; fi
+check "mrm simulated" 0 "$bin" simulate "$tmp/fine.mrm" -k 1 --quiet
+check "mrm traced per rank" 0 "$bin" trace "$tmp/fine.mrm" --ranks 2 -k 1 -o "$tmp/mt" --quiet
+
 # Gmsh's split set as ranks: the unsplit file along pi; analysed per rank with Gmsh's parts.
 check "gmsh split as threads" 0 "$bin" smooth-ranks "$data/plate_split_3.msh" --ranks 3 --partition gmsh \
   --max-iters 4 --tol -1 -o "$tmp/gs.vtk" --pi-out "$tmp/gspi" --quiet

@@ -45,6 +45,26 @@ std::string Slurp(const std::string& path) {
   return std::string(std::istreambuf_iterator<char>(f), {});
 }
 
+TEST(ChunkSummary, MeshChunksRegenerateFromTheirFirstSweep) {
+  StreamInfo whole;  // 4 sweeps of 15 records on 2 threads
+  whole.threads = 2;
+  whole.sweep_records.assign(4, {10, 5});
+  auto run = [&](UpdateMode mode, uint64_t first, uint64_t end) {
+    const MeshChunkSweeps s = SweepsOfMeshChunk(whole, mode, first, end);
+    return std::vector<uint64_t>{static_cast<uint64_t>(s.from), static_cast<uint64_t>(s.to),
+                                 s.skipped};
+  };
+  const UpdateMode gs = UpdateMode::kGaussSeidel, jacobi = UpdateMode::kJacobi;
+  EXPECT_EQ(run(gs, 0, 15), (std::vector<uint64_t>{1, 1, 0}));
+  EXPECT_EQ(run(gs, 14, 16), (std::vector<uint64_t>{1, 2, 0}));
+  EXPECT_EQ(run(gs, 15, 31), (std::vector<uint64_t>{2, 3, 15}));
+  EXPECT_EQ(run(gs, 59, 60), (std::vector<uint64_t>{4, 4, 45}));
+  EXPECT_EQ(run(jacobi, 15, 31), (std::vector<uint64_t>{1, 3, 0}));  // sweep 2 reads sweep 0's
+  EXPECT_EQ(run(jacobi, 30, 45), (std::vector<uint64_t>{3, 3, 30}));
+  EXPECT_EQ(run(jacobi, 59, 60), (std::vector<uint64_t>{3, 4, 30}));
+  EXPECT_EQ(run(gs, 20, 20), (std::vector<uint64_t>{1, 0, 0}));  // empty: nothing
+}
+
 TEST(ChunkSummary, RoundTrip) {
   testing::TempDir dir;
   const std::string path = dir / "s";

@@ -238,16 +238,20 @@ TEST(AccessSequence, TracedAndUntracedSmoothingAgree) {
 TEST(AccessSequence, PerSweepCountMatchesACountingSinkForEveryThreadCount) {
   SyntheticOptions so;
   so.nx = 25, so.ny = 17, so.holes = 1, so.seed = 4;
-  for (int threads : {1, 2, 3, 7}) {
-    Mesh m = BuildMesh(MakeSyntheticMesh(so));
-    CountingSink c;
-    Smooth(m, OneSweep(threads), c);
-    const std::vector<uint64_t> want = AccessesPerSweep(m, threads);
-    ASSERT_EQ(c.per_thread.size(), want.size());
-    for (int t = 0; t < threads; ++t)
-      EXPECT_EQ(c.per_thread[t].kind[0] + c.per_thread[t].kind[1] + c.per_thread[t].kind[2],
-                want[t]);
-  }
+  for (UpdateMode mode : {UpdateMode::kGaussSeidel, UpdateMode::kJacobi})
+    for (int threads : {1, 2, 3, 7}) {
+      Mesh m = BuildMesh(MakeSyntheticMesh(so));
+      CountingSink c;
+      SmoothOptions o = OneSweep(threads);
+      o.mode = mode;
+      Smooth(m, o, c);
+      const std::vector<uint64_t> want = AccessesPerSweep(m, threads, mode);
+      ASSERT_EQ(c.per_thread.size(), want.size());
+      for (int t = 0; t < threads; ++t)
+        EXPECT_EQ(c.per_thread[t].kind[0] + c.per_thread[t].kind[1] + c.per_thread[t].kind[2],
+                  want[t])
+            << UpdateModeName(mode) << ", thread " << t << " of " << threads;
+    }
 }
 
 TEST(StaticOwner, MatchesOpenMPStaticSchedule) {
