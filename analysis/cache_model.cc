@@ -128,13 +128,14 @@ uint64_t CapacityForMisses(const ReuseHistogram& h, uint64_t n, bool exclude_col
     return h.finite() ? h.max() + 1 : 0;
   if (n <= h.cold()) return kInfiniteCapacity;
   if (n > h.accesses()) return 0;
-  uint64_t seen = h.cold();
-  const std::vector<uint64_t>& c = h.counts();
-  for (size_t d = c.size(); d > 0; --d) {
-    seen += c[d - 1];
-    if (seen >= n) return d - 1;
-  }
-  return 0;
+  uint64_t seen = h.cold(), found = 0;
+  h.ForEachDown([&](uint64_t d, uint64_t c) {
+    seen += c;
+    if (seen < n) return true;
+    found = d;
+    return false;
+  });
+  return found;
 }
 
 std::optional<CostRange> AdditionalCycles(const std::vector<uint64_t>& misses,

@@ -18,12 +18,43 @@ void ReuseHistogram::Grow(uint64_t d) {
   counts_.resize(counts_.capacity() > d ? std::min<uint64_t>(want, counts_.capacity()) : want, 0);
 }
 
+void ReuseHistogram::UsePages() {
+  if (accesses() || !counts_.empty()) throw std::logic_error("ReuseHistogram: pages after adds");
+  paged_ = true;
+}
+
+void ReuseHistogram::AddPaged(uint64_t d, uint64_t n) {
+  const uint64_t p = d / kPage;
+  if (p >= pages_.size()) pages_.resize(p + 1);
+  if (!pages_[p]) pages_[p].reset(new uint64_t[kPage]());
+  pages_[p][d % kPage] += n;
+  finite_ += n;
+  sum_ += static_cast<unsigned __int128>(d) * n;
+}
+
+std::vector<std::pair<uint64_t, uint64_t>> ReuseHistogram::Pairs() const {
+  std::vector<std::pair<uint64_t, uint64_t>> out;
+  ForEach([&](uint64_t d, uint64_t n) { out.emplace_back(d, n); });
+  return out;
+}
+
+uint64_t ReuseHistogram::counter_bytes() const {
+  uint64_t b = counts_.capacity() * sizeof(uint64_t) + pages_.capacity() * sizeof(pages_[0]);
+  for (const auto& p : pages_)
+    if (p) b += kPage * sizeof(uint64_t);
+  return b;
+}
+
 void ReuseHistogram::Merge(const ReuseHistogram& o) {
-  if (o.counts_.size() > counts_.size()) counts_.resize(o.counts_.size(), 0);
-  for (size_t d = 0; d < o.counts_.size(); ++d) counts_[d] += o.counts_[d];
-  finite_ += o.finite_;
+  if (!paged_ && !o.paged_) {
+    if (o.counts_.size() > counts_.size()) counts_.resize(o.counts_.size(), 0);
+    for (size_t d = 0; d < o.counts_.size(); ++d) counts_[d] += o.counts_[d];
+    finite_ += o.finite_;
+    sum_ += o.sum_;
+  } else {
+    o.ForEach([this](uint64_t d, uint64_t n) { AddCount(d, n); });
+  }
   cold_ += o.cold_;
-  sum_ += o.sum_;
 }
 
 double ReuseHistogram::mean() const {
@@ -38,12 +69,10 @@ std::vector<MrcPoint> MissRatioCurve(const ReuseHistogram& h) {
   std::vector<MrcPoint> out;
   uint64_t misses = h.accesses();
   out.push_back({0, misses});
-  const std::vector<uint64_t>& c = h.counts();
-  for (size_t d = 0; d < c.size(); ++d)
-    if (c[d]) {
-      misses -= c[d];
-      out.push_back({d + 1, misses});
-    }
+  h.ForEach([&](uint64_t d, uint64_t n) {
+    misses -= n;
+    out.push_back({d + 1, misses});
+  });
   return out;
 }
 
@@ -57,9 +86,12 @@ std::string ToDecimal(unsigned __int128 v) {
 }
 
 uint64_t ReuseHistogram::max() const {
-  for (size_t d = counts_.size(); d > 0; --d)
-    if (counts_[d - 1]) return d - 1;
-  return 0;
+  uint64_t top = 0;
+  ForEachDown([&](uint64_t d, uint64_t) {
+    top = d;
+    return false;
+  });
+  return top;
 }
 
 uint64_t ReuseHistogram::Quantile(double x) const {
@@ -70,33 +102,40 @@ uint64_t ReuseHistogram::Quantile(double x) const {
   // 1e-12 * n, far below one access for any trace we can hold.
   const long double need = static_cast<long double>(x) * static_cast<long double>(finite_) -
                            1e-12L * static_cast<long double>(finite_);
-  uint64_t cum = 0;
-  for (size_t d = 0; d < counts_.size(); ++d) {
-    if (!counts_[d]) continue;
-    cum += counts_[d];
-    if (static_cast<long double>(cum) >= need) return d;
-  }
-  return max();
+  uint64_t cum = 0, found = 0;
+  bool done = false;
+  ForEach([&](uint64_t d, uint64_t n) {
+    if (done) return;
+    cum += n;
+    if (static_cast<long double>(cum) >= need) found = d, done = true;
+  });
+  return done ? found : max();
 }
 
 uint64_t ReuseHistogram::CountAtLeast(uint64_t d) const {
   uint64_t n = 0;
-  for (size_t i = d; i < counts_.size(); ++i) n += counts_[i];
+  ForEachDown([&](uint64_t e, uint64_t c) {
+    if (e < d) return false;
+    n += c;
+    return true;
+  });
   return n;
 }
 
 std::vector<ReuseHistogram::Bin> ReuseHistogram::Binned(uint64_t exact_below) const {
   std::vector<Bin> bins;
   const uint64_t top = max();
-  for (uint64_t d = 0; d < exact_below && d <= top; ++d)
-    bins.push_back({d, d, counts_.size() > d ? counts_[d] : 0});
+  for (uint64_t d = 0; d < exact_below && d <= top; ++d) bins.push_back({d, d, 0});
   for (uint64_t lo = exact_below; lo <= top && finite_; lo *= 2) {
-    const uint64_t hi = 2 * lo - 1;
-    uint64_t c = 0;
-    for (uint64_t d = lo; d <= hi && d < counts_.size(); ++d) c += counts_[d];
-    bins.push_back({lo, hi, c});
+    bins.push_back({lo, 2 * lo - 1, 0});
     if (lo == 0) break;
   }
+  // Each count into its bin: exact ones by index, then doubling ranges in order.
+  size_t b = 0;
+  ForEach([&](uint64_t d, uint64_t n) {
+    while (b < bins.size() && bins[b].hi < d) ++b;
+    if (b < bins.size()) bins[b].count += n;
+  });
   return bins;
 }
 

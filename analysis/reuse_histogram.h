@@ -1,12 +1,18 @@
-// The distribution of reuse distances of one stream: an exact count per distance (the array is as
-// long as the largest distance seen, which is below the number of distinct ids), the cold count,
+// The distribution of reuse distances of one stream: an exact count per distance, the cold count,
 // the mean, quantiles, and tail counts for the miss model. Quantile X (DESIGN.md) = the smallest
 // observed d such that at least a fraction X of the finite distances are <= d; X = 0 gives the
 // smallest, X = 1 the largest. The binned view is exact below 64 and log2 bins beyond.
+// Two layouts, one set of answers: dense (the analyzer's: one counter per distance up to the
+// largest seen, below the number of distinct ids; Add is one increment) and paged (UsePages:
+// counters in pages of 4096 distances, each allocated when first touched; for the merges, whose
+// distances reach the whole stream's distinct ids M but often fill a few ranges of them: a scan's
+// every reuse is at M - 1). Readers go through ForEach / ForEachDown, in order of distance.
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/table.h"
@@ -20,7 +26,10 @@ class ReuseHistogram {
       ++cold_;
       return;
     }
-    if (d >= counts_.size()) Grow(d);  // within the reserved capacity when Reserve() was right
+    if (d >= counts_.size()) {  // paged: counts_ stays empty, so every paged add comes here
+      if (paged_) return AddPaged(d, 1);
+      Grow(d);  // within the reserved capacity when Reserve() was right
+    }
     ++counts_[d];
     ++finite_;
     sum_ += d;
@@ -31,15 +40,23 @@ class ReuseHistogram {
       return;
     }
     if (!n) return;
-    if (d >= counts_.size()) Grow(d);
+    if (d >= counts_.size()) {
+      if (paged_) return AddPaged(d, n);
+      Grow(d);
+    }
     counts_[d] += n;
     finite_ += n;
     sum_ += static_cast<unsigned __int128>(d) * n;
   }
+  // The paged layout; only before anything is added (std::logic_error otherwise).
+  void UsePages();
+  bool paged() const { return paged_; }
   void Merge(const ReuseHistogram& o);
   // Distances are below the number of distinct ids: with that number known (vertex ids), one
-  // exact allocation instead of doubling.
-  void Reserve(uint64_t distinct) { counts_.reserve(distinct); }
+  // exact allocation instead of doubling. Dense only (a paged histogram ignores it).
+  void Reserve(uint64_t distinct) {
+    if (!paged_) counts_.reserve(distinct);
+  }
 
   uint64_t accesses() const { return finite_ + cold_; }
   uint64_t finite() const { return finite_; }
@@ -51,7 +68,35 @@ class ReuseHistogram {
   // finite distances.
   uint64_t Quantile(double x) const;
   uint64_t CountAtLeast(uint64_t d) const;  // finite distances >= d
-  const std::vector<uint64_t>& counts() const { return counts_; }
+  // f(d, count) for every distance with a count, in increasing d.
+  template <class F>
+  void ForEach(F f) const {
+    if (!paged_) {
+      for (size_t d = 0; d < counts_.size(); ++d)
+        if (counts_[d]) f(static_cast<uint64_t>(d), counts_[d]);
+      return;
+    }
+    for (size_t p = 0; p < pages_.size(); ++p)
+      if (const uint64_t* c = pages_[p].get())
+        for (uint64_t i = 0; i < kPage; ++i)
+          if (c[i]) f(p * kPage + i, c[i]);
+  }
+  // f(d, count) in decreasing d while f returns true.
+  template <class F>
+  void ForEachDown(F f) const {
+    if (!paged_) {
+      for (size_t d = counts_.size(); d > 0; --d)
+        if (counts_[d - 1] && !f(static_cast<uint64_t>(d - 1), counts_[d - 1])) return;
+      return;
+    }
+    for (size_t p = pages_.size(); p > 0; --p)
+      if (const uint64_t* c = pages_[p - 1].get())
+        for (uint64_t i = kPage; i > 0; --i)
+          if (c[i - 1] && !f((p - 1) * kPage + i - 1, c[i - 1])) return;
+  }
+  std::vector<std::pair<uint64_t, uint64_t>> Pairs() const;  // ForEach's (d, count), collected
+  // Bytes its counters hold (the dense array, or the allocated pages and their index).
+  uint64_t counter_bytes() const;
 
   struct Bin {
     uint64_t lo, hi, count;  // distances lo..hi inclusive
@@ -63,8 +108,12 @@ class ReuseHistogram {
   void AppendRows(Table* t, const std::vector<std::string>& key, uint64_t exact_below = 64) const;
 
  private:
+  static constexpr uint64_t kPage = 4096;
   void Grow(uint64_t d);
+  void AddPaged(uint64_t d, uint64_t n);
   std::vector<uint64_t> counts_;
+  bool paged_ = false;
+  std::vector<std::unique_ptr<uint64_t[]>> pages_;
   uint64_t finite_ = 0, cold_ = 0;
   unsigned __int128 sum_ = 0;  // exact: distances are integers (long double was x87, and slow)
 };

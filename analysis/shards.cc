@@ -53,12 +53,10 @@ Shards Shards::FromSampled(const ShardsOptions& o, uint64_t accesses,
   const double w = 1.0 / s.rate();
   for (uint64_t k = 0; k < s.samples_; ++k) s.total_ += w;
   for (uint64_t k = 0; k < sampled.cold(); ++k) s.cold_ += w, s.distinct_ += w;
-  const std::vector<uint64_t>& c = sampled.counts();
-  for (uint64_t d = 0; d < c.size(); ++d) {
-    if (!c[d]) continue;
+  sampled.ForEach([&](uint64_t d, uint64_t n) {
     double& bin = s.weight_[static_cast<uint64_t>(std::llround(static_cast<double>(d) / s.rate()))];
-    for (uint64_t k = 0; k < c[d]; ++k) bin += w;
-  }
+    for (uint64_t k = 0; k < n; ++k) bin += w;
+  });
   return s;
 }
 
@@ -125,13 +123,15 @@ double MrcMeanAbsoluteError(const ReuseHistogram& exact, const Shards& est) {
   const uint64_t top = exact.max() + 1;
   if (exact.accesses() == 0) return NAN;
   // Both curves walked once from capacity 1 upwards: miss(c) = cold + count of distances >= c.
-  const std::vector<uint64_t>& counts = exact.counts();
+  std::vector<std::pair<uint64_t, uint64_t>> counts;  // (distance, count), increasing
+  exact.ForEach([&](uint64_t d, uint64_t n) { counts.emplace_back(d, n); });
+  auto next = counts.begin();
   double exact_miss = static_cast<double>(exact.accesses());  // capacity 0: every access misses
   double est_miss = est.total_weight();
   auto it = est.weights().begin();
   double sum = 0;
   for (uint64_t c = 1; c <= top; ++c) {
-    if (c - 1 < counts.size()) exact_miss -= static_cast<double>(counts[c - 1]);
+    if (next != counts.end() && next->first == c - 1) exact_miss -= static_cast<double>(next++->second);
     while (it != est.weights().end() && it->first < c) est_miss -= it->second, ++it;
     sum += std::fabs(exact_miss / static_cast<double>(exact.accesses()) -
                      std::min(1.0, std::max(0.0, est_miss / est.total_weight())));

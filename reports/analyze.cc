@@ -400,7 +400,9 @@ Json RankStatsJson(const std::vector<RankStats>& ranks) {
                  {"stack_ids_in", r.stack_ids_in},
                  {"stack_ids_sent", r.stack_ids_sent},
                  {"bytes_sent", r.bytes_sent},
-                 {"peak_rss_bytes", r.peak_rss_bytes}});
+                 {"peak_rss_bytes", r.peak_rss_bytes},
+                 {"histogram_bytes", r.histogram_bytes},
+                 {"dense_histogram_bytes", r.dense_histogram_bytes}});
   return a;
 }
 

@@ -74,6 +74,10 @@ struct RankStats {
   double analyse_cpu = 0, stream_cpu = 0, resolve_cpu = 0, reduce_cpu = 0, wall = 0;
   uint64_t records = 0, accesses = 0, distinct = 0, stack_ids_in = 0, stack_ids_sent = 0,
            bytes_sent = 0, peak_rss_bytes = 0;
+  // The reuse-distance counters this rank held at most at once: its chunks' resolved histograms,
+  // on rank 0 also the merged ones (paged: reuse_histogram.h); and what one array as long as the
+  // largest distance would have taken (8 bytes a distance), for comparison.
+  uint64_t histogram_bytes = 0, dense_histogram_bytes = 0;
 };
 
 struct AnalyzeResult {

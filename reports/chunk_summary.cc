@@ -489,9 +489,7 @@ void Collect(ReuseAnalysis& a, SummaryFile* out) {
         ss.chunk.first_ids = y->first_ids;
         ss.chunk.first_positions = y->first_positions;
         ss.chunk.stack = y->sd.StackBottomUp();
-        const std::vector<uint64_t>& c = y->hist.counts();
-        for (size_t d = 0; d < c.size(); ++d)
-          if (c[d]) ss.hist.emplace_back(d, c[d]);
+        y->hist.ForEach([&](uint64_t d, uint64_t n) { ss.hist.emplace_back(d, n); });
         const auto& steps = y->profile.steps();
         for (size_t i = 0; i < steps.size(); ++i)
           if (steps[i].accesses)
@@ -724,6 +722,9 @@ void SummaryMerger::Add(SummaryFile s, const std::string& name, size_t given) {
   for (int t = 0; t < a_->threads(); ++t) a_->AddMoves(t, s.moves[t]);
   for (StreamSummary& x : s.streams) {
     StreamAnalysis& st = a_->MakeStream(static_cast<int>(x.thread), x.granularity);
+    // The merged distances reach the stream's distinct ids: counted in pages, not in an array as
+    // long as the largest (no rank of an MPI run, nor a file merge, holds one of M entries).
+    if (!st.hist.paged() && st.hist.accesses() == 0) st.hist.UsePages();
     if (x.sampled) {  // the sampled ids, a stream of their own (no profile)
       Sampled& z = sampled_[{static_cast<int>(x.thread), static_cast<int>(x.granularity)}];
       if (!x.resolved)
@@ -873,16 +874,19 @@ AnalyzeResult RunDistributed(const AnalyzeConfig& cfg, ChunkTransport& tx, const
                            " to start at access " + std::to_string(x->offset) +
                            ", the chunks before it hold " + std::to_string(offsets[k]) +
                            " (accesses straddling two lines)");
+    // The first touches' distances reach the whole stream's distinct ids: counted in pages.
     ReuseHistogram h;
+    h.UsePages();
     for (const auto& [dist, n] : x->hist) h.AddCount(dist, n);
     for (size_t i = 0; i < d.size(); ++i) {
       h.Add(d[i]);
       if (prof) st.profile.AddAt(offsets[k] + x->chunk.first_positions[i], d[i]);
     }
+    stats.histogram_bytes = std::max(stats.histogram_bytes, h.counter_bytes());
+    stats.dense_histogram_bytes =
+        std::max(stats.dense_histogram_bytes, h.finite() ? 8 * (h.max() + 1) : 0);
     x->hist.clear();
-    const std::vector<uint64_t>& c = h.counts();
-    for (size_t dist = 0; dist < c.size(); ++dist)
-      if (c[dist]) x->hist.emplace_back(dist, c[dist]);
+    h.ForEach([&](uint64_t dist, uint64_t n) { x->hist.emplace_back(dist, n); });
     if (h.cold()) x->hist.emplace_back(StackDistance::kCold, h.cold());
     if (prof) {
       const auto& steps = st.profile.steps();
@@ -921,6 +925,16 @@ AnalyzeResult RunDistributed(const AnalyzeConfig& cfg, ChunkTransport& tx, const
     std::memcpy(&all.back(), b.data(), sizeof(RankStats));
   }
   AnalyzeResult res = m.Finish();
+  uint64_t merged = 0, merged_dense = 0;  // every merged stream's, held together
+  for (const auto& run : res.runs)
+    for (int t = 0; t < run->threads(); ++t)
+      for (Granularity g : {Granularity::kElement, Granularity::kLine})
+        if (const StreamAnalysis* x = run->stream(t, g)) {
+          merged += x->hist.counter_bytes();
+          merged_dense += x->hist.finite() ? 8 * (x->hist.max() + 1) : 0;
+        }
+  stats.histogram_bytes = std::max(stats.histogram_bytes, merged);
+  stats.dense_histogram_bytes = std::max(stats.dense_histogram_bytes, merged_dense);
   stats.reduce_cpu = lap();
   stats.wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
   stats.peak_rss_bytes = PeakRssBytes();

@@ -116,6 +116,7 @@ class SummaryMerger {
   bool profile_;
   std::unique_ptr<ReuseAnalysis> a_;
   struct Sampled {  // a stream's sampled ids, merged as a stream of their own
+    Sampled() { hist.UsePages(); }
     std::vector<uint64_t> stack;
     ReuseHistogram hist;
     uint64_t accesses = 0;  // the whole stream's

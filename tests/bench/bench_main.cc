@@ -378,7 +378,7 @@ void Memory(benchmark::State& state) {
     state.counters["bytes_per_distinct"] =
         static_cast<double>(s->sd.MemoryBytes()) / static_cast<double>(s->sd.distinct());
     state.counters["with_histogram"] =
-        static_cast<double>(s->sd.MemoryBytes() + s->hist.counts().capacity() * 8) /
+        static_cast<double>(s->sd.MemoryBytes() + s->hist.counter_bytes()) /
         static_cast<double>(s->sd.distinct());
   }
 }

@@ -43,6 +43,22 @@ for np in 2 3; do
   done
 done
 
+# Histograms in pages: a scan of 2^18 ids twice (every reuse at 2^18 - 1) gives the serial
+# outputs, and no rank holds an array as long as the largest distance (rank-stats say so).
+/usr/bin/python3 -c "import numpy as np; np.tile(np.arange(2**18, dtype=np.uint64), 2).tofile('$tmp/bigscan.u64')"
+outputs "$tmp/serial" "$bin" analyze "$tmp/bigscan.u64" --format u64 --granularity element
+outputs "$tmp/mpi" run 3 "$mpi" analyze "$tmp/bigscan.u64" --format u64 --granularity element \
+  --rank-stats "$tmp/rs.json"
+same "paged histograms -np 3" "$tmp/serial" "$tmp/mpi"
+if /usr/bin/python3 -c "
+import json, sys
+r = json.load(open(sys.argv[1]))
+held = [k for k in r if k['dense_histogram_bytes']]
+assert len(r) == 3 and held, r
+assert all(k['dense_histogram_bytes'] == 8 * 2**18 for k in held), r
+assert all(0 < k['histogram_bytes'] * 16 < k['dense_histogram_bytes'] for k in held), r
+" "$tmp/rs.json"; then pass=$((pass + 1)); else fail=$((fail + 1)); echo "FAIL paged histograms: rank stats"; fi
+
 # A rank killed after its chunk: the job ends, non-zero, naming the rank.
 MESHREUSE_MPI_KILL_RANK=1 run 3 "$mpi" analyze "$tmp/uniform.u64" --format u64 --quiet >"$tmp/out" 2>&1
 rc=$?

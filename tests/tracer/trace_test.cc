@@ -393,8 +393,8 @@ TEST_F(TraceFile, AnalysisFromFileEqualsStreaming) {
   EXPECT_EQ(rec.info.sweep_records, live.info.sweep_records);
   EXPECT_EQ(rec.info.sweep_elements, live.info.sweep_elements);
   for (int t = 0; t < 2; ++t) {
-    EXPECT_EQ(from_file.element(t)->hist.counts(), streamed.element(t)->hist.counts());
-    EXPECT_EQ(from_file.line(t)->hist.counts(), streamed.line(t)->hist.counts());
+    EXPECT_EQ(from_file.element(t)->hist.Pairs(), streamed.element(t)->hist.Pairs());
+    EXPECT_EQ(from_file.line(t)->hist.Pairs(), streamed.line(t)->hist.Pairs());
     EXPECT_EQ(from_file.element(t)->hist.accesses(), 44u);
     EXPECT_EQ(from_file.line(t)->hist.accesses(), 166u);
   }
