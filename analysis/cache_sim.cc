@@ -161,6 +161,66 @@ void CacheSimulation::Resize(int threads) {
   marks_.assign(threads, {});
   marked_.assign(threads, 0);
   sweeps_ = 0;
+  per_array_.assign(by_array_ ? threads : 0, {});
+}
+
+void CacheSimulation::ConsumeByArray(const meshreuse::Access* a, size_t n) {
+  const size_t levels = spec_.levels.size();
+  std::vector<uint64_t> before(2 * levels);
+  for (size_t i = 0; i < n; ++i) {
+    const meshreuse::Access& x = a[i];
+    CacheHierarchy& h = streams_[x.thread];
+    std::vector<uint64_t>& c = per_array_[x.thread];
+    if (c.empty()) c.assign(256 * levels * 2, 0);
+    const std::vector<LevelStats>& st = h.stats();  // one entry per level, from construction
+    for (size_t l = 0; l < levels; ++l)
+      before[2 * l] = st[l].accesses, before[2 * l + 1] = st[l].misses;
+    h.Access(x.address, x.size, x.write, x.kind == static_cast<uint8_t>(AccessKind::kFetch));
+    uint64_t* row = c.data() + static_cast<size_t>(x.array) * levels * 2;
+    for (size_t l = 0; l < levels; ++l) {
+      row[2 * l] += st[l].accesses - before[2 * l];
+      row[2 * l + 1] += st[l].misses - before[2 * l + 1];
+    }
+  }
+}
+
+uint64_t CacheSimulation::ArrayAccesses(int thread, int array, size_t level) const {
+  if (thread < 0 || static_cast<size_t>(thread) >= per_array_.size() || per_array_[thread].empty())
+    return 0;
+  return per_array_[thread][(static_cast<size_t>(array) * spec_.levels.size() + level) * 2];
+}
+
+uint64_t CacheSimulation::ArrayMisses(int thread, int array, size_t level) const {
+  if (thread < 0 || static_cast<size_t>(thread) >= per_array_.size() || per_array_[thread].empty())
+    return 0;
+  return per_array_[thread][(static_cast<size_t>(array) * spec_.levels.size() + level) * 2 + 1];
+}
+
+std::vector<std::string> CacheSimulation::ArrayColumns() {
+  return {"input", "ordering", "thread", "array", "level", "accesses", "misses", "miss_share"};
+}
+
+void CacheSimulation::AppendArrayRows(Table* t) const {
+  const std::vector<CacheLevel>& levels = spec_.levels;
+  for (int th = 0; th < static_cast<int>(per_array_.size()); ++th) {
+    if (per_array_[th].empty()) continue;
+    const std::vector<LevelStats>& total = Stats(th);
+    for (int a = 0; a < 256; ++a) {
+      uint64_t any = 0;  // an I1 sees no data, the data levels no fetches: any level counts
+      for (size_t l = 0; l < levels.size(); ++l) any += ArrayAccesses(th, a, l);
+      if (any == 0) continue;
+      const std::string name = a == Access::kForeignArray ? "trace"
+                               : a < kArrays              ? ArrayName(static_cast<Array>(a))
+                                                          : std::to_string(a);
+      for (size_t l = 0; l < levels.size(); ++l) {
+        const uint64_t m = ArrayMisses(th, a, l);
+        const uint64_t all = total[l].misses;
+        t->AddRow({info_.input, info_.ordering, std::to_string(th), name, levels[l].name,
+                   std::to_string(ArrayAccesses(th, a, l)), std::to_string(m),
+                   ExactNumber(all ? static_cast<double>(m) / static_cast<double>(all) : 0.0)});
+      }
+    }
+  }
 }
 
 void CacheSimulation::BeginSweep(int) {

@@ -22,7 +22,10 @@
 // compulsory part, so misses - cold = the excess an ordering could still remove.
 // Each thread stream gets a private hierarchy, like the reuse-distance analysis (a traced run is
 // serial; sharing of an L3 between threads is not modelled). CacheSimulation is a consumer of any
-// access stream (tracer/access_stream.h); its rows have one schema whatever the command.
+// access stream (tracer/access_stream.h); its rows have one schema whatever the command. On
+// request it also splits each level's lookups and misses by the array each access belongs to
+// (CountByArray: the difference of the level counters around each access, so the arrays' counts
+// add up to the level's exactly).
 #pragma once
 
 #include <cstdint>
@@ -163,6 +166,7 @@ class CacheSimulation : public AccessConsumer {
   void Begin(const StreamInfo& info) override;  // the streams (threads) and the input's names
   void BeginSweep(int sweep) override;
   void Consume(const meshreuse::Access* a, size_t n) override {
+    if (by_array_) return ConsumeByArray(a, n);
     for (size_t i = 0; i < n;) {  // runs of one thread: its hierarchy looked up once a run
       const uint8_t t = a[i].thread;
       CacheHierarchy& h = streams_[t];
@@ -171,6 +175,20 @@ class CacheSimulation : public AccessConsumer {
                  a[i].kind == static_cast<uint8_t>(AccessKind::kFetch));
     }
   }
+  // Counts each level's lookups and misses per array too (Access::array: the smoother's arrays,
+  // core/access.h, or kForeignArray): which data misses. From the next access on.
+  void CountByArray() {
+    by_array_ = true;
+    per_array_.resize(streams_.size());
+  }
+  bool by_array() const { return by_array_; }
+  // input, ordering, thread, array, level, accesses, misses, miss_share (of the level's misses
+  // in that thread): one row per array with accesses, per level, arrays in Array order.
+  static std::vector<std::string> ArrayColumns();
+  void AppendArrayRows(Table* t) const;
+  // Lookups and misses of `array` at level i in `thread` (0 when not counted).
+  uint64_t ArrayAccesses(int thread, int array, size_t level) const;
+  uint64_t ArrayMisses(int thread, int array, size_t level) const;
   // By hand (tests), after Begin (or with a stream count given to Resize).
   void Access(int thread, uint64_t address, uint32_t size, bool write, bool fetch = false) {
     streams_[thread].Access(address, size, write, fetch);
@@ -206,6 +224,11 @@ class CacheSimulation : public AccessConsumer {
   std::vector<std::vector<Mark>> marks_;
   std::vector<uint64_t> marked_;  // accesses() at each thread's last mark
   size_t sweeps_ = 0;
+  // By array: per thread, 256 arrays x levels x (lookups, misses), made at the thread's first
+  // access.
+  bool by_array_ = false;
+  std::vector<std::vector<uint64_t>> per_array_;
+  void ConsumeByArray(const meshreuse::Access* a, size_t n);
   std::vector<LevelStats> StartOf(int thread, size_t s) const;
 };
 

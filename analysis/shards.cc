@@ -131,7 +131,8 @@ double MrcMeanAbsoluteError(const ReuseHistogram& exact, const Shards& est) {
   auto it = est.weights().begin();
   double sum = 0;
   for (uint64_t c = 1; c <= top; ++c) {
-    if (next != counts.end() && next->first == c - 1) exact_miss -= static_cast<double>(next++->second);
+    if (next != counts.end() && next->first == c - 1)
+      exact_miss -= static_cast<double>(next++->second);
     while (it != est.weights().end() && it->first < c) est_miss -= it->second, ++it;
     sum += std::fabs(exact_miss / static_cast<double>(exact.accesses()) -
                      std::min(1.0, std::max(0.0, est_miss / est.total_weight())));

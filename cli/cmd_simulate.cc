@@ -40,6 +40,10 @@ int SimulateCommand(const Args& args) {
                                                     po::value(&line_bytes)->default_value("64"),
                                                     "cache line size (a power of two)")(
       "per-sweep", "one row per sweep as well (meshes and trace files)")(
+      "by-array",
+      "print each level's lookups and misses per array instead (the smoother's arrays: xy, "
+      "v2v.idx, ..., a rank's send.buf and recv.buf; 'trace' for other tools' traces); with "
+      "--out also simulate-arrays.{csv,json}")(
       "machine", po::value(&cfg.machine),
       "westmere-ex or a machine file: the many-core simulator (sockets, private and shared "
       "levels, inclusion, coherence, NUMA; --threads up to its cores) instead of --cache")(
@@ -83,6 +87,7 @@ int SimulateCommand(const Args& args) {
   const RankOptions ro = RankOptionsOf(rank_text, vm);
   cfg.ranks = ro.ranks, cfg.partition = ro.partition, cfg.cut_placement = ro.placement;
   cfg.interleave = ParseInterleave(interleave);
+  cfg.by_array = vm.count("by-array") > 0;
   if (!cfg.machine.empty() && !vm["cache"].defaulted())
     throw UsageError("--cache and --machine exclude each other (a machine names its caches)");
   if (cfg.machine.empty())
@@ -115,14 +120,19 @@ int SimulateCommand(const Args& args) {
   }
   const auto runs = RunSimulate(cfg, MakeLog(progress));
   const Table t = SimulateTable(runs, vm.count("per-sweep") > 0);
-  Print(t, fmt);
+  const Table arrays = cfg.by_array ? SimulateArrayTable(runs) : Table({});
+  Print(cfg.by_array ? arrays : t, fmt);
   if (fmt == OutputFormat::kText)
     std::printf(
         "(simulated: set-associative, write-allocate, %u B lines; each thread stream "
-        "has private caches)\n",
-        cfg.line_bytes);
+        "has private caches%s)\n",
+        cfg.line_bytes,
+        cfg.by_array ? "; per array: its lookups at each level and the misses among them, "
+                       "miss_share of the level's misses"
+                     : "");
   if (!out_dir.empty()) {
     WriteTableFiles(out_dir, "simulate", t, {"csv", "json"});
+    if (cfg.by_array) WriteTableFiles(out_dir, "simulate-arrays", arrays, {"csv", "json"});
     WriteRunJson(out_dir, "meshreuse simulate", SimulateConfigJson(cfg));
   }
   return 0;

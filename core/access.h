@@ -127,8 +127,8 @@ struct SweepRegion {
 
 inline const char* ArrayName(Array a) {
   static constexpr const char* kNames[kArrays] = {
-      "interior", "v2v.off", "v2v.idx",  "v2t.off",  "v2t.idx",  "tri",      "tq",      "w",
-      "xy",       "xy.next", "bound",    "send.idx", "send.buf", "recv.idx", "recv.buf"};
+      "interior", "v2v.off", "v2v.idx", "v2t.off",  "v2t.idx",  "tri",      "tq",      "w",
+      "xy",       "xy.next", "bound",   "send.idx", "send.buf", "recv.idx", "recv.buf"};
   const int i = static_cast<int>(a);
   return i >= 0 && i < kArrays ? kNames[i] : "?";
 }

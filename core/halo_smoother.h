@@ -28,8 +28,8 @@
 // the last; at most `max_iters` sweeps.
 #pragma once
 
-#include <cstddef>
 #include <chrono>
+#include <cstddef>
 #include <cstdint>
 #include <functional>
 #include <string>
@@ -119,7 +119,8 @@ void MoveRange(const Csr& v2v, const double* src, double* dst, Array dst_array, 
   smoother_detail::Arrays a{};
   a.off = v2v.off.data();
   a.nbr = v2v.idx.data();
-  for (int32_t k = b; k < e; ++k) smoother_detail::MoveToAverage(a, src, dst, dst_array, k, 0, sink);
+  for (int32_t k = b; k < e; ++k)
+    smoother_detail::MoveToAverage(a, src, dst, dst_array, k, 0, sink);
 }
 
 // Q over the part's owned triangles, reporting what its pass loads: per triangle its corners
@@ -129,7 +130,8 @@ FixedSum TracedPartQuality(const RankPart& p, Sink& sink) {
   if constexpr (Sink::kEnabled) {
     const int64_t nt = static_cast<int64_t>(p.weight.size());
     for (int64_t t = 0; t < nt; ++t) {
-      for (int j = 0; j < 3; ++j) smoother_detail::Report(sink, 0, &p.tri[3 * t + j], 4, Array::kTriangles, false);
+      for (int j = 0; j < 3; ++j)
+        smoother_detail::Report(sink, 0, &p.tri[3 * t + j], 4, Array::kTriangles, false);
       for (int j = 0; j < 3; ++j) {
         const int32_t c = p.tri[3 * t + j];
         const double* xy = p.xy.data() + 2 * int64_t{c};

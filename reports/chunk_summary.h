@@ -12,11 +12,12 @@
 // result equals the serial analyzer's whatever machine ran which chunk.
 // The profile places accesses by their position in their stream: a chunk of a meshreuse trace
 // reads back to the start of the sweep it begins in (at most one sweep more) to count where its
-// streams start, a chunk of a mesh's stream regenerates from there (SweepsOfMeshChunk); line positions assume no access straddling two lines before the chunk, and the
-// merge checks that assumption against the true positions and refuses, saying so, if it fails.
-// The file (version 1, little-endian): magic "MRSUMRY\0", u32 version, u32 0, u64 payload bytes,
-// u64 checksum of the payload, then the payload (identity, chunk, stream info, streams). A
-// missing, repeated, reordered, truncated, corrupt or foreign summary is an InputError naming it.
+// streams start, a chunk of a mesh's stream regenerates from there (SweepsOfMeshChunk); line
+// positions assume no access straddling two lines before the chunk, and the merge checks that
+// assumption against the true positions and refuses, saying so, if it fails. The file (version 1,
+// little-endian): magic "MRSUMRY\0", u32 version, u32 0, u64 payload bytes, u64 checksum of the
+// payload, then the payload (identity, chunk, stream info, streams). A missing, repeated,
+// reordered, truncated, corrupt or foreign summary is an InputError naming it.
 #pragma once
 
 #include <cstdint>

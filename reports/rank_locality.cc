@@ -85,10 +85,10 @@ void StreamRankParts(const RankLocalityConfig& cfg, const Log& log,
             std::to_string(opt.max_iters) + " " + HaloModeName(opt.mode) + " sweep(s) in " +
             cfg.ordering + " order");
     SoloTransport tx(p);
-    StreamRankPart(p, opt, tx,
-                   cfg.mesh + " [rank " + std::to_string(r) + " of " + std::to_string(cfg.ranks) +
-                       "]",
-                   cfg.ordering, to(r));
+    StreamRankPart(
+        p, opt, tx,
+        cfg.mesh + " [rank " + std::to_string(r) + " of " + std::to_string(cfg.ranks) + "]",
+        cfg.ordering, to(r));
   }
 }
 

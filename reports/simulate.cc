@@ -22,6 +22,8 @@ void CheckSimulateConfig(const SimulateConfig& cfg) {
   if (cfg.threads < 1 || cfg.threads > kMaxThreads)
     throw UsageError("--threads must be 1.." + std::to_string(kMaxThreads));
   CheckStreamSweeps(cfg.iterations, cfg.threads);
+  if (cfg.by_array && !cfg.machine.empty())
+    throw UsageError("--by-array counts the private caches' misses: not with --machine");
   if (cfg.ranks > 0 && (!cfg.machine.empty() || !cfg.format.empty() || cfg.threads != 1))
     throw UsageError(
         "--ranks simulates each rank's part of a mesh (one stream per rank, private caches): "
@@ -105,6 +107,11 @@ std::vector<std::unique_ptr<CacheSimulation>> RunSimulate(const SimulateConfig& 
                                                           const Log& log) {
   CheckSimulateConfig(cfg);
   std::vector<std::unique_ptr<CacheSimulation>> runs;
+  auto make = [&cfg] {
+    auto sim = std::make_unique<CacheSimulation>(cfg.cache, cfg.line_bytes);
+    if (cfg.by_array) sim->CountByArray();
+    return sim;
+  };
   SmoothOptions sweeps;
   sweeps.max_iters = cfg.iterations;
   sweeps.tol = -std::numeric_limits<double>::infinity();
@@ -119,7 +126,7 @@ std::vector<std::unique_ptr<CacheSimulation>> RunSimulate(const SimulateConfig& 
         rc.placement = cfg.cut_placement;
         rc.seed = cfg.seed, rc.sweeps = sweeps;
         StreamRankParts(rc, log, [&](int32_t) -> AccessConsumer& {
-          runs.push_back(std::make_unique<CacheSimulation>(cfg.cache, cfg.line_bytes));
+          runs.push_back(make());
           return *runs.back();
         });
       }
@@ -128,7 +135,7 @@ std::vector<std::unique_ptr<CacheSimulation>> RunSimulate(const SimulateConfig& 
     if (kind == InputKind::kMesh) {
       for (const std::string& ord : cfg.orderings) {
         Mesh m = LayOut(in, ord, cfg.seed, cfg.triangle_order, log);
-        auto sim = std::make_unique<CacheSimulation>(cfg.cache, cfg.line_bytes);
+        auto sim = make();
         log.Say("simulating " + std::to_string(cfg.iterations) + " sweep(s) of " + in + " in " +
                 ord + " order");
         StreamMesh(m, sweeps, in, ParseOrderingSpec(ord).label, *sim);
@@ -136,7 +143,7 @@ std::vector<std::unique_ptr<CacheSimulation>> RunSimulate(const SimulateConfig& 
       }
       continue;
     }
-    auto sim = std::make_unique<CacheSimulation>(cfg.cache, cfg.line_bytes);
+    auto sim = make();
     if (kind == InputKind::kTrace) {
       log.Say("simulating trace " + in);
       StreamTraceFile(in, *sim);
@@ -156,6 +163,12 @@ Table SimulateTable(const std::vector<std::unique_ptr<CacheSimulation>>& runs, b
   return t;
 }
 
+Table SimulateArrayTable(const std::vector<std::unique_ptr<CacheSimulation>>& runs) {
+  Table t(CacheSimulation::ArrayColumns());
+  for (const auto& s : runs) s->AppendArrayRows(&t);
+  return t;
+}
+
 Json SimulateConfigJson(const SimulateConfig& cfg) {
   Json j;
   j["inputs"] = cfg.inputs;
@@ -169,6 +182,7 @@ Json SimulateConfigJson(const SimulateConfig& cfg) {
   if (cfg.machine.empty()) {
     j["cache"] = cfg.cache.text;
     j["line_bytes"] = cfg.line_bytes;
+    j["by_array"] = cfg.by_array;
   } else {
     j["machine"] = cfg.machine;
     j["placement"] = PlacementName(cfg.placement);

@@ -42,6 +42,7 @@ struct SimulateConfig {
   int32_t ranks = 0;
   std::string partition = "hilbert";
   CutPlacement cut_placement = CutPlacement::kLast;
+  bool by_array = false;  // private caches: lookups and misses per array too (SimulateArrayTable)
 };
 
 // UsageError for what cannot run (levels without ways, a size that is no multiple of ways x line).
@@ -49,6 +50,8 @@ void CheckSimulateConfig(const SimulateConfig& cfg);
 std::vector<std::unique_ptr<CacheSimulation>> RunSimulate(const SimulateConfig& cfg,
                                                           const Log& log);
 Table SimulateTable(const std::vector<std::unique_ptr<CacheSimulation>>& runs, bool per_sweep);
+// With cfg.by_array: each level's lookups and misses per array (CacheSimulation::ArrayColumns).
+Table SimulateArrayTable(const std::vector<std::unique_ptr<CacheSimulation>>& runs);
 // With cfg.machine: one MulticoreSimulation per mesh x ordering (or input), and its rows
 // (MulticoreSimulation::Columns; `warm`: the last sweep's counts only).
 std::vector<std::unique_ptr<MulticoreSimulation>> RunMachineSimulate(const SimulateConfig& cfg,

@@ -342,6 +342,60 @@ TEST(CacheSimulation, PerSweepStatsAddUpAndEveryAccessIsSimulated) {
   }
 }
 
+TEST(CacheSimulation, ByArrayAddsUpAndFollowsEachArraysAccesses) {
+  SyntheticOptions so;
+  so.nx = 30, so.ny = 24, so.holes = 1, so.seed = 5;
+  Mesh m = BuildMesh(MakeSyntheticMesh(so));
+  SmoothOptions o;
+  o.max_iters = 2;
+  o.tol = -1;
+  o.threads = 2;
+  // A last level that never evicts: its misses are the cold ones, which a naive first-touch
+  // count attributes to the array whose access first touched a line.
+  const CacheSpec levels = ParseCacheSpec("L1=2K/4,L2=16K/8,L3=64M/16");
+  CacheSimulation sim(levels, 64);
+  sim.CountByArray();
+  testing::RecordingConsumer rec;
+  FanOut both({&sim, &rec});
+  StreamMesh(m, o, "mesh", "ori", both);
+  std::map<std::pair<int, int>, uint64_t> accesses, cold;  // (thread, array)
+  std::set<std::pair<int, uint64_t>> seen;                 // (thread, line)
+  for (const Access& a : rec.all) {
+    ++accesses[{a.thread, a.array}];
+    bool fresh = false;
+    for (uint64_t l = a.address / 64; l <= (a.address + a.size - 1) / 64; ++l)
+      fresh |= seen.insert({a.thread, l}).second;
+    cold[{a.thread, a.array}] += fresh;
+  }
+  int arrays_seen = 0;
+  for (int t = 0; t < 2; ++t)
+    for (size_t l = 0; l < 3; ++l) {
+      uint64_t lookups = 0, misses = 0;
+      for (int a = 0; a < 256; ++a) {
+        lookups += sim.ArrayAccesses(t, a, l), misses += sim.ArrayMisses(t, a, l);
+        if (l == 0) {
+          EXPECT_EQ(sim.ArrayAccesses(t, a, 0), accesses[std::make_pair(t, a)])
+              << "thread " << t << " array " << a;
+          arrays_seen += accesses[std::make_pair(t, a)] > 0;
+        }
+        if (l == 2) {
+          EXPECT_EQ(sim.ArrayMisses(t, a, 2), cold[std::make_pair(t, a)]) << "array " << a;
+        }
+      }
+      EXPECT_EQ(lookups, sim.Stats(t)[l].accesses) << "thread " << t << " level " << l;
+      EXPECT_EQ(misses, sim.Stats(t)[l].misses) << "thread " << t << " level " << l;
+    }
+  EXPECT_GE(arrays_seen, 2 * 7);  // interior, v2v, v2t, tri, qualities, xy, bound: each thread
+  Table t(CacheSimulation::ArrayColumns());
+  sim.AppendArrayRows(&t);
+  EXPECT_EQ(t.Rows(), static_cast<size_t>(arrays_seen) * 3);
+  EXPECT_EQ(t.Row(0)[3], "interior");
+  // Without CountByArray nothing is counted, and the counts are per array of this run only.
+  CacheSimulation plain(levels, 64);
+  StreamMesh(m, o, "mesh", "ori", plain);
+  EXPECT_EQ(plain.ArrayAccesses(0, static_cast<int>(Array::kCoords), 0), 0u);
+}
+
 // Per-sweep state and rows follow the accesses: of 4 streams and 5 sweeps, one stream accesses
 // in sweeps 2 and 4, another in sweep 5 only; the rest never. Rows: every stream's total, and
 // one row per (stream, sweep) that had an access.

@@ -183,9 +183,8 @@ TEST(TracedRankSweep, MovesAsTheUntracedRun) {
       const int32_t P = std::min<int32_t>(3, m.NumVertices());
       std::vector<RankPart> traced = PartsOf(m, P, "rdr"), plain = traced;
       TraceAll(traced, Sweeps(3, mode));
-      HaloThreads::Run(P, [&](HaloTransport& tx) {
-        SmoothRankPart(plain[tx.rank()], Sweeps(3, mode), tx);
-      });
+      HaloThreads::Run(
+          P, [&](HaloTransport& tx) { SmoothRankPart(plain[tx.rank()], Sweeps(3, mode), tx); });
       for (int32_t r = 0; r < P; ++r)
         for (size_t k = 0; k < plain[r].xy.size(); ++k)
           ASSERT_EQ(traced[r].xy[k], plain[r].xy[k]) << "rank " << r << ", coordinate " << k;
