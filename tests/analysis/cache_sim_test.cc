@@ -307,14 +307,23 @@ TEST(SetAssociativeCache, FifoAndRandomReplacement) {
   for (uint64_t l = 0; l < 4; ++l) EXPECT_TRUE(r.Access(l));  // four fit in four ways
 }
 
-TEST(CacheSimulation, PerSweepStatsAddUpAndEveryAccessIsSimulated) {
+// A 30 x 24 synthetic mesh with a hole, and `sweeps` exact sweeps on two threads.
+Mesh SmallMesh(uint64_t seed) {
   SyntheticOptions so;
-  so.nx = 30, so.ny = 24, so.holes = 1, so.seed = 3;
-  Mesh m = BuildMesh(MakeSyntheticMesh(so));
+  so.nx = 30, so.ny = 24, so.holes = 1, so.seed = seed;
+  return BuildMesh(MakeSyntheticMesh(so));
+}
+SmoothOptions TwoThreads(int sweeps) {
   SmoothOptions o;
-  o.max_iters = 3;
+  o.max_iters = sweeps;
   o.tol = -1;
   o.threads = 2;
+  return o;
+}
+
+TEST(CacheSimulation, PerSweepStatsAddUpAndEveryAccessIsSimulated) {
+  Mesh m = SmallMesh(3);
+  const SmoothOptions o = TwoThreads(3);
   const CacheSpec levels = ParseCacheSpec("L1=2K/4,L2=16K/8");
   CacheSimulation sim(levels, 64);
   testing::RecordingConsumer rec;
@@ -343,13 +352,8 @@ TEST(CacheSimulation, PerSweepStatsAddUpAndEveryAccessIsSimulated) {
 }
 
 TEST(CacheSimulation, ByArrayAddsUpAndFollowsEachArraysAccesses) {
-  SyntheticOptions so;
-  so.nx = 30, so.ny = 24, so.holes = 1, so.seed = 5;
-  Mesh m = BuildMesh(MakeSyntheticMesh(so));
-  SmoothOptions o;
-  o.max_iters = 2;
-  o.tol = -1;
-  o.threads = 2;
+  Mesh m = SmallMesh(5);
+  const SmoothOptions o = TwoThreads(2);
   // A last level that never evicts: its misses are the cold ones, which a naive first-touch
   // count attributes to the array whose access first touched a line.
   const CacheSpec levels = ParseCacheSpec("L1=2K/4,L2=16K/8,L3=64M/16");
