@@ -55,8 +55,8 @@ struct RankPart {
   std::vector<int64_t> gid;     // local -> global id
   AlignedVector<double> xy;     // local coordinates, 2 per vertex
   Csr v2v;                      // rows [0, movable), by global id
-  std::vector<int32_t> tri;     // owned triangles, local corners
-  std::vector<double> weight;   // their global quality weights
+  AlignedVector<int32_t> tri;   // owned triangles, local corners (aligned: traced, access.h)
+  AlignedVector<double> weight;  // their global quality weights
   std::vector<RankLink> links;  // by rank; non-empty send or recv
   int32_t cut() const { return movable - noncut; }
   int32_t ghosts() const { return total - owned; }
