@@ -430,7 +430,6 @@ void SetAnalysis(const AnalyzeConfig& cfg, Granularity g, SummaryFile* s) {
   s->id.seed = cfg.sample ? cfg.shards.seed : 0;
 }
 
-// Chunk r of P of `total` records (or bytes): [total r / P, total (r + 1) / P).
 MeshChunkSweeps SweepsOfMeshChunk(const StreamInfo& whole, UpdateMode mode, uint64_t first,
                                   uint64_t end) {
   MeshChunkSweeps run;
@@ -445,6 +444,7 @@ MeshChunkSweeps SweepsOfMeshChunk(const StreamInfo& whole, UpdateMode mode, uint
   return run;
 }
 
+// Chunk r of P of `total` records (or bytes): [total r / P, total (r + 1) / P).
 void Cut(uint64_t total, uint32_t r, uint32_t p, SummaryFile* s) {
   using U = unsigned __int128;
   s->first = static_cast<uint64_t>(U{total} * r / p);
