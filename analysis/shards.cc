@@ -123,8 +123,7 @@ double MrcMeanAbsoluteError(const ReuseHistogram& exact, const Shards& est) {
   const uint64_t top = exact.max() + 1;
   if (exact.accesses() == 0) return NAN;
   // Both curves walked once from capacity 1 upwards: miss(c) = cold + count of distances >= c.
-  std::vector<std::pair<uint64_t, uint64_t>> counts;  // (distance, count), increasing
-  exact.ForEach([&](uint64_t d, uint64_t n) { counts.emplace_back(d, n); });
+  const std::vector<std::pair<uint64_t, uint64_t>> counts = exact.Pairs();  // increasing d
   auto next = counts.begin();
   double exact_miss = static_cast<double>(exact.accesses());  // capacity 0: every access misses
   double est_miss = est.total_weight();

@@ -1,4 +1,5 @@
-// The distributed sweep of halo_smoother.h: one rank's moves, packs, unpacks and reduction.
+// The untraced instance of halo_smoother.h's sweep (the sweep itself is a template there, so a
+// tracing sink can see it), its message arrays, the traced sweep's counts, and the exact quality.
 #include "core/halo_smoother.h"
 
 #include <algorithm>
