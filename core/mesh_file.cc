@@ -77,8 +77,7 @@ void PreadFully(int fd, char* p, int64_t n, int64_t at, const std::string& path)
 void PwriteFully(int fd, const char* p, int64_t n, int64_t at, const std::string& path) {
   for (int64_t put = 0; put < n;) {
     const ssize_t r = ::pwrite(fd, p + put, static_cast<size_t>(n - put), at + put);
-    if (r <= 0)
-      throw EnvironmentError(path, std::string("cannot write: ") + std::strerror(errno));
+    if (r <= 0) throw EnvironmentError(path, std::string("cannot write: ") + std::strerror(errno));
     put += r;
   }
 }
@@ -108,8 +107,8 @@ void CopyFileBytes(const std::string& from, const std::string& to, int64_t a, in
 void WriteMeshFileCoordinates(const std::string& path, int64_t first,
                               const std::vector<double>& xy) {
   OpenFd out(path, O_WRONLY);
-  PwriteFully(out.fd, reinterpret_cast<const char*>(xy.data()),
-              static_cast<int64_t>(8 * xy.size()), kMeshFileHeader + 16 * first, path);
+  PwriteFully(out.fd, reinterpret_cast<const char*>(xy.data()), static_cast<int64_t>(8 * xy.size()),
+              kMeshFileHeader + 16 * first, path);
 }
 
 int64_t CoordinateBlocks(int64_t vertices) {
@@ -133,7 +132,7 @@ std::vector<uint64_t> HashMeshFileBlocks(const std::string& path, int64_t first,
   return out;
 }
 
-void FinishMeshFile(const std::string& path, const std::vector<uint64_t>& hashes) {
+uint64_t FinishMeshFile(const std::string& path, const std::vector<uint64_t>& hashes) {
   OpenFd f(path, O_RDWR);
   int64_t v, t, off[MeshFile::kSections + 1];
   Sizes(f.fd, path, &v, &t);
@@ -160,6 +159,60 @@ void FinishMeshFile(const std::string& path, const std::vector<uint64_t>& hashes
   const uint64_t hh = MeshFileHeaderHash(h);
   std::memcpy(h + 120, &hh, 8);
   PwriteFully(f.fd, h, kMeshFileHeader, 0, path);
+  return id;
+}
+
+int64_t MeshFileBlocks(int64_t vertices, int64_t triangles) {
+  int64_t off[MeshFile::kSections + 1];
+  Layout(vertices, triangles, off);
+  return Blocks(off[MeshFile::kSections]);
+}
+
+void CreateMeshFile(const std::string& path, int64_t v, int64_t t) {
+  if (v < 1 || v > kMaxId || t < 1 || t > kMaxId / 3)
+    throw std::logic_error("CreateMeshFile: sizes out of range");
+  int64_t off[MeshFile::kSections + 1];
+  Layout(v, t, off);
+  const int64_t end = off[MeshFile::kSections], blocks = Blocks(end);
+  OpenFd f(path, O_WRONLY);
+  if (::ftruncate(f.fd, 0) != 0 || ::ftruncate(f.fd, end + 8 * blocks + 8 * Pages(blocks)) != 0)
+    throw EnvironmentError(path, std::string("cannot size: ") + std::strerror(errno));
+  char header[kMeshFileHeader] = {};  // content id and header hash: FinishMeshFile's
+  std::memcpy(header, kMagic, 8);
+  const uint32_t version = kMeshFileVersion, block = kMeshFileBlock;
+  std::memcpy(header + 8, &version, 4);
+  std::memcpy(header + 12, &block, 4);
+  std::memcpy(header + 16, &v, 8);
+  std::memcpy(header + 24, &t, 8);
+  PwriteFully(f.fd, header, kMeshFileHeader, 0, path);
+}
+
+void WriteMeshFileRange(const std::string& path, const MeshFileRange& r) {
+  OpenFd f(path, O_WRONLY);
+  int64_t v, t, off[MeshFile::kSections + 1];
+  {
+    OpenFd in(path, O_RDONLY);
+    Sizes(in.fd, path, &v, &t);
+  }
+  Layout(v, t, off);
+  const int64_t n = static_cast<int64_t>(r.boundary.size()),
+                nt = static_cast<int64_t>(r.tri.size());
+  if (r.first_vertex < 0 || n > v - r.first_vertex || r.xy.size() != 2 * r.boundary.size() ||
+      r.v2t_off.size() != r.boundary.size() + 1 || r.first_triangle < 0 || nt % 3 ||
+      nt / 3 > t - r.first_triangle || r.v2t_off.front() < 0 ||
+      r.v2t_off.back() - r.v2t_off.front() != static_cast<int64_t>(r.v2t.size()) ||
+      r.v2t_off.back() > 3 * t)
+    throw std::logic_error("WriteMeshFileRange: a range that does not fit the file");
+  auto put = [&](const void* p, int64_t bytes, int64_t at) {
+    if (bytes) PwriteFully(f.fd, static_cast<const char*>(p), bytes, at, path);
+  };
+  put(r.xy.data(), 16 * n, off[MeshFile::kXy] + 16 * r.first_vertex);
+  put(r.boundary.data(), n, off[MeshFile::kBoundary] + r.first_vertex);
+  const bool last = r.first_vertex + n == v;  // also writes v2t_off[V]
+  put(r.v2t_off.data(), 8 * (n + last), off[MeshFile::kV2tOff] + 8 * r.first_vertex);
+  put(r.v2t.data(), 4 * static_cast<int64_t>(r.v2t.size()),
+      off[MeshFile::kV2t] + 4 * r.v2t_off.front());
+  put(r.tri.data(), 4 * nt, off[MeshFile::kTri] + 12 * r.first_triangle);
 }
 
 std::string RehashMeshFile(std::string b) {

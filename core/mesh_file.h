@@ -121,14 +121,34 @@ uint64_t MeshFileHeaderHash(const char* header);
 // Bytes [a, b) of `from` to the same place in `to` (which exists; nothing truncated).
 void CopyFileBytes(const std::string& from, const std::string& to, int64_t a, int64_t b);
 // Coordinates of vertices [first, first + xy.size() / 2) into the mesh file at `path`.
-void WriteMeshFileCoordinates(const std::string& path, int64_t first, const std::vector<double>& xy);
+void WriteMeshFileCoordinates(const std::string& path, int64_t first,
+                              const std::vector<double>& xy);
 // The blocks holding the coordinates of `vertices` vertices: [0, CoordinateBlocks(vertices)).
 int64_t CoordinateBlocks(int64_t vertices);
 // Fresh hashes of blocks [first, end) of the file at `path` (its header read for the sizes).
 std::vector<uint64_t> HashMeshFileBlocks(const std::string& path, int64_t first, int64_t end);
 // Writes `hashes` over blocks [0, hashes.size()) of the table, then the page table, content id and
-// header hash.
-void FinishMeshFile(const std::string& path, const std::vector<uint64_t>& hashes);
+// header hash; returns the content id.
+uint64_t FinishMeshFile(const std::string& path, const std::vector<uint64_t>& hashes);
+
+// Writing a new mesh file from many ranks at once, no rank holding the mesh (`meshreuse-mpi
+// refine`): one rank creates the file at its full size with the sizes in its header
+// (CreateMeshFile); every rank writes its range of every section (WriteMeshFileRange); once all
+// have, each hashes a share of the blocks [0, MeshFileBlocks(V, T)) (HashMeshFileBlocks) and one
+// rank writes the tables and header (FinishMeshFile).
+struct MeshFileRange {
+  int64_t first_vertex = 0, first_triangle = 0;
+  std::vector<double> xy;         // 2 per vertex of the range
+  std::vector<uint8_t> boundary;  // 1 per vertex of the range
+  std::vector<int64_t> v2t_off;   // the range's row offsets (absolute), one more than its vertices
+  std::vector<int32_t> v2t;       // the range's rows, from v2t_off.front()
+  std::vector<int32_t> tri;       // 3 per triangle of the range
+};
+void CreateMeshFile(const std::string& path, int64_t vertices, int64_t triangles);
+// The range's bytes at their places (the last range also writes v2t_off[V]); logic_error for a
+// range that does not fit the sizes in the file's header.
+void WriteMeshFileRange(const std::string& path, const MeshFileRange& r);
+int64_t MeshFileBlocks(int64_t vertices, int64_t triangles);
 
 // A file's bytes with fresh block, page and header hashes (for the tests and the fuzzer that damage
 // a file and want the damage to reach the checks behind the hashes); bytes too short for the

@@ -3,17 +3,22 @@
 // the coarse boundary length and area, and positive areas, jittered or not; shared-edge points
 // bit for bit the same from both sides; pieces of any split equal to the whole (what ranks rely
 // on); refining once twice has the same size and area as refining twice; hand-worked ids on
-// the unit square; sizes beyond 32-bit ids refused.
+// the unit square; sizes beyond 32-bit ids refused. The pieces layout: a permutation with every
+// vertex in the block a naive owner search gives it, and every range's sections equal to the
+// whole mesh's (built from scratch by BuildMesh) at every split, either orientation.
 #include "core/refine.h"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <map>
 #include <set>
 
 #include "core/error.h"
+#include "core/mesh_file.h"
 #include "core/synthetic.h"
 #include "tests/test_util.h"
 
@@ -116,6 +121,125 @@ TEST(Refine, PiecesEqualTheWholeBitForBit) {
           << ranks << " pieces";
     }
   }
+}
+
+// The coarse meshes turned clockwise (every triangle's corners reversed): orientation is kept, so
+// the pieces' area check must read it per coarse triangle.
+Mesh Mirrored(const Mesh& m) {
+  RawMesh raw;
+  raw.xy = m.xy;
+  raw.tri = m.tri;
+  for (size_t t = 0; t < raw.tri.size(); t += 3) std::swap(raw.tri[t + 1], raw.tri[t + 2]);
+  return BuildMesh(std::move(raw));
+}
+
+std::vector<Mesh> LaidOutCoarse() {
+  std::vector<Mesh> ms;
+  for (Mesh& c : Coarse()) {
+    LayOutForRanks(&c);
+    ms.push_back(Mirrored(c));
+    ms.push_back(std::move(c));
+  }
+  return ms;
+}
+
+// The block (coarse triangle) a fine vertex belongs to, from its lattice position alone: a
+// coarse vertex's lowest-id triangle, a coarse edge's lower-id triangle, an interior point's own.
+std::vector<int32_t> NaiveOwners(const Mesh& c, const RefineOptions& o) {
+  const RawMesh whole = RefineMesh(c, o);
+  const int64_t n = int64_t{1} << o.levels;
+  std::vector<int32_t> owner(whole.xy.size() / 2, INT32_MAX);
+  for (int32_t t = 0; t < c.NumTriangles(); ++t)
+    for (int64_t i = 0; i < n * n; ++i) {  // coarse triangle t's fine triangles
+      const int32_t* f = &whole.tri[3 * (t * n * n + i)];
+      // A point lies in the fine triangles of exactly the coarse triangles whose lattice holds
+      // it: the lowest of them owns it.
+      for (int k = 0; k < 3; ++k) owner[f[k]] = std::min(owner[f[k]], t);
+    }
+  return owner;
+}
+
+TEST(Refine, PiecesLayoutIsABlockedPermutation) {
+  for (const Mesh& c : LaidOutCoarse())
+    for (int k : {0, 1, 2, 3}) {
+      SCOPED_TRACE("K " + std::to_string(k));
+      RefineOptions o;
+      o.levels = k;
+      const PiecesLayout layout(c, o);
+      const RefinedSize size = RefinedSizeOf(c, o);
+      ASSERT_EQ(layout.vertices(), size.vertices);
+      ASSERT_EQ(layout.triangles(), size.triangles);
+      const std::vector<int32_t> owner = NaiveOwners(c, o);
+      std::vector<int> seen(static_cast<size_t>(size.vertices), 0);
+      for (int32_t g = 0; g < size.vertices; ++g) {
+        const int32_t v = layout.NewId(g);
+        ASSERT_GE(v, 0);
+        ASSERT_LT(v, size.vertices);
+        ++seen[v];
+        EXPECT_GE(v, layout.BlockStart(owner[g])) << g;  // in its owner's block
+        EXPECT_LT(v, layout.BlockStart(owner[g] + 1)) << g;
+      }
+      EXPECT_EQ(std::count(seen.begin(), seen.end(), 1), size.vertices);  // a permutation
+      for (int32_t P : {1, 2, 3, 7}) {
+        EXPECT_EQ(layout.Split(0, P), 0);
+        EXPECT_EQ(layout.Split(P, P), c.NumTriangles());
+        for (int32_t r = 0; r < P; ++r) {
+          EXPECT_LE(layout.Split(r, P), layout.Split(r + 1, P));
+          // The first block at or after V r / P.
+          EXPECT_GE(layout.BlockStart(layout.Split(r, P)), size.vertices * r / P);
+          if (layout.Split(r, P) > 0) {
+            EXPECT_LT(layout.BlockStart(layout.Split(r, P) - 1), size.vertices * r / P);
+          }
+        }
+      }
+    }
+}
+
+TEST(Refine, RangesAreTheWholePiecesMeshSectionBySection) {
+  for (const Mesh& c : LaidOutCoarse())
+    for (int k : {0, 1, 2, 3})
+      for (double jitter : {0.0, 0.4}) {
+        SCOPED_TRACE("K " + std::to_string(k) + " jitter " + std::to_string(jitter));
+        RefineOptions o;
+        o.levels = k, o.jitter = jitter, o.seed = 11;
+        const PiecesLayout layout(c, o);
+        // The reference: the whole refinement renumbered, its rows and flags built from scratch.
+        const Mesh f = BuildMesh(RefineMeshPieces(c, o));
+        const int64_t n = int64_t{1} << k;
+        for (int32_t P : {1, 2, 3, 5}) {
+          int64_t vertices = 0, triangles = 0;
+          for (int32_t r = 0; r < P; ++r) {
+            const int32_t tb = layout.Split(r, P), te = layout.Split(r + 1, P);
+            const RefinedRange g = RefineRange(c, o, layout, tb, te);
+            const int64_t a = g.first_vertex, nv = static_cast<int64_t>(g.boundary.size());
+            ASSERT_EQ(a, vertices);  // ranges follow each other
+            ASSERT_EQ(g.first_triangle, triangles);
+            ASSERT_EQ(g.first_triangle, tb * n * n);
+            for (int64_t i = 0; i < 2 * nv; ++i)
+              ASSERT_EQ(std::memcmp(&g.xy[i], &f.xy[2 * a + i], 8), 0) << "xy " << a << "+" << i;
+            for (int64_t i = 0; i < nv; ++i) ASSERT_EQ(g.boundary[i], f.boundary[a + i]) << a + i;
+            ASSERT_EQ(g.v2t_off.size(), static_cast<size_t>(nv + 1));
+            for (int64_t i = 0; i <= nv; ++i) ASSERT_EQ(g.v2t_off[i], f.v2t.off[a + i]) << a + i;
+            for (size_t i = 0; i < g.v2t.size(); ++i)
+              ASSERT_EQ(g.v2t[i], f.v2t.idx[g.v2t_off[0] + i]);
+            double smallest = std::numeric_limits<double>::infinity();
+            for (size_t i = 0; i < g.tri.size(); ++i)
+              ASSERT_EQ(g.tri[i], f.tri[3 * g.first_triangle + i]);
+            for (int64_t t = g.first_triangle; t < g.first_triangle + int64_t(g.tri.size() / 3);
+                 ++t) {
+              const double sign = SignedArea2(c.xy, &c.tri[3 * (t / (n * n))]) < 0 ? -1 : 1;
+              smallest = std::min(smallest, sign * SignedArea2(f.xy, &f.tri[3 * t]));
+            }
+            EXPECT_EQ(g.min_area2, smallest);
+            if (!g.tri.empty()) {
+              EXPECT_GT(g.min_area2, 0);
+            }
+            vertices += nv, triangles += static_cast<int64_t>(g.tri.size() / 3);
+          }
+          EXPECT_EQ(vertices, f.NumVertices());
+          EXPECT_EQ(triangles, f.NumTriangles());
+        }
+      }
 }
 
 TEST(Refine, HandWorkedUnitSquare) {
