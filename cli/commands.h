@@ -31,6 +31,9 @@ int AnalyzeCommand(const Args& args);
 int AnalyzeCommand(const Args& args, ChunkTransport* transport);
 // One rank of the distributed smoother (cli/mpi_main.cc); rank 0 prints and writes.
 int DistSmoothCommand(const Args& args, HaloTransport& transport);
+// One rank of the distributed refinement into a mesh file (`meshreuse-mpi refine`; `meshreuse
+// mesh refine --ranks P` runs it on threads); rank 0 prints.
+int DistRefineCommand(const Args& args, HaloTransport& transport);
 // The same ranks as threads of this process (core/halo_threads.h): `meshreuse smooth-ranks`.
 int DistSmoothThreads(const Args& args);
 int SimulateCommand(const Args& args);

@@ -3,7 +3,9 @@
 // rank r reads (or, for a mesh, regenerates) only its own records, the LRU stacks stream rank to
 // rank in blocks of 64 Ki ids, rank 0 prints and writes exactly what `meshreuse analyze INPUT`
 // would. `mpirun -np P meshreuse-mpi smooth MESH [smooth's options]`: the distributed Laplacian
-// smoother (reports/distributed_smooth.h), ghosts exchanged between neighbouring ranks. This file
+// smoother (reports/distributed_smooth.h), ghosts exchanged between neighbouring ranks. `mpirun -np
+// P meshreuse-mpi refine MESH --levels K -o OUT.mrm`: the refined mesh file written by every rank
+// (reports/distributed_refine.h). This file
 // only moves bytes; the libraries stay MPI-free. A rank that fails prints "meshreuse-mpi: rank R:
 // error: ..." and aborts the whole job with the error's exit status (2 bad input, 3 environment, 1
 // a bug), never a hang. For tests, MESHREUSE_MPI_KILL_RANK=R makes rank R kill itself (SIGKILL)
@@ -204,7 +206,11 @@ void Usage(std::FILE* out) {
       "FILE]\n\nLaplacian smoothing across P ranks (every rank reads MESH and keeps its "
       "part): ordered Gauss-Seidel equals the serial sweep along the order --pi-out "
       "writes, bit for bit; jacobi the serial Jacobi. `meshreuse-mpi smooth --help` for "
-      "every option.\n");
+      "every option.\n\n       mpirun -np P meshreuse-mpi refine MESH --levels K [--jitter F] "
+      "[--seed S] -o OUT.mrm\n\nUniform refinement written into one mesh file by every "
+      "rank at once (each its range of blocks of coarse triangles), none holding the fine "
+      "mesh: byte for byte `meshreuse mesh refine MESH --levels K --layout pieces -o "
+      "OUT.mrm`.\n");
 }
 
 }  // namespace
@@ -217,7 +223,7 @@ int main(int argc, char** argv) {
   const std::vector<std::string> args(argv + 1, argv + argc);
   int rank = 0;
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);
-  if (args.empty() || (args[0] != "analyze" && args[0] != "smooth")) {
+  if (args.empty() || (args[0] != "analyze" && args[0] != "smooth" && args[0] != "refine")) {
     const bool help = !args.empty() && (args[0] == "--help" || args[0] == "-h");
     if (rank == 0) Usage(help ? stdout : stderr);
     MPI_Finalize();
@@ -227,7 +233,11 @@ int main(int argc, char** argv) {
   const std::string who = "meshreuse-mpi: rank " + std::to_string(rank);
   const Args rest(args.begin() + 1, args.end());
   int rc;
-  if (args[0] == "smooth") {
+  if (args[0] == "refine") {
+    MpiHalo halo(false);
+    rc = RunReportingErrors(
+        "refine", [&] { return DistRefineCommand(rest, halo); }, who);
+  } else if (args[0] == "smooth") {
     MpiHalo halo(kill && std::atoi(kill) == rank);
     rc = RunReportingErrors(
         "smooth", [&] { return DistSmoothCommand(rest, halo); }, who);

@@ -1,0 +1,171 @@
+// RunDistributedRefine (distributed_refine.h): each rank refines and writes its range of coarse
+// triangles' blocks; the hashes of the whole file's blocks are shared out and finished on rank 0.
+#include "reports/distributed_refine.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cstring>
+#include <limits>
+#include <memory>
+
+#include "core/error.h"
+#include "core/fixed_sum.h"
+#include "core/mesh_file.h"
+#include "core/mesh_io.h"
+#include "core/output_file.h"
+#include "core/smoother.h"
+#include "reports/inputs.h"
+#include "reports/run_info.h"
+
+namespace meshreuse {
+
+void CheckDistRefineConfig(const DistRefineConfig& cfg) {
+  if (cfg.mesh.empty()) throw UsageError("no mesh given");
+  if (!IsMeshFilePath(cfg.output))
+    throw UsageError("-o must name a mesh file, PATH.mrm: every rank writes its range of it (" +
+                     (cfg.output.empty() ? std::string("none given") : cfg.output) + ")");
+  if (cfg.refine.levels < 0 || cfg.refine.levels > 15) throw UsageError("--levels must be 0..15");
+  if (!(cfg.refine.jitter >= 0 && cfg.refine.jitter <= 0.5))
+    throw UsageError("--jitter must be 0..0.5");
+}
+
+namespace {
+
+double Since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+int64_t BoundaryVertices(const std::vector<uint8_t>& b) {
+  return std::count(b.begin(), b.end(), uint8_t{1});
+}
+
+// V - E + T with E = (3T + boundary vertices) / 2: a triangulated surface's edges when its
+// boundary is closed loops (each boundary vertex starts one boundary edge).
+int64_t Euler(int64_t v, int64_t t, int64_t boundary) { return v - (3 * t + boundary) / 2 + t; }
+
+template <class T>
+void Put(std::string* b, const T& v) {
+  b->append(reinterpret_cast<const char*>(&v), sizeof v);
+}
+template <class T>
+T Get(const std::string& b, size_t* at) {
+  T v;
+  if (b.size() - *at < sizeof v) throw std::logic_error("distributed refine: a short message");
+  std::memcpy(&v, b.data() + *at, sizeof v);
+  *at += sizeof v;
+  return v;
+}
+
+}  // namespace
+
+DistRefineResult RunDistributedRefine(const DistRefineConfig& cfg, HaloTransport& tx,
+                                      const Log& log) {
+  CheckDistRefineConfig(cfg);
+  const auto t0 = std::chrono::steady_clock::now();
+  const int32_t P = tx.size(), r = tx.rank();
+  auto barrier = [&tx] { tx.AllGather(std::string()); };
+  // Rank 0 opens the output (a temporary beside it) and tells every rank where it is. A device or
+  // FIFO cannot be written at offsets: refused on every rank before any work.
+  std::unique_ptr<AtomicOutput> out;
+  std::string tmp;
+  if (r == 0) {
+    out = std::make_unique<AtomicOutput>(cfg.output);
+    tmp = out->in_place() ? std::string() : out->temporary();
+  }
+  tmp = tx.AllGather(tmp)[0];
+  if (tmp.empty())
+    throw UsageError("-o " + cfg.output +
+                     ": every rank writes its range of the file, so it must be a regular file "
+                     "or a new path (not a device or FIFO)");
+
+  Mesh coarse = LoadMesh(cfg.mesh, r == 0 ? log : Log{});
+  LayOutForRanks(&coarse);
+  const PiecesLayout layout(coarse, cfg.refine);  // UsageError beyond 32-bit ids
+  DistRefineResult res;
+  res.coarse_vertices = coarse.NumVertices(), res.coarse_triangles = coarse.NumTriangles();
+  res.vertices = layout.vertices(), res.triangles = layout.triangles();
+  res.coarse_euler =
+      Euler(coarse.NumVertices(), coarse.NumTriangles(), BoundaryVertices(coarse.boundary));
+  if (r == 0) {
+    log.Say("refining " + Grouped(coarse.NumTriangles()) + " triangles into " +
+            Grouped(res.triangles) + " (" + Grouped(res.vertices) + " vertices) on " +
+            std::to_string(P) + " ranks");
+    CreateMeshFile(tmp, res.vertices, res.triangles);
+  }
+  barrier();
+
+  const auto r0 = std::chrono::steady_clock::now();
+  const double c0 = ThreadCpuSeconds();
+  const int32_t tb = layout.Split(r, P), te = layout.Split(r + 1, P);
+  RefineRankStats st;
+  st.rank = r, st.coarse_triangles = te - tb;
+  int64_t boundary = 0;
+  double min_area2 = std::numeric_limits<double>::infinity();
+  {
+    const RefinedRange range = RefineRange(coarse, cfg.refine, layout, tb, te);
+    st.vertices = static_cast<int64_t>(range.boundary.size());
+    st.triangles = static_cast<int64_t>(range.tri.size() / 3);
+    boundary = BoundaryVertices(range.boundary);
+    min_area2 = range.min_area2;
+    WriteMeshFileRange(tmp, range);
+  }
+  st.seconds = Since(r0);
+  st.cpu_seconds = ThreadCpuSeconds() - c0;
+  st.peak_rss_bytes = PeakRssBytes();
+  barrier();  // every range written: the blocks can be hashed
+
+  const int64_t blocks = MeshFileBlocks(res.vertices, res.triangles);
+  const std::vector<uint64_t> mine = HashMeshFileBlocks(tmp, blocks * r / P, blocks * (r + 1) / P);
+  std::string msg;
+  Put(&msg, st);
+  Put(&msg, boundary);
+  Put(&msg, min_area2);
+  msg.append(reinterpret_cast<const char*>(mine.data()), 8 * mine.size());
+  const std::vector<std::string> all = tx.Gather(msg);
+  bool bad = false;
+  if (r == 0) {
+    std::vector<uint64_t> hashes;
+    int64_t boundary_all = 0;
+    res.min_area2 = std::numeric_limits<double>::infinity();
+    for (const std::string& b : all) {
+      size_t at = 0;
+      res.ranks.push_back(Get<RefineRankStats>(b, &at));
+      boundary_all += Get<int64_t>(b, &at);
+      res.min_area2 = std::min(res.min_area2, Get<double>(b, &at));
+      const size_t k = hashes.size();
+      hashes.resize(k + (b.size() - at) / 8);
+      if (b.size() > at) std::memcpy(&hashes[k], b.data() + at, b.size() - at);
+    }
+    if (static_cast<int64_t>(hashes.size()) != blocks)
+      throw std::logic_error("distributed refine: block hashes missing");
+    res.euler = Euler(res.vertices, res.triangles, boundary_all);
+    bad = !(res.min_area2 > 0);
+    if (!bad) {
+      res.content_id = FinishMeshFile(tmp, hashes);
+      out->Commit();
+    }
+  }
+  // Every rank learns the verdict, so all of them fail alike (and rank 0's temporary is removed).
+  const std::string verdict = tx.AllGather(r == 0 ? std::string(bad ? "1" : "0") : "")[0];
+  if (verdict == "1")
+    throw InputError(cfg.mesh, 0,
+                     "refined with --levels " + std::to_string(cfg.refine.levels) + " --jitter " +
+                         Fixed(cfg.refine.jitter, 3) +
+                         ", a fine triangle is degenerate or turned against its coarse triangle: "
+                         "nothing written");
+  res.seconds = Since(t0);
+  return res;
+}
+
+Table RefineRankTable(const std::vector<RefineRankStats>& ranks) {
+  Table t({"rank", "coarse_triangles", "vertices", "triangles", "seconds", "cpu_seconds", "peak_mb",
+           "bytes_per_vertex"});
+  for (const RefineRankStats& s : ranks)
+    t.AddRow({std::to_string(s.rank), std::to_string(s.coarse_triangles),
+              std::to_string(s.vertices), std::to_string(s.triangles), Fixed(s.seconds, 3),
+              Fixed(s.cpu_seconds, 3), Fixed(s.peak_rss_bytes / 1e6, 1),
+              s.vertices ? Fixed(static_cast<double>(s.peak_rss_bytes) / s.vertices, 0) : "-"});
+  return t;
+}
+
+}  // namespace meshreuse
