@@ -28,15 +28,14 @@ namespace meshreuse::cli {
 namespace {
 
 void AddRefineOptions(po::options_description& desc, std::string* in, std::string* out,
-                      RefineOptions* o) {
+                      RefineOptions* o, const char* out_help) {
   desc.add_options()("mesh", po::value(in)->required(), "input (coarse) mesh")(
       "levels,K", po::value(&o->levels)->default_value(1), "each triangle into 4^K (0..15)")(
       "jitter", po::value(&o->jitter)->default_value(0.0),
       "move each new vertex off the coarse boundary by up to JITTER/2 of the local fine spacing "
       "in x and y (0..0.5; areas stay positive)")("seed", po::value(&o->seed)->default_value(1),
                                                   "seed of the jitter")(
-      "output,o", po::value(out)->required(),
-      "PATH.vtk, PATH.mrm (the distributed mesh file), or a prefix for .node/.ele");
+      "output,o", po::value(out)->required(), out_help);
 }
 
 const char* kPiecesHelp =
@@ -62,7 +61,8 @@ int DistRefineCommand(const Args& args, HaloTransport& tx) {
   po::options_description desc("options");
   DistRefineConfig cfg;
   std::string rank_stats;
-  AddRefineOptions(desc, &cfg.mesh, &cfg.output, &cfg.refine);
+  AddRefineOptions(desc, &cfg.mesh, &cfg.output, &cfg.refine,
+                   "PATH.mrm, the distributed mesh file (a regular file or a new path)");
   desc.add_options()("rank-stats", po::value(&rank_stats),
                      "write each rank's coarse triangles, vertices, seconds and peak memory (CSV)")(
       "quiet,q", "no progress on stderr");
@@ -99,7 +99,8 @@ int MeshRefine(const Args& args) {
   std::string in, out, layout;
   RefineOptions o;
   int32_t ranks = 0;
-  AddRefineOptions(desc, &in, &out, &o);
+  AddRefineOptions(desc, &in, &out, &o,
+                   "PATH.vtk, PATH.mrm (the distributed mesh file), or a prefix for .node/.ele");
   desc.add_options()("layout", po::value(&layout),
                      (std::string("vertex order: refinement (the ids above; the default, except "
                                   "for .mrm), hilbert (the default for .mrm), or ") +

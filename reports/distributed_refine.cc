@@ -2,6 +2,8 @@
 // triangles' blocks; the hashes of the whole file's blocks are shared out and finished on rank 0.
 #include "reports/distributed_refine.h"
 
+#include <sys/stat.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cstring>
@@ -64,23 +66,27 @@ DistRefineResult RunDistributedRefine(const DistRefineConfig& cfg, HaloTransport
   const auto t0 = std::chrono::steady_clock::now();
   const int32_t P = tx.size(), r = tx.rank();
   auto barrier = [&tx] { tx.AllGather(std::string()); };
-  // Rank 0 opens the output (a temporary beside it) and tells every rank where it is. A device or
-  // FIFO cannot be written at offsets: refused on every rank before any work.
+  // Every rank reads the coarse mesh and lays it out before any file exists: a bad input or
+  // size fails every rank alike, with nothing to clean up.
+  Mesh coarse = LoadMesh(cfg.mesh, r == 0 ? log : Log{});
+  LayOutForRanks(&coarse);
+  const PiecesLayout layout(coarse, cfg.refine);  // UsageError beyond 32-bit ids
+  // Ranks write the output at offsets: it must be a regular file or a new path (stat follows a
+  // link to its target). Checked on every rank before rank 0 opens it (opening a FIFO would block).
+  struct stat target {};
+  if (::stat(cfg.output.c_str(), &target) == 0 && !S_ISREG(target.st_mode))
+    throw UsageError("-o " + cfg.output +
+                     ": every rank writes its range of the file, so it must be a regular file "
+                     "or a new path (not a device or FIFO)");
+  // Rank 0 opens it (a temporary beside it) and tells every rank where the temporary is.
   std::unique_ptr<AtomicOutput> out;
   std::string tmp;
   if (r == 0) {
     out = std::make_unique<AtomicOutput>(cfg.output);
-    tmp = out->in_place() ? std::string() : out->temporary();
+    tmp = out->temporary();
   }
   tmp = tx.AllGather(tmp)[0];
-  if (tmp.empty())
-    throw UsageError("-o " + cfg.output +
-                     ": every rank writes its range of the file, so it must be a regular file "
-                     "or a new path (not a device or FIFO)");
 
-  Mesh coarse = LoadMesh(cfg.mesh, r == 0 ? log : Log{});
-  LayOutForRanks(&coarse);
-  const PiecesLayout layout(coarse, cfg.refine);  // UsageError beyond 32-bit ids
   DistRefineResult res;
   res.coarse_vertices = coarse.NumVertices(), res.coarse_triangles = coarse.NumTriangles();
   res.vertices = layout.vertices(), res.triangles = layout.triangles();

@@ -64,6 +64,23 @@ check "refine bad levels" 2 "$bin" mesh refine "$data/two_interior.node" --level
 check "refine too large" 2 "$bin" mesh refine "$data/two_interior.node" --levels 15 -o "$tmp/ref3" --quiet
 contains "refine too large" "more than 32-bit ids hold"
 check "refine bad jitter" 2 "$bin" mesh refine "$data/two_interior.node" --jitter 0.9 -o "$tmp/ref3" --quiet
+# The pieces layout: written by 1..4 ranks as threads, byte for byte the in-memory file.
+check "refine pieces" 0 "$bin" mesh refine "$data/plate41.msh" --levels 2 --jitter 0.3 --layout pieces -o "$tmp/pieces.mrm" --quiet
+contains "refine pieces" "content id"
+for p in 1 3 4; do
+  check "refine pieces --ranks $p" 0 "$bin" mesh refine "$data/plate41.msh" --levels 2 --jitter 0.3 --layout pieces --ranks $p -o "$tmp/ranks.mrm" --quiet
+  cmp -s "$tmp/pieces.mrm" "$tmp/ranks.mrm" && pass=$((pass + 1)) || { fail=$((fail + 1)); echo "FAIL refine pieces --ranks $p differs"; }
+done
+contains "refine pieces --ranks 4" "Euler characteristic 0 (coarse 0)"
+check "refine pieces reads" 0 "$bin" mesh info "$tmp/ranks.mrm" --quiet
+contains "refine pieces reads" "triangles          29,504"
+check "refine pieces vtk" 0 "$bin" mesh refine "$data/two_interior.node" --levels 2 --layout pieces -o "$tmp/pieces.vtk" --quiet
+check "refine bad layout" 2 "$bin" mesh refine "$data/two_interior.node" --layout morton -o "$tmp/ref3" --quiet
+contains "refine bad layout" "--layout must be refinement, hilbert or pieces"
+check "refine ranks without pieces" 2 "$bin" mesh refine "$data/two_interior.node" --ranks 2 -o "$tmp/ref3.mrm" --quiet
+contains "refine ranks without pieces" "--ranks needs --layout pieces and -o PATH.mrm"
+check "refine ranks zero" 2 "$bin" mesh refine "$data/two_interior.node" --layout pieces --ranks 0 -o "$tmp/ref3.mrm" --quiet
+[[ ! -e $tmp/ref3.mrm ]] && pass=$((pass + 1)) || { fail=$((fail + 1)); echo "FAIL refused refinements wrote ref3.mrm"; }
 
 check "partition" 0 "$bin" mesh partition "$data/two_interior.node" --parts 2 -o "$tmp/p.txt" --quiet
 contains "partition" "parts 2 (hilbert)"

@@ -11,7 +11,8 @@
 # and that the comparison can fail (ordered at -np 2 differs from the storage-order sweep).
 # The distributed mesh file (FILE.mrm) read in ranges: equal to the whole read and to the serial
 # sweep along pi at -np 1..4; damaged, truncated and foreign files refused on every rank.
-# A scale smoke test at -np 2 on about 10^6 vertices (refined, no Triangle needed) with its memory
+# meshreuse-mpi refine at -np 1..4 == one process's file byte for byte, smoothed along pi; refused
+# outputs and inputs. A scale smoke test at -np 2 on about 10^6 vertices (refined, no Triangle needed) with its memory
 # per rank checked (whole read and ranges); a rank killed mid-run ends the job naming the rank; bad input exits 2 naming
 # the file on every rank; never a hang (each run under `timeout`).
 # Usage: mpi_smooth.sh MESHREUSE MESHREUSE_MPI MPIEXEC DATA
@@ -160,6 +161,44 @@ per_owned=400; "$bin" --version | grep -q Release || per_owned=1000000
 awk -v w="$whole_mb" -v f="$mrm_size" -v b="$per_owned" '$1 ~ /^[01]$/ && NF == 18 {n++; if ($17 > 0.8 * w) bad = 1; if ($18 > b) bad = 1; if ($10 * 1048576 > 0.56 * f) bad = 1}
   END {exit !(n == 2 && !bad)}' "$tmp/out" && pass=$((pass + 1)) || {
   fail=$((fail + 1)); echo "FAIL np 2 mrm memory or reading: a whole-reading rank ${whole_mb} MB, file $mrm_size B"; cat "$tmp/out"; }
+
+# meshreuse-mpi refine: the mesh file every rank writes a range of is byte for byte one process's
+# (`mesh refine --layout pieces`, the whole mesh in memory) at -np 1..4, at a level where some
+# blocks hold no vertex (K = 1) and one where all do; it reads in ranges and smooths at -np 3 equal
+# to the serial sweep along pi; the 10^6-vertex refinement at -np 2 in at most 200 bytes per fine
+# vertex per rank (Release); outputs that cannot be written in ranges, a missing coarse mesh and a
+# refinement beyond 32-bit ids exit 2 on every rank with nothing written.
+for k in 1 3; do
+  check "pieces, one process, K $k" 0 "$bin" mesh refine "$plate" --levels $k --jitter 0.3 \
+    --layout pieces -o "$tmp/pieces.mrm" --quiet
+  for np in 1 2 3 4; do
+    check "refine np $np K $k" 0 run $np "$mpi" refine "$plate" --levels $k --jitter 0.3 \
+      -o "$tmp/ranks.mrm" --quiet
+    equal "refine np $np == one process (K $k)" "$tmp/pieces.mrm" "$tmp/ranks.mrm"
+  done
+done
+contains "refine np 4" "from 4 ranks"
+check "pieces file np 3" 0 run 3 "$mpi" smooth "$tmp/ranks.mrm" --max-iters 5 --tol -1 \
+  -o "$tmp/np.vtk" --pi-out "$tmp/pi" --quiet
+check "pieces file along pi" 0 "$bin" smooth "$tmp/ranks.mrm" --visit-order "$tmp/pi" \
+  --max-iters 5 --tol -1 -o "$tmp/along.vtk" --quiet
+equal "pieces file np 3 == serial along pi" "$tmp/along.vtk" "$tmp/np.vtk"
+check "refine 10^6 np 2" 0 run 2 "$mpi" refine "$plate" --levels 5 --jitter 0.3 \
+  -o "$tmp/p5.mrm" --rank-stats "$tmp/rs.csv" --quiet
+contains "refine 10^6 np 2" "946,464 vertices"
+per_vertex=200; "$bin" --version | grep -q Release || per_vertex=1000000
+awk -F, -v b="$per_vertex" 'NR > 1 {n++; v += $3; if ($8 > b) bad = 1} END {exit !(n == 2 && v == 946464 && !bad)}' \
+  "$tmp/rs.csv" && pass=$((pass + 1)) || { fail=$((fail + 1)); echo "FAIL refine 10^6 memory"; cat "$tmp/rs.csv"; }
+check "refine -o not a mesh file" 2 run 2 "$mpi" refine "$plate" -o "$tmp/x.node" --quiet
+contains "refine -o not a mesh file" "PATH.mrm"
+ln -s /dev/null "$tmp/null.mrm"
+check "refine -o a device" 2 run 2 "$mpi" refine "$plate" -o "$tmp/null.mrm" --quiet
+contains "refine -o a device" "regular file"
+check "refine missing mesh" 2 run 3 "$mpi" refine "$tmp/missing.node" -o "$tmp/x.mrm" --quiet
+contains "refine missing mesh" "$tmp/missing.node"
+check "refine beyond 32-bit ids" 2 run 2 "$mpi" refine "$plate" --levels 12 -o "$tmp/x.mrm" --quiet
+contains "refine beyond 32-bit ids" "32-bit"
+if ls "$tmp" | grep -q "^x\.\|\.tmp\."; then fail=$((fail + 1)); echo "FAIL refusals left files"; ls "$tmp"; else pass=$((pass + 1)); fi
 
 # Failures: a killed rank ends the job naming it; bad input exits 2 on every rank, file named.
 MESHREUSE_MPI_KILL_RANK=1 run 3 "$mpi" smooth "$fine" --quiet >"$tmp/out" 2>&1

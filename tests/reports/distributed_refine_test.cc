@@ -7,6 +7,7 @@
 #include "reports/distributed_refine.h"
 
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <filesystem>
@@ -99,6 +100,11 @@ TEST(DistributedRefine, OutputsThatCannotBeWrittenInRangesAreRefusedOnEveryRank)
   cfg.output = dir / "null.mrm";
   EXPECT_THROW(RunOnThreads(cfg, 3), UsageError);
   EXPECT_TRUE(std::filesystem::is_symlink(dir / "null.mrm"));
+  // A FIFO: refused before rank 0 opens it (opening one for writing would wait for a reader).
+  ASSERT_EQ(::mkfifo((dir / "pipe.mrm").c_str(), 0600), 0);
+  cfg.output = dir / "pipe.mrm";
+  EXPECT_THROW(RunOnThreads(cfg, 2), UsageError);
+  std::filesystem::remove(dir / "pipe.mrm");
   // A coarse mesh that does not exist: every rank fails, none hangs, nothing is left behind.
   cfg.mesh = dir / "missing.node";
   cfg.output = dir / "fine.mrm";
