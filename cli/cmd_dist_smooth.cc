@@ -19,14 +19,17 @@
 
 namespace meshreuse::cli {
 
-int DistSmoothCommand(const Args& args, HaloTransport& tx) {
+int DistSmoothCommand(const Args& args, HaloTransport& tx, const JobPartition& job_partition) {
   po::options_description desc("options");
   DistSmoothConfig cfg;
+  cfg.job_partition = job_partition;
   std::string mode = "ordered", seed = "1", out_dir, placement = "last";
   desc.add_options()("mesh", po::value(&cfg.mesh)->required(), "mesh file")(
       "partition", po::value(&cfg.partition)->default_value("hilbert"),
       "hilbert: contiguous ranges of the Hilbert order (balanced to a vertex); metis: METIS "
-      "k-way, seeded; scotch: Scotch, seeded; gmsh: Gmsh's own, MESH being any file PREFIX_K.msh "
+      "k-way, seeded; scotch: Scotch, seeded; ptscotch: PT-Scotch, computed by the MPI job's ranks "
+      "together (meshreuse-mpi built with libptscotch-dev), seeded; gmsh: Gmsh's own, MESH being "
+      "any file PREFIX_K.msh "
       "of a split set (`gmsh -part P -part_split`; P ranks); ranges: contiguous ranges of the "
       "stored ids. For a mesh file (FILE.mrm, written by `meshreuse mesh convert MESH -o "
       "FILE.mrm` in Hilbert order) the default is ranges, and each rank then reads only its "
@@ -59,7 +62,8 @@ int DistSmoothCommand(const Args& args, HaloTransport& tx) {
   po::variables_map vm;
   if (!ParseOptions(
           args,
-          "smooth MESH [--partition hilbert|metis|scotch|ranges|gmsh] [--ordering NAME] [--mode "
+          "smooth MESH [--partition hilbert|metis|scotch|ptscotch|ranges|gmsh] [--ordering NAME] "
+          "[--mode "
           "ordered|jacobi|hybrid] [-o OUT] [--pi-out FILE]",
           "Laplacian smoothing across the ranks of an MPI job: each rank reads MESH (of a "
           "mesh file FILE.mrm, only its range and ghost ring), keeps its part and one ring of "

@@ -3,6 +3,7 @@
 // prints; none does any computing of its own. The table in main.cc maps names to these functions.
 #pragma once
 
+#include <cstdint>
 #include <functional>
 #include <string>
 #include <vector>
@@ -10,6 +11,7 @@
 namespace meshreuse {
 class ChunkTransport;
 class HaloTransport;
+class Mesh;
 }  // namespace meshreuse
 
 namespace meshreuse::cli {
@@ -30,7 +32,10 @@ int AnalyzeCommand(const Args& args);
 // With a transport: one rank of a distributed analysis (cli/mpi_main.cc); rank 0 prints and writes.
 int AnalyzeCommand(const Args& args, ChunkTransport* transport);
 // One rank of the distributed smoother (cli/mpi_main.cc); rank 0 prints and writes.
-int DistSmoothCommand(const Args& args, HaloTransport& transport);
+// `job_partition`: what --partition ptscotch calls (DistSmoothConfig::job_partition).
+using JobPartition = std::function<std::vector<int32_t>(const Mesh&, int32_t, uint64_t)>;
+int DistSmoothCommand(const Args& args, HaloTransport& transport,
+                      const JobPartition& job_partition = {});
 // One rank of the distributed refinement into a mesh file (`meshreuse-mpi refine`; `meshreuse
 // mesh refine --ranks P` runs it on threads); rank 0 prints.
 int DistRefineCommand(const Args& args, HaloTransport& transport);

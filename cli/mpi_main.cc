@@ -22,6 +22,9 @@
 #include <vector>
 
 #include "cli/commands.h"
+#ifdef MESHREUSE_HAVE_PTSCOTCH
+#include "cli/mpi_ptscotch.h"
+#endif
 #include "core/error.h"
 #include "core/halo_smoother.h"
 #include "reports/chunk_summary.h"
@@ -218,7 +221,15 @@ void Usage(std::FILE* out) {
 
 int main(int argc, char** argv) {
   using namespace meshreuse::cli;
-  MPI_Init(&argc, &argv);
+  // PT-Scotch runs threads of its own that call MPI (Debian builds it with POSIX threads): without
+  // MPI_THREAD_MULTIPLE it hung or crashed in about one run in three at -np 4 here. Asked for only
+  // when an argument names it, so every other run keeps the single-threaded library.
+  bool ptscotch_asked = false;
+  for (int i = 1; i < argc; ++i)
+    ptscotch_asked = ptscotch_asked || std::strstr(argv[i], "ptscotch") != nullptr;
+  int provided = MPI_THREAD_SINGLE;
+  MPI_Init_thread(&argc, &argv, ptscotch_asked ? MPI_THREAD_MULTIPLE : MPI_THREAD_SINGLE,
+                  &provided);
   SetFullCommandLine(argc, argv);
   const std::vector<std::string> args(argv + 1, argv + argc);
   int rank = 0;
@@ -239,8 +250,21 @@ int main(int argc, char** argv) {
         "refine", [&] { return DistRefineCommand(rest, halo); }, who);
   } else if (args[0] == "smooth") {
     MpiHalo halo(kill && std::atoi(kill) == rank);
+#ifdef MESHREUSE_HAVE_PTSCOTCH
+    const JobPartition ptscotch = [provided](const meshreuse::Mesh& m, int32_t parts,
+                                             uint64_t seed) {
+      if (provided < MPI_THREAD_MULTIPLE)
+        throw meshreuse::EnvironmentError(
+            "--partition ptscotch",
+            "PT-Scotch needs MPI_THREAD_MULTIPLE, which this MPI library "
+            "does not provide");
+      return PtScotchParts(m, parts, seed);
+    };
+#else
+    const JobPartition ptscotch;  // --partition ptscotch refused: built without PT-Scotch
+#endif
     rc = RunReportingErrors(
-        "smooth", [&] { return DistSmoothCommand(rest, halo); }, who);
+        "smooth", [&] { return DistSmoothCommand(rest, halo, ptscotch); }, who);
   } else {
     KillingTransport tx(kill && std::atoi(kill) == rank);
     rc = RunReportingErrors(

@@ -25,7 +25,14 @@ namespace meshreuse {
 
 void CheckDistSmoothConfig(const DistSmoothConfig& cfg) {
   if (cfg.mesh.empty()) throw UsageError("no mesh given");
-  CheckPartitionMethod(cfg.partition);
+  if (cfg.partition == "ptscotch") {
+    if (!cfg.job_partition)
+      throw UsageError(
+          "--partition ptscotch is computed by the ranks of an MPI job together (PT-Scotch): run "
+          "`mpirun -np P meshreuse-mpi smooth`, built with libptscotch-dev");
+  } else {
+    CheckPartitionMethod(cfg.partition);
+  }
   CheckOrderingSpec(cfg.ordering);
   if (cfg.smooth.max_iters < 1) throw UsageError("--max-iters must be at least 1");
   if (std::isnan(cfg.smooth.tol))
@@ -222,7 +229,15 @@ DistSmoothResult RunDistributedSmooth(const DistSmoothConfig& cfg, HaloTransport
     for (const RankShare& s : shares) res.cut_edges += s.cut_edges;
     st.bytes_read = static_cast<uint64_t>(bytes_read);
   } else {
-    PartitionedMesh pm = LoadPartitioned(cfg.mesh, cfg.partition, parts, cfg.seed, log);
+    PartitionedMesh pm;
+    if (cfg.partition == "ptscotch") {  // every rank reads the whole mesh; the job partitions it
+      pm.mesh = LoadForRanks(cfg.mesh, parts, log);
+      log.Say("partitioning " + std::to_string(pm.mesh.NumVertices()) + " vertices into " +
+              std::to_string(parts) + " parts (PT-Scotch, all ranks)");
+      pm.part = cfg.job_partition(pm.mesh, parts, cfg.seed);
+    } else {
+      pm = LoadPartitioned(cfg.mesh, cfg.partition, parts, cfg.seed, log);
+    }
     m = std::move(pm.mesh);
     const std::vector<int32_t>& part = pm.part;
     const PartitionStats ps = MeasurePartition(m, part, parts);

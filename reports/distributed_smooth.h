@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "core/halo_smoother.h"
+#include "core/mesh.h"
 #include "core/table.h"
 #include "reports/log.h"
 #include "reports/run_info.h"
@@ -23,13 +24,17 @@ namespace meshreuse {
 
 struct DistSmoothConfig {
   std::string mesh;
-  std::string partition = "hilbert";             // hilbert | metis
+  std::string partition = "hilbert";             // partition.h's methods, or ptscotch
   std::string ordering = "ori";                  // each rank's layout of its part (registry spec)
   CutPlacement placement = CutPlacement::kLast;  // where each part keeps its cut vertices
   uint64_t seed = 1;                             // METIS and seeded orderings
   HaloOptions smooth;
   std::string output;  // the smoothed mesh (rank 0 writes it)
   std::string pi_out;  // the serial visit order the run equals (ordered mode)
+  // `--partition ptscotch`: a partition the job's ranks compute together (PT-Scotch over MPI; set
+  // by cli/mpi_main.cc, which holds the communicator). Every rank calls it at once with the whole
+  // mesh and gets every vertex's part. Empty: ptscotch is refused (threads, or a build without it).
+  std::function<std::vector<int32_t>(const Mesh& m, int32_t parts, uint64_t seed)> job_partition;
 };
 
 struct SmoothRankStats {

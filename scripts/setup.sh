@@ -13,9 +13,9 @@ done
 
 pkgs=(build-essential cmake pkg-config libgtest-dev libbenchmark-dev libboost-program-options-dev
       libpapi-dev libzstd-dev zstd libmetis-dev libboost-graph-dev triangle-bin time
-      nlohmann-json3-dev libopenmpi-dev openmpi-bin libscotch-dev gmsh)
-# (libscotch-dev: the scotch partition; gmsh: the tests check that Gmsh reads the split sets that
-# `mesh partition --split` writes.)
+      nlohmann-json3-dev libopenmpi-dev openmpi-bin libscotch-dev libptscotch-dev gmsh)
+# (libscotch-dev: the scotch partition; libptscotch-dev: meshreuse-mpi's ptscotch partition;
+# gmsh: the tests check that Gmsh reads the split sets that `mesh partition --split` writes.)
 ((want_plots)) && pkgs+=(python3-matplotlib python3-numpy)
 # libFuzzer and clang's OpenMP runtime for the fuzz harnesses (scripts/fuzz.sh)
 ((want_fuzz)) && pkgs+=(clang libclang-rt-14-dev libomp-14-dev)

@@ -3,7 +3,8 @@
 # comparing the written meshes byte for byte:
 #   -np 1, ordered, ori       == meshreuse smooth (today's smoother) on a Gmsh file and a refined mesh;
 #   -np P, ordered            == meshreuse smooth --visit-order PI, PI written by the run (--pi-out),
-#                                Hilbert, METIS and Scotch partitions, orderings inside the parts;
+#                                Hilbert, METIS, Scotch and PT-Scotch partitions (PT-Scotch's
+#                                computed by the job, deterministic), orderings inside the parts;
 #   --cut-placement first and interleaved at -np 3 == the serial sweep along their own PI;
 #   Gmsh's split set (plate.geo in 3) with --partition gmsh == the unsplit file along PI;
 #   -np P, jacobi             == meshreuse smooth --mode jacobi, and the same quality and sweep
@@ -31,6 +32,15 @@ equal() {  # equal NAME A B : two written meshes identical, A not empty
 }
 
 plate=$data/plate41.msh
+# PT-Scotch (--partition ptscotch) where meshreuse-mpi was built with it (libptscotch-dev).
+layouts=("--partition hilbert --ordering ori" "--partition metis --ordering bfs"
+         "--partition hilbert --ordering grid-wave" "--partition scotch --ordering ori")
+ptscotch=1
+if run 1 "$mpi" smooth "$plate" --partition ptscotch --max-iters 1 --quiet 2>&1 | grep -q "built with libptscotch-dev"; then
+  echo "SKIP --partition ptscotch: meshreuse-mpi was built without PT-Scotch"; ptscotch=0
+else
+  layouts+=("--partition ptscotch --ordering ori")
+fi
 check "refine" 0 "$bin" mesh refine "$plate" --levels 2 --jitter 0.3 -o "$tmp/fine" --quiet
 fine=$tmp/fine.node  # 15,000 vertices
 
@@ -40,8 +50,7 @@ for mesh in "$plate" "$fine"; do
   check "np 1 $n" 0 run 1 "$mpi" smooth "$mesh" --max-iters 6 --tol -1 -o "$tmp/np1.vtk" --quiet
   equal "np 1 == serial ($n)" "$tmp/serial.vtk" "$tmp/np1.vtk"
   for np in 2 3 4; do
-    for layout in "--partition hilbert --ordering ori" "--partition metis --ordering bfs" \
-                  "--partition hilbert --ordering grid-wave" "--partition scotch --ordering ori"; do
+    for layout in "${layouts[@]}"; do
       check "np $np $layout $n" 0 run $np "$mpi" smooth "$mesh" $layout --max-iters 6 --tol -1 \
         -o "$tmp/np.vtk" --pi-out "$tmp/pi" --quiet
       check "serial along pi" 0 "$bin" smooth "$mesh" --visit-order "$tmp/pi" --max-iters 6 \
@@ -52,6 +61,20 @@ for mesh in "$plate" "$fine"; do
   # The reference can tell: the storage-order sweep is another order, other bits.
   if cmp -s "$tmp/serial.vtk" "$tmp/np.vtk"; then fail=$((fail + 1)); echo "FAIL ordered np 4 equals the storage-order sweep"; else pass=$((pass + 1)); fi
 done
+
+# PT-Scotch's parts are the job's: deterministic (three runs, the same pi and cut), and refused
+# where no MPI job can compute them (ranks as threads).
+if ((ptscotch)); then
+  for k in 1 2 3; do
+    check "ptscotch np 3 run $k" 0 run 3 "$mpi" smooth "$fine" --partition ptscotch --max-iters 2 \
+      --tol -1 --pi-out "$tmp/pi$k" --quiet
+  done
+  cmp -s "$tmp/pi1" "$tmp/pi2" && cmp -s "$tmp/pi1" "$tmp/pi3" && pass=$((pass + 1)) || {
+    fail=$((fail + 1)); echo "FAIL ptscotch: three runs, different parts"; }
+  contains "ptscotch np 3 run 3" "ptscotch partition"
+fi
+check "ptscotch as threads" 2 "$bin" smooth-ranks "$fine" --ranks 2 --partition ptscotch --quiet
+contains "ptscotch as threads" "computed by the ranks of an MPI job together"
 
 # Gmsh's own partition: the split set Gmsh wrote (plate.geo in 3 parts), read and smoothed on 3
 # ranks, equals the unsplit file (plate41.msh, the same Gmsh run without -part) along pi.
