@@ -59,6 +59,9 @@ std::vector<int32_t> PtScotchParts(const Mesh& m, int32_t parts, uint64_t seed) 
   if (SCOTCH_contextOptionSetNum(&ctx, SCOTCH_OPTIONNUMDETERMINISTIC, 1) != 0 ||
       SCOTCH_contextOptionSetNum(&ctx, SCOTCH_OPTIONNUMRANDOMFIXEDSEED, 1) != 0)
     fail("SCOTCH_contextOptionSetNum");
+  // One thread per rank: the ranks already fill the cores, and Scotch's default (a thread per
+  // core in every rank) put 16 x 16 threads on the 16-core machine.
+  if (SCOTCH_contextThreadSpawn(&ctx, 1, nullptr) != 0) fail("SCOTCH_contextThreadSpawn");
   SCOTCH_contextRandomSeed(&ctx, static_cast<SCOTCH_Num>(seed & 0x7FFFFFFF));
   SCOTCH_contextRandomReset(&ctx);
   const auto nloc = static_cast<SCOTCH_Num>(hi - lo), eloc = static_cast<SCOTCH_Num>(edge.size());
