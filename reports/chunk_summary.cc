@@ -5,6 +5,7 @@
 #include <cerrno>
 #include <chrono>
 #include <cstring>
+#include <functional>
 #include <limits>
 #include <memory>
 
@@ -43,36 +44,95 @@ uint64_t Checksum(const char* p, size_t n) {
   return Mix64(h ^ w ^ (n - i));
 }
 
+// Checksum over bytes that arrive in pieces: equal to Checksum of their concatenation (`n`, the
+// total, is known before the first piece: the header announces it).
+class ChecksumStream {
+ public:
+  explicit ChecksumStream(uint64_t n) : h_(0x9E3779B97F4A7C15ull ^ n) {}
+  void Add(const char* p, size_t n) {
+    if (held_) {  // complete a word begun by the last piece
+      const size_t k = std::min(8 - held_, n);
+      std::memcpy(buf_ + held_, p, k);
+      held_ += k, p += k, n -= k;
+      if (held_ < 8) return;
+      Word(buf_), held_ = 0;
+    }
+    for (; n >= 8; p += 8, n -= 8) Word(p);
+    std::memcpy(buf_, p, n);
+    held_ = n;
+  }
+  uint64_t Finish() const {
+    uint64_t w = 0;
+    if (held_) std::memcpy(&w, buf_, held_);
+    return Mix64(h_ ^ w ^ held_);
+  }
+
+ private:
+  void Word(const char* p) {
+    uint64_t w;
+    std::memcpy(&w, p, 8);
+    h_ = Mix64(h_ ^ w) + i_;
+    i_ += 8;
+  }
+  uint64_t h_, i_ = 0;
+  char buf_[8] = {};
+  size_t held_ = 0;
+};
+
+// Serialises into a sink through a 64 KiB buffer (arrays go straight through), so a summary is
+// encoded without a second copy of it in memory.
 class Writer {
  public:
+  using Sink = std::function<void(const char*, size_t)>;
+  explicit Writer(Sink sink) : sink_(std::move(sink)) { buf_.reserve(kBuffer); }
+  ~Writer() = default;
   template <class T>
   void Put(T v) {
     static_assert(std::is_trivially_copyable<T>::value, "plain values");
-    b_.append(reinterpret_cast<const char*>(&v), sizeof v);
+    Bytes(reinterpret_cast<const char*>(&v), sizeof v);
   }
   void Str(const std::string& s) {
     Put<uint64_t>(s.size());
-    b_ += s;
+    Bytes(s.data(), s.size());
   }
   void U64s(const std::vector<uint64_t>& v) {
     Put<uint64_t>(v.size());
-    if (!v.empty()) b_.append(reinterpret_cast<const char*>(v.data()), v.size() * 8);
+    Bytes(reinterpret_cast<const char*>(v.data()), v.size() * 8);
   }
-  std::string& bytes() { return b_; }
+  void Flush() {
+    if (!buf_.empty()) sink_(buf_.data(), buf_.size());
+    buf_.clear();
+  }
 
  private:
-  std::string b_;
+  static constexpr size_t kBuffer = size_t{1} << 16;
+  void Bytes(const char* p, size_t n) {
+    if (n == 0) return;
+    if (buf_.size() + n <= kBuffer) {
+      buf_.insert(buf_.end(), p, p + n);
+      return;
+    }
+    Flush();
+    if (n >= kBuffer)
+      sink_(p, n);
+    else
+      buf_.insert(buf_.end(), p, p + n);
+  }
+  Sink sink_;
+  std::vector<char> buf_;
 };
 
+// Parses a payload of `n` bytes from memory or, streamed, from a file (ReadSummary): then every
+// byte consumed goes through the checksum, which the caller compares once the parse is done.
 class Reader {
  public:
-  Reader(const std::string& path, const char* p, size_t n) : path_(path), p_(p), n_(n) {}
+  Reader(const std::string& path, const char* p, size_t n) : path_(path), p_(p), n_(n), sum_(n) {}
+  Reader(const std::string& path, InputFile* f, size_t n) : path_(path), f_(f), n_(n), sum_(n) {}
   template <class T>
   T Get() {
     Need(sizeof(T), "a value");
     T v;
-    std::memcpy(&v, p_ + at_, sizeof v);
-    at_ += sizeof v;
+    Read(&v, sizeof v);
     return v;
   }
   uint64_t Count(uint64_t each, const char* what) {  // a count of items of `each` bytes
@@ -84,18 +144,29 @@ class Reader {
   }
   std::string Str() {
     const uint64_t n = Count(1, "string");
-    std::string s(p_ + at_, n);
-    at_ += n;
+    std::string s(n, '\0');
+    if (n) Read(&s[0], n);
     return s;
   }
   std::vector<uint64_t> U64s(const char* what) {
     const uint64_t n = Count(8, what);
     std::vector<uint64_t> v(n);
-    if (n) std::memcpy(v.data(), p_ + at_, n * 8);
-    at_ += n * 8;
+    if (n) Read(v.data(), n * 8);
     return v;
   }
   bool done() const { return at_ == n_; }
+  // Streamed: reads what the parse left (after a failure) so the checksum covers the payload;
+  // short only when the file is.
+  void Drain() {
+    char b[1 << 16];
+    while (f_ && at_ < n_) {
+      const size_t got = f_->Read(b, std::min<size_t>(sizeof b, n_ - at_));
+      if (got == 0) return;
+      sum_.Add(b, got);
+      at_ += got;
+    }
+  }
+  uint64_t Checksum() const { return sum_.Finish(); }  // of the bytes streamed so far
   [[noreturn]] void Fail(const std::string& what) const {
     throw InputError(path_, 0, what + " (payload byte " + std::to_string(at_) + ")");
   }
@@ -104,9 +175,20 @@ class Reader {
   void Need(size_t k, const char* what) {
     if (n_ - at_ < k) Fail(std::string("corrupt: ") + what + " runs past the end");
   }
+  void Read(void* dst, size_t k) {
+    if (!f_) {
+      std::memcpy(dst, p_ + at_, k);
+    } else {
+      if (f_->Read(dst, k) != k) Fail("truncated summary: the file ends inside its payload");
+      sum_.Add(static_cast<const char*>(dst), k);
+    }
+    at_ += k;
+  }
   const std::string& path_;
-  const char* p_;
+  const char* p_ = nullptr;
+  InputFile* f_ = nullptr;
   size_t n_, at_ = 0;
+  ChecksumStream sum_;
 };
 
 void PutInfo(Writer& w, const StreamInfo& i) {
@@ -203,8 +285,10 @@ std::pair<uint32_t, uint32_t> ParseChunk(const std::string& s) {
   return {static_cast<uint32_t>(r), static_cast<uint32_t>(p)};
 }
 
-std::string EncodeSummary(const SummaryFile& s) {
-  Writer w;
+namespace {
+
+// The payload, in the order DecodeSummary reads it.
+void EncodePayload(const SummaryFile& s, Writer& w) {
   w.Str(s.id.format);
   w.Put<uint64_t>(s.id.input_bytes);
   w.Put<uint64_t>(s.id.fingerprint);
@@ -244,61 +328,87 @@ std::string EncodeSummary(const SummaryFile& s) {
       w.Put<uint64_t>(static_cast<uint64_t>(st.sum >> 64));
     }
   }
-  const std::string& payload = w.bytes();
-  std::string out(kHeaderBytes, '\0');
-  std::memcpy(&out[0], kMagic, 8);
+  w.Flush();
+}
+
+void PutHeader(char* h, uint64_t bytes, uint64_t sum) {
+  std::memcpy(h, kMagic, 8);
   const uint32_t version = kVersion;
-  const uint64_t bytes = payload.size(), sum = Checksum(payload.data(), payload.size());
-  std::memcpy(&out[8], &version, 4);
-  std::memcpy(&out[16], &bytes, 8);
-  std::memcpy(&out[24], &sum, 8);
-  out += payload;
+  std::memset(h + 8, 0, kHeaderBytes - 8);
+  std::memcpy(h + 8, &version, 4);
+  std::memcpy(h + 16, &bytes, 8);
+  std::memcpy(h + 24, &sum, 8);
+}
+
+}  // namespace
+
+std::string EncodeSummary(const SummaryFile& s) {
+  std::string out(kHeaderBytes, '\0');  // the payload goes straight in after it
+  Writer w([&out](const char* p, size_t n) { out.append(p, n); });
+  EncodePayload(s, w);
+  const uint64_t bytes = out.size() - kHeaderBytes;
+  PutHeader(&out[0], bytes, Checksum(out.data() + kHeaderBytes, bytes));
   return out;
 }
 
 void WriteSummary(const std::string& path, const SummaryFile& s) {
-  const std::string b = EncodeSummary(s);
+  // Streamed, never the whole payload in memory beside the summary: one pass for its size, one
+  // for its checksum (the header holds both, ahead of the payload), one to write it.
+  uint64_t bytes = 0;
+  {
+    Writer w([&bytes](const char*, size_t n) { bytes += n; });
+    EncodePayload(s, w);
+  }
+  ChecksumStream sum(bytes);
+  {
+    Writer w([&sum](const char* p, size_t n) { sum.Add(p, n); });
+    EncodePayload(s, w);
+  }
+  char header[kHeaderBytes];
+  PutHeader(header, bytes, sum.Finish());
   WriteAtomically(path, [&](std::FILE* f) {
-    if (std::fwrite(b.data(), 1, b.size(), f) != b.size())
-      throw EnvironmentError(path, std::strerror(errno));
+    auto put = [&](const char* p, size_t n) {
+      if (std::fwrite(p, 1, n, f) != n) throw EnvironmentError(path, std::strerror(errno));
+    };
+    put(header, kHeaderBytes);
+    Writer w(put);
+    EncodePayload(s, w);
   });
 }
 
-SummaryFile ReadSummary(const std::string& path) {
-  InputFile f(path);
-  if (f.size() > (int64_t{1} << 40)) throw InputError(path, 0, "not a chunk summary: too large");
-  std::string b;
-  char buf[1 << 16];
-  for (size_t n; (n = f.Read(buf, sizeof buf)) > 0;) b.append(buf, n);
-  return DecodeSummary(path, b);
-}
+namespace {
 
-SummaryFile DecodeSummary(const std::string& path, const std::string& file, bool from_rank) {
-  const char* head = file.data();
-  const size_t got = std::min<size_t>(file.size(), kHeaderBytes);
+// The header's checks (magic, version); its payload size and checksum.
+void CheckHeader(const std::string& path, const char* head, size_t got, uint64_t* bytes,
+                 uint64_t* sum) {
   if (got < 8 || std::memcmp(head, kMagic, 8) != 0)
     throw InputError(path, 0,
                      "not a chunk summary (no MRSUMRY magic): give the files that "
                      "`analyze --chunk r/P --summary-out` wrote");
   if (got < kHeaderBytes) throw InputError(path, 0, "truncated summary: the header is cut short");
   uint32_t version;
-  uint64_t bytes, sum;
   std::memcpy(&version, head + 8, 4);
-  std::memcpy(&bytes, head + 16, 8);
-  std::memcpy(&sum, head + 24, 8);
+  std::memcpy(bytes, head + 16, 8);
+  std::memcpy(sum, head + 24, 8);
   if (version != kVersion)
     throw InputError(path, 0,
                      "summary version " + std::to_string(version) + " (this build reads " +
                          std::to_string(kVersion) + ")");
-  if (bytes != file.size() - kHeaderBytes)
-    throw InputError(path, 0,
-                     "truncated or extended summary: the header announces " +
-                         std::to_string(bytes) + " payload bytes, the file holds " +
-                         std::to_string(file.size() - kHeaderBytes));
-  const char* payload = file.data() + kHeaderBytes;
-  if (Checksum(payload, bytes) != sum)
-    throw InputError(path, 0, "corrupt summary: the checksum does not match its contents");
-  Reader r(path, payload, bytes);
+}
+
+[[noreturn]] void SizeMismatch(const std::string& path, uint64_t announced, uint64_t held) {
+  throw InputError(path, 0,
+                   "truncated or extended summary: the header announces " +
+                       std::to_string(announced) + " payload bytes, the file holds " +
+                       std::to_string(held));
+}
+
+[[noreturn]] void ChecksumMismatch(const std::string& path) {
+  throw InputError(path, 0, "corrupt summary: the checksum does not match its contents");
+}
+
+// The payload's fields, checked as they come (see EncodePayload).
+SummaryFile ParsePayload(Reader& r, bool from_rank) {
   SummaryFile s;
   s.id.format = r.Str();
   s.id.input_bytes = r.Get<uint64_t>();
@@ -385,6 +495,47 @@ SummaryFile DecodeSummary(const std::string& path, const std::string& file, bool
   }
   if (!r.done()) r.Fail("corrupt: bytes after the last stream");
   return s;
+}
+
+}  // namespace
+
+SummaryFile ReadSummary(const std::string& path) {
+  // Streamed: the file is parsed as it is read, never held whole beside what it decodes to; the
+  // checksum, computed on the way, is compared once the parse is done (and, when the parse fails,
+  // over the rest of the payload first, so a damaged file is reported as damaged).
+  InputFile f(path);
+  if (f.size() > (int64_t{1} << 40)) throw InputError(path, 0, "not a chunk summary: too large");
+  char head[kHeaderBytes];
+  const size_t got = f.Read(head, kHeaderBytes);
+  uint64_t bytes = 0, sum = 0;
+  CheckHeader(path, head, got, &bytes, &sum);
+  if (f.size() >= 0 && bytes != static_cast<uint64_t>(f.size()) - kHeaderBytes)
+    SizeMismatch(path, bytes, static_cast<uint64_t>(f.size()) - kHeaderBytes);
+  if (bytes > (uint64_t{1} << 40)) throw InputError(path, 0, "not a chunk summary: too large");
+  Reader r(path, &f, bytes);
+  SummaryFile s;
+  try {
+    s = ParsePayload(r, false);
+  } catch (const InputError&) {
+    r.Drain();
+    if (r.done() && r.Checksum() != sum) ChecksumMismatch(path);
+    throw;
+  }
+  char extra;
+  if (f.size() < 0 && f.Read(&extra, 1) == 1)  // a pipe: nothing may follow the payload
+    throw InputError(path, 0, "extended summary: bytes after the payload the header announces");
+  if (r.Checksum() != sum) ChecksumMismatch(path);
+  return s;
+}
+
+SummaryFile DecodeSummary(const std::string& path, const std::string& file, bool from_rank) {
+  uint64_t bytes = 0, sum = 0;
+  CheckHeader(path, file.data(), std::min<size_t>(file.size(), kHeaderBytes), &bytes, &sum);
+  if (bytes != file.size() - kHeaderBytes) SizeMismatch(path, bytes, file.size() - kHeaderBytes);
+  const char* payload = file.data() + kHeaderBytes;
+  if (Checksum(payload, bytes) != sum) ChecksumMismatch(path);
+  Reader r(path, payload, bytes);
+  return ParsePayload(r, from_rank);
 }
 
 namespace {

@@ -1,6 +1,12 @@
 // libFuzzer harness: a chunk summary's payload (reports/chunk_summary.h) behind a header whose size
 // and checksum are made to match, so the fuzzer reaches the parser instead of the checksum; an
-// accepted summary of one chunk is then merged into a whole analysis and its tables built.
+// accepted summary of one chunk is then merged into a whole analysis and its tables built. The
+// same bytes are also read back as a file (ReadSummary parses as it streams): the verdict and
+// message must be those of the in-memory decoder, or the harness aborts.
+#include <unistd.h>
+
+#include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <string>
 
@@ -18,6 +24,33 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   std::memcpy(&file[16], &bytes, 8);
   std::memcpy(&file[24], &sum, 8);
   file.append(reinterpret_cast<const char*>(data), size);
+  static const std::string path = [] {
+    char t[] = "/tmp/meshreuse-fuzz-summary-XXXXXX";
+    const int fd = mkstemp(t);
+    if (fd < 0) std::abort();
+    close(fd);
+    return std::string(t);
+  }();
+  {
+    std::FILE* f = std::fopen(path.c_str(), "wb");
+    if (!f || std::fwrite(file.data(), 1, file.size(), f) != file.size()) std::abort();
+    std::fclose(f);
+  }
+  std::string streamed = "read", whole = "read";
+  try {
+    meshreuse::ReadSummary(path);
+  } catch (const meshreuse::InputError& e) {
+    streamed = e.problem();
+  }
+  try {
+    meshreuse::DecodeSummary(path, file);
+  } catch (const meshreuse::InputError& e) {
+    whole = e.problem();
+  }
+  if (streamed != whole) {
+    std::fprintf(stderr, "streamed read: %s\nin memory: %s\n", streamed.c_str(), whole.c_str());
+    std::abort();
+  }
   try {
     SummaryFile s = DecodeSummary("fuzz", file);
     if (s.id.chunks != 1) return 0;

@@ -100,13 +100,23 @@ TEST(ChunkSummary, EveryByteChangedIsReadOrRefusedCleanly) {
       const uint64_t sum = SummaryChecksum(b.data() + 32, b.size() - 32);
       std::memcpy(&b[24], &sum, 8);
       std::ofstream(path, std::ios::binary | std::ios::trunc) << b;
+      // The file is parsed as it streams in; the bytes in memory (an MPI rank's message) are
+      // checked whole first: the same verdict and message either way.
+      std::string streamed = "read", whole = "read";
       try {
         ReadSummary(path);
         ++read;
       } catch (const InputError& e) {
         ++refused;
+        streamed = e.problem();
         EXPECT_NE(std::string(e.what()).find(path), std::string::npos) << e.what();
       }
+      try {
+        DecodeSummary(path, b);
+      } catch (const InputError& e) {
+        whole = e.problem();
+      }
+      EXPECT_EQ(streamed, whole) << "byte " << i;
     }
   EXPECT_GT(refused, 0);
   EXPECT_GT(read, 0);  // ids, names and counts that stay consistent are valid summaries
@@ -115,6 +125,52 @@ TEST(ChunkSummary, EveryByteChangedIsReadOrRefusedCleanly) {
   b[40] ^= 1;
   std::ofstream(path, std::ios::binary | std::ios::trunc) << b;
   EXPECT_THROW(ReadSummary(path), InputError);
+}
+
+// The written file is streamed through three passes (size, checksum, bytes): it must be exactly
+// the in-memory encoding, for a summary larger than the writer's 64 KiB buffer, with strings and
+// arrays that leave words split across pieces; every damage that the checksum catches is reported
+// as such by the streamed reader too, and a truncated file by its size.
+TEST(ChunkSummary, StreamedWriteAndReadEqualTheInMemoryEncoding) {
+  testing::TempDir dir;
+  const std::string path = dir / "big";
+  SummaryFile s = Sample();
+  s.input = "a name of odd length.u64";
+  StreamSummary& x = s.streams[0];
+  const uint64_t f = 20011;  // distinct ids: 3 x 160 KB of arrays
+  x.chunk = ChunkSummary();
+  for (uint64_t i = 0; i < f; ++i) {
+    x.chunk.first_ids.push_back(i * 7919 % 1000003);
+    x.chunk.first_positions.push_back(i);
+    x.chunk.stack.push_back((i * 31) % 1000003);
+  }
+  x.accesses = f + 9, x.hist = {{0, 4}, {17, 5}};
+  WriteSummary(path, s);
+  const std::string bytes = EncodeSummary(s);
+  ASSERT_GT(bytes.size(), size_t{3} << 16);
+  EXPECT_EQ(Slurp(path), bytes);
+  const SummaryFile r = ReadSummary(path);
+  EXPECT_EQ(r.input, s.input);
+  EXPECT_EQ(r.streams[0].chunk.stack, x.chunk.stack);
+  EXPECT_EQ(r.streams[0].hist, x.hist);
+  for (size_t i = 32; i < bytes.size(); i += 4099) {  // unfixed checksum: refused as damaged
+    std::string b = bytes;
+    b[i] ^= 0x40;
+    std::ofstream(path, std::ios::binary | std::ios::trunc) << b;
+    try {
+      ReadSummary(path);
+      ADD_FAILURE() << "byte " << i << " accepted";
+    } catch (const InputError& e) {
+      EXPECT_EQ(e.problem(), "corrupt summary: the checksum does not match its contents") << i;
+    }
+  }
+  std::ofstream(path, std::ios::binary | std::ios::trunc) << bytes.substr(0, bytes.size() - 5);
+  try {
+    ReadSummary(path);
+    ADD_FAILURE() << "a truncated file accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(e.problem().find("truncated or extended summary"), std::string::npos) << e.what();
+  }
 }
 
 // A chunk's distances are bounded by its own distinct ids (what the merge may allocate for);
