@@ -87,7 +87,6 @@ class Lattice {
   int64_t interior() const { return interior_; }
   int64_t edge_base() const { return edge_base_; }
   int64_t tri_base() const { return tri_base_; }
-  int32_t Lo(int64_t e) const { return lo_[e]; }
 
   int64_t Edge(int32_t a, int32_t b) const {
     if (a > b) std::swap(a, b);
