@@ -8,16 +8,15 @@
 #include <chrono>
 #include <cstring>
 #include <limits>
-#include <memory>
 
 #include "core/error.h"
 #include "core/fixed_sum.h"
 #include "core/mesh_file.h"
 #include "core/mesh_io.h"
-#include "core/output_file.h"
 #include "core/smoother.h"
 #include "reports/inputs.h"
 #include "reports/run_info.h"
+#include "reports/shared_mesh_file.h"
 
 namespace meshreuse {
 
@@ -78,14 +77,8 @@ DistRefineResult RunDistributedRefine(const DistRefineConfig& cfg, HaloTransport
     throw UsageError("-o " + cfg.output +
                      ": every rank writes its range of the file, so it must be a regular file "
                      "or a new path (not a device or FIFO)");
-  // Rank 0 opens it (a temporary beside it) and tells every rank where the temporary is.
-  std::unique_ptr<AtomicOutput> out;
-  std::string tmp;
-  if (r == 0) {
-    out = std::make_unique<AtomicOutput>(cfg.output);
-    tmp = out->temporary();
-  }
-  tmp = tx.AllGather(tmp)[0];
+  SharedMeshFileOutput out(cfg.output, tx);
+  const std::string& tmp = out.temporary();
 
   DistRefineResult res;
   res.coarse_vertices = coarse.NumVertices(), res.coarse_triangles = coarse.NumTriangles();
@@ -118,19 +111,16 @@ DistRefineResult RunDistributedRefine(const DistRefineConfig& cfg, HaloTransport
   st.seconds = Since(r0);
   st.cpu_seconds = ThreadCpuSeconds() - c0;
   st.peak_rss_bytes = PeakRssBytes();
-  barrier();  // every range written: the blocks can be hashed
 
-  const int64_t blocks = MeshFileBlocks(res.vertices, res.triangles);
-  const std::vector<uint64_t> mine = HashMeshFileBlocks(tmp, blocks * r / P, blocks * (r + 1) / P);
+  // Rank 0 gathers the stats and checks; every rank learns the verdict before the file is
+  // finished, so all fail alike when a triangle is bad (and rank 0's temporary is removed).
   std::string msg;
   Put(&msg, st);
   Put(&msg, boundary);
   Put(&msg, min_area2);
-  msg.append(reinterpret_cast<const char*>(mine.data()), 8 * mine.size());
   const std::vector<std::string> all = tx.Gather(msg);
   bool bad = false;
   if (r == 0) {
-    std::vector<uint64_t> hashes;
     int64_t boundary_all = 0;
     res.min_area2 = std::numeric_limits<double>::infinity();
     for (const std::string& b : all) {
@@ -138,20 +128,10 @@ DistRefineResult RunDistributedRefine(const DistRefineConfig& cfg, HaloTransport
       res.ranks.push_back(Get<RefineRankStats>(b, &at));
       boundary_all += Get<int64_t>(b, &at);
       res.min_area2 = std::min(res.min_area2, Get<double>(b, &at));
-      const size_t k = hashes.size();
-      hashes.resize(k + (b.size() - at) / 8);
-      if (b.size() > at) std::memcpy(&hashes[k], b.data() + at, b.size() - at);
     }
-    if (static_cast<int64_t>(hashes.size()) != blocks)
-      throw std::logic_error("distributed refine: block hashes missing");
     res.euler = Euler(res.vertices, res.triangles, boundary_all);
     bad = !(res.min_area2 > 0);
-    if (!bad) {
-      res.content_id = FinishMeshFile(tmp, hashes);
-      out->Commit();
-    }
   }
-  // Every rank learns the verdict, so all of them fail alike (and rank 0's temporary is removed).
   const std::string verdict = tx.AllGather(r == 0 ? std::string(bad ? "1" : "0") : "")[0];
   if (verdict == "1")
     throw InputError(cfg.mesh, 0,
@@ -159,6 +139,7 @@ DistRefineResult RunDistributedRefine(const DistRefineConfig& cfg, HaloTransport
                          Fixed(cfg.refine.jitter, 3) +
                          ", a fine triangle is degenerate or turned against its coarse triangle: "
                          "nothing written");
+  res.content_id = out.Finish(MeshFileBlocks(res.vertices, res.triangles));
   res.seconds = Since(t0);
   return res;
 }

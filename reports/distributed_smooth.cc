@@ -6,7 +6,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cstring>
-#include <memory>
 #include <stdexcept>
 
 #include "core/error.h"
@@ -20,6 +19,7 @@
 #include "core/rank_neighbourhood.h"
 #include "core/rank_part.h"
 #include "reports/inputs.h"
+#include "reports/shared_mesh_file.h"
 
 namespace meshreuse {
 
@@ -103,13 +103,8 @@ double Since(std::chrono::steady_clock::time_point t0) {
 bool WriteInRanges(const DistSmoothConfig& cfg, const RankPart& p, HaloTransport& tx,
                    const Log& log, DistSmoothResult* res) {
   const int32_t P = tx.size(), r = tx.rank();
-  std::unique_ptr<AtomicOutput> out;
-  std::string tmp;
-  if (r == 0) {
-    out = std::make_unique<AtomicOutput>(cfg.output);
-    tmp = out->temporary();
-  }
-  tmp = tx.AllGather(tmp)[0];
+  SharedMeshFileOutput out(cfg.output, tx);
+  const std::string& tmp = out.temporary();
   if (tmp.empty()) return false;
   auto barrier = [&tx] { tx.AllGather(std::string()); };
   log.Say("writing " + cfg.output + " from every rank");
@@ -127,20 +122,8 @@ bool WriteInRanges(const DistSmoothConfig& cfg, const RankPart& p, HaloTransport
     xy[2 * (p.gid[k] - first) + 1] = p.xy[2 * int64_t{k} + 1];
   }
   if (p.owned) WriteMeshFileCoordinates(tmp, first, xy);
-  barrier();
-  const int64_t blocks = CoordinateBlocks(res->vertices);
-  const std::vector<uint64_t> mine = HashMeshFileBlocks(tmp, blocks * r / P, blocks * (r + 1) / P);
-  const std::vector<std::string> all =
-      tx.Gather(std::string(reinterpret_cast<const char*>(mine.data()), 8 * mine.size()));
+  out.Finish(CoordinateBlocks(res->vertices));  // only the coordinates changed
   if (r == 0) {
-    std::vector<uint64_t> hashes;
-    for (const std::string& b : all) {
-      const size_t at = hashes.size();
-      hashes.resize(at + b.size() / 8);
-      if (!b.empty()) std::memcpy(&hashes[at], b.data(), b.size());
-    }
-    FinishMeshFile(tmp, hashes);
-    out->Commit();
     log.Say("wrote " + cfg.output);
     res->written.push_back(cfg.output);
   }

@@ -1,0 +1,35 @@
+// A mesh file written by every rank of a job at once (core/mesh_file.h's writers in ranges; the
+// distributed smoother's -o FILE.mrm and meshreuse-mpi refine): rank 0 opens the output through
+// AtomicOutput (a temporary beside it) and every rank learns where the temporary is; once every
+// rank has written its part, Finish has each rank hash a share of the blocks anew and rank 0
+// write the tables and header and rename the temporary into place. Destroyed unfinished, rank 0's
+// temporary is removed and the target untouched.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+
+#include "core/halo_smoother.h"
+#include "core/output_file.h"
+
+namespace meshreuse {
+
+class SharedMeshFileOutput {
+ public:
+  // Collective. temporary() is empty when the output is a device or FIFO: those are written in
+  // place, which ranks cannot share.
+  SharedMeshFileOutput(const std::string& path, HaloTransport& tx);
+  const std::string& temporary() const { return tmp_; }
+  // Collective, once every rank's writes are done: blocks [0, blocks) of the file hashed anew, a
+  // share per rank (blocks past them keep their hashes); rank 0 finishes and renames the file and
+  // gets its content id (the other ranks 0).
+  uint64_t Finish(int64_t blocks);
+
+ private:
+  HaloTransport& tx_;
+  std::unique_ptr<AtomicOutput> out_;  // rank 0's
+  std::string tmp_;
+};
+
+}  // namespace meshreuse
