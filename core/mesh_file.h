@@ -3,7 +3,8 @@
 // Global ids are implicit (the position in the file); a file written by `meshreuse mesh convert
 // IN -o OUT.mrm` stores its vertices in Hilbert order and its triangles stably by smallest corner,
 // so contiguous ranges of ids are the Hilbert-range partition (partition.h) and a rank's triangles
-// are nearly one contiguous run. Layout, little-endian, every section starting on 8 bytes:
+// are nearly one contiguous run. A refined file in the pieces layout (refine.h, written by many
+// ranks at once) keeps blocks of coarse triangles instead: readers need no particular order. Layout, little-endian, every section starting on 8 bytes:
 //   header (128 bytes): magic "MRMESH1\n", u32 version (1), u32 block bytes (4096), i64 vertices
 //     V, i64 triangles T, u64 content id, 80 zero bytes, u64 hash of the 120 bytes before it;
 //   xy       V x 2 f64          coordinates;
