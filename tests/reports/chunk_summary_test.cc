@@ -5,11 +5,14 @@
 #include "reports/chunk_summary.h"
 
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
+#include <cstdio>
 #include <cstring>
 #include <fstream>
 #include <iterator>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "core/error.h"
@@ -171,6 +174,32 @@ TEST(ChunkSummary, StreamedWriteAndReadEqualTheInMemoryEncoding) {
   } catch (const InputError& e) {
     EXPECT_NE(e.problem().find("truncated or extended summary"), std::string::npos) << e.what();
   }
+}
+
+// Through a pipe (`--merge <(cat S)`): no size to check up front, so a payload cut short or
+// followed by more bytes is found while streaming.
+TEST(ChunkSummary, StreamedFromAPipe) {
+  testing::TempDir dir;
+  const std::string fifo = dir / "pipe";
+  const std::string bytes = EncodeSummary(Sample());
+  auto read_through_pipe = [&](const std::string& sent) {
+    EXPECT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+    std::thread writer([&] { std::ofstream(fifo, std::ios::binary) << sent; });
+    std::string verdict = "read";
+    try {
+      const SummaryFile r = ReadSummary(fifo);
+      EXPECT_EQ(r.streams.at(0).hist, Sample().streams[0].hist);
+    } catch (const InputError& e) {
+      verdict = e.problem();
+    }
+    writer.join();
+    std::remove(fifo.c_str());
+    return verdict;
+  };
+  EXPECT_EQ(read_through_pipe(bytes), "read");
+  EXPECT_NE(read_through_pipe(bytes + "x").find("extended summary"), std::string::npos);
+  EXPECT_NE(read_through_pipe(bytes.substr(0, bytes.size() - 3)).find("truncated summary"),
+            std::string::npos);
 }
 
 // A chunk's distances are bounded by its own distinct ids (what the merge may allocate for);
