@@ -500,18 +500,28 @@ SummaryFile ParsePayload(Reader& r, bool from_rank) {
 }  // namespace
 
 SummaryFile ReadSummary(const std::string& path) {
-  // Streamed: the file is parsed as it is read, never held whole beside what it decodes to; the
-  // checksum, computed on the way, is compared once the parse is done (and, when the parse fails,
-  // over the rest of the payload first, so a damaged file is reported as damaged).
+  // A regular file is streamed: parsed as it is read, never held whole beside what it decodes to;
+  // the checksum, computed on the way, is compared once the parse is done (and, when the parse
+  // fails, over the rest of the payload first, so a damaged file is reported as damaged). Its
+  // size, checked against the header first, bounds every count. A pipe has no size to check: it
+  // is read whole, so a header's claim never sizes an allocation beyond the bytes that came.
   InputFile f(path);
   if (f.size() > (int64_t{1} << 40)) throw InputError(path, 0, "not a chunk summary: too large");
+  if (f.size() < 0) {
+    std::string b;
+    char buf[1 << 16];
+    for (size_t n; (n = f.Read(buf, sizeof buf)) > 0;) {
+      b.append(buf, n);
+      if (b.size() > (size_t{1} << 40)) throw InputError(path, 0, "not a chunk summary: too large");
+    }
+    return DecodeSummary(path, b);
+  }
   char head[kHeaderBytes];
   const size_t got = f.Read(head, kHeaderBytes);
   uint64_t bytes = 0, sum = 0;
   CheckHeader(path, head, got, &bytes, &sum);
-  if (f.size() >= 0 && bytes != static_cast<uint64_t>(f.size()) - kHeaderBytes)
+  if (bytes != static_cast<uint64_t>(f.size()) - kHeaderBytes)
     SizeMismatch(path, bytes, static_cast<uint64_t>(f.size()) - kHeaderBytes);
-  if (bytes > (uint64_t{1} << 40)) throw InputError(path, 0, "not a chunk summary: too large");
   Reader r(path, &f, bytes);
   SummaryFile s;
   try {
@@ -521,9 +531,6 @@ SummaryFile ReadSummary(const std::string& path) {
     if (r.done() && r.Checksum() != sum) ChecksumMismatch(path);
     throw;
   }
-  char extra;
-  if (f.size() < 0 && f.Read(&extra, 1) == 1)  // a pipe: nothing may follow the payload
-    throw InputError(path, 0, "extended summary: bytes after the payload the header announces");
   if (r.Checksum() != sum) ChecksumMismatch(path);
   return s;
 }
