@@ -11,7 +11,7 @@
 namespace meshreuse {
 class ChunkTransport;
 class HaloTransport;
-class Mesh;
+struct GraphRows;
 }  // namespace meshreuse
 
 namespace meshreuse::cli {
@@ -33,7 +33,7 @@ int AnalyzeCommand(const Args& args);
 int AnalyzeCommand(const Args& args, ChunkTransport* transport);
 // One rank of the distributed smoother (cli/mpi_main.cc); rank 0 prints and writes.
 // `job_partition`: what --partition ptscotch calls (DistSmoothConfig::job_partition).
-using JobPartition = std::function<std::vector<int32_t>(const Mesh&, int32_t, uint64_t)>;
+using JobPartition = std::function<std::vector<int32_t>(const GraphRows&, int32_t, uint64_t)>;
 int DistSmoothCommand(const Args& args, HaloTransport& transport,
                       const JobPartition& job_partition = {});
 // One rank of the distributed refinement into a mesh file (`meshreuse-mpi refine`; `meshreuse

@@ -92,14 +92,14 @@ int main(int argc, char** argv) {
   } else if (args[0] == "smooth") {
     MpiHalo halo(kill && std::atoi(kill) == rank);
 #ifdef MESHREUSE_HAVE_PTSCOTCH
-    const JobPartition ptscotch = [provided](const meshreuse::Mesh& m, int32_t parts,
+    const JobPartition ptscotch = [provided](const meshreuse::GraphRows& rows, int32_t parts,
                                              uint64_t seed) {
       if (provided < MPI_THREAD_MULTIPLE)
         throw meshreuse::EnvironmentError(
             "--partition ptscotch",
             "PT-Scotch needs MPI_THREAD_MULTIPLE, which this MPI library "
             "does not provide");
-      return PtScotchParts(m, parts, seed);
+      return PtScotchParts(rows, parts, seed);
     };
 #else
     const JobPartition ptscotch;  // --partition ptscotch refused: built without PT-Scotch

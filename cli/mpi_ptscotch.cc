@@ -1,5 +1,5 @@
 // PtScotchParts (mpi_ptscotch.h): SCOTCH_dgraphPart on the mesh's vertex graph, each rank its range
-// of rows, then one all-gather of the parts.
+// of rows.
 #include "cli/mpi_ptscotch.h"
 
 #include <mpi.h>
@@ -9,28 +9,28 @@
 #include <cstdio>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 
 #include "core/error.h"
 #include "core/rank_neighbourhood.h"
 
 namespace meshreuse::cli {
 
-std::vector<int32_t> PtScotchParts(const Mesh& m, int32_t parts, uint64_t seed) {
+std::vector<int32_t> PtScotchParts(const GraphRows& rows, int32_t parts, uint64_t seed) {
   int rank = 0, size = 1;
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);
   MPI_Comm_size(MPI_COMM_WORLD, &size);
   if (parts != size) throw std::invalid_argument("PtScotchParts: one part per rank of the job");
-  const int64_t n = m.NumVertices();
-  const int64_t lo = RangeFirst(rank, n, parts), hi = RangeFirst(rank + 1, n, parts);
-  // This rank's rows of the vertex graph, global ids (v2v rows hold no self-loop).
-  std::vector<SCOTCH_Num> vert(static_cast<size_t>(hi - lo + 1)), edge;
-  edge.reserve(static_cast<size_t>(m.v2v.off[hi] - m.v2v.off[lo]));
-  for (int64_t v = lo; v < hi; ++v) {
-    for (const int32_t* q = m.v2v.RowBegin(static_cast<int32_t>(v));
-         q != m.v2v.RowEnd(static_cast<int32_t>(v)); ++q)
-      edge.push_back(*q);
-    vert[v - lo + 1] = static_cast<SCOTCH_Num>(edge.size());
-  }
+  const int64_t lo = RangeFirst(rank, rows.vertices, parts);
+  const int64_t hi = RangeFirst(rank + 1, rows.vertices, parts);
+  if (rows.first != lo || static_cast<int64_t>(rows.off.size()) != hi - lo + 1)
+    throw std::invalid_argument("PtScotchParts: rows of another range");
+  // SCOTCH_Num is int64 (scotch-int64): the rows go as they are, no copy (Scotch only reads a
+  // graph it is given; the rows are half a rank's memory at this point).
+  static_assert(std::is_same<SCOTCH_Num, int64_t>::value, "64-bit Scotch");
+  SCOTCH_Num none = 0;  // never a null array
+  auto* vert = const_cast<SCOTCH_Num*>(rows.off.data());
+  auto* edge = rows.adj.empty() ? &none : const_cast<SCOTCH_Num*>(rows.adj.data());
   std::vector<SCOTCH_Num> mine(static_cast<size_t>(hi - lo) + 1);  // +1: never a null array
   auto fail = [](const char* what) {
     throw EnvironmentError("PT-Scotch", std::string(what) + " failed");
@@ -64,28 +64,23 @@ std::vector<int32_t> PtScotchParts(const Mesh& m, int32_t parts, uint64_t seed) 
   if (SCOTCH_contextThreadSpawn(&ctx, 1, nullptr) != 0) fail("SCOTCH_contextThreadSpawn");
   SCOTCH_contextRandomSeed(&ctx, static_cast<SCOTCH_Num>(seed & 0x7FFFFFFF));
   SCOTCH_contextRandomReset(&ctx);
-  const auto nloc = static_cast<SCOTCH_Num>(hi - lo), eloc = static_cast<SCOTCH_Num>(edge.size());
-  if (SCOTCH_dgraphBuild(&g, 0, nloc, nloc, vert.data(), nullptr, nullptr, nullptr, eloc, eloc,
-                         edge.data(), nullptr, nullptr) != 0)
+  const auto nloc = static_cast<SCOTCH_Num>(hi - lo);
+  const auto eloc = static_cast<SCOTCH_Num>(rows.adj.size());
+  if (SCOTCH_dgraphBuild(&g, 0, nloc, nloc, vert, nullptr, nullptr, nullptr, eloc, eloc, edge,
+                         nullptr, nullptr) != 0)
     fail("SCOTCH_dgraphBuild");
   if (SCOTCH_contextBindDgraph(&ctx, &g, &bound) != 0) fail("SCOTCH_contextBindDgraph");
   is_bound = true;
   if (SCOTCH_stratDgraphMapBuild(&strat, SCOTCH_STRATBALANCE, parts, parts, 0.03) != 0)
     fail("SCOTCH_stratDgraphMapBuild");
   if (SCOTCH_dgraphPart(&bound, parts, &strat, mine.data()) != 0) fail("SCOTCH_dgraphPart");
-  // Every vertex's part on every rank (the whole-mesh layout of core/rank_part.h needs them all).
-  std::vector<int32_t> local(static_cast<size_t>(hi - lo)), all(static_cast<size_t>(n));
-  for (int64_t i = 0; i < hi - lo; ++i) local[i] = static_cast<int32_t>(mine[i]);
-  std::vector<int> counts(static_cast<size_t>(size)), at(static_cast<size_t>(size));
-  for (int r = 0; r < size; ++r) {
-    at[r] = static_cast<int>(RangeFirst(r, n, parts));  // n < 2^31: ids are int32
-    counts[r] = static_cast<int>(RangeFirst(r + 1, n, parts) - RangeFirst(r, n, parts));
+  std::vector<int32_t> local(static_cast<size_t>(hi - lo));
+  for (int64_t i = 0; i < hi - lo; ++i) {
+    if (mine[i] < 0 || mine[i] >= parts)
+      throw std::logic_error("PtScotchParts: a part out of range");
+    local[i] = static_cast<int32_t>(mine[i]);
   }
-  MPI_Allgatherv(local.data(), static_cast<int>(local.size()), MPI_INT32_T, all.data(),
-                 counts.data(), at.data(), MPI_INT32_T, MPI_COMM_WORLD);
-  for (int32_t p : all)
-    if (p < 0 || p >= parts) throw std::logic_error("PtScotchParts: a part out of range");
-  return all;
+  return local;
 }
 
 }  // namespace meshreuse::cli

@@ -104,11 +104,20 @@ void CopyFileBytes(const std::string& from, const std::string& to, int64_t a, in
   }
 }
 
-void WriteMeshFileCoordinates(const std::string& path, int64_t first,
+void WriteMeshFileCoordinates(const std::string& path, const std::vector<int64_t>& ids,
                               const std::vector<double>& xy) {
+  if (xy.size() != 2 * ids.size())
+    throw std::logic_error("WriteMeshFileCoordinates: two coordinates per vertex");
   OpenFd out(path, O_WRONLY);
-  PwriteFully(out.fd, reinterpret_cast<const char*>(xy.data()), static_cast<int64_t>(8 * xy.size()),
-              kMeshFileHeader + 16 * first, path);
+  for (size_t i = 0; i < ids.size();) {  // one write per run of consecutive ids
+    size_t j = i + 1;
+    while (j < ids.size() && ids[j] == ids[j - 1] + 1) ++j;
+    if (ids[i] < 0 || (i && ids[i] <= ids[i - 1]))
+      throw std::logic_error("WriteMeshFileCoordinates: ids not increasing");
+    PwriteFully(out.fd, reinterpret_cast<const char*>(xy.data() + 2 * i),
+                static_cast<int64_t>(16 * (j - i)), kMeshFileHeader + 16 * ids[i], path);
+    i = j;
+  }
 }
 
 int64_t CoordinateBlocks(int64_t vertices) {
@@ -479,31 +488,69 @@ void MeshFile::Read(Section s, int64_t first, int64_t count, void* out) {
 }
 
 void MeshFile::ReadAt(Section s, const std::vector<int64_t>& at, void* out) {
+  ReadSpans(
+      s, at.size(), [&at](size_t i) { return std::make_pair(at[i], at[i] + 1); },
+      static_cast<char*>(out));
+}
+
+void MeshFile::ReadRuns(Section s, const std::vector<int64_t>& first,
+                        const std::vector<int64_t>& end, void* out) {
+  if (first.size() != end.size()) throw std::logic_error("MeshFile::ReadRuns: unpaired runs");
+  ReadSpans(
+      s, first.size(), [&](size_t i) { return std::make_pair(first[i], end[i]); },
+      static_cast<char*>(out));
+}
+
+void MeshFile::ReadSpans(Section s, size_t count,
+                         const std::function<std::pair<int64_t, int64_t>(size_t)>& span, char* o) {
   const int64_t eb = ElementBytes(s);
-  char* o = static_cast<char*>(out);
   auto block_of = [](int64_t byte) { return (byte - kMeshFileHeader) / kMeshFileBlock; };
+  constexpr int64_t kRunBlocks = 4096;  // 16 MiB
   std::vector<char> run;
-  // Runs of elements whose blocks touch or adjoin: each run is one read of whole blocks, so no
-  // block is read twice however the elements straddle them (but where a 16 MiB run ends).
-  for (size_t i = 0; i < at.size();) {
-    size_t j = i;
-    int64_t last = -1;
-    for (; j < at.size(); ++j) {
-      if (at[j] < 0 || at[j] >= Elements(s) || (j && at[j] < at[j - 1]))
-        throw std::logic_error("MeshFile::ReadAt: positions out of range or not increasing");
-      const int64_t a = Offset(s) + at[j] * eb;
-      // A run ends at a gap, or at 16 MiB: the run's buffer is memory beside what it fills.
-      if (j > i && (block_of(a) > last + 1 || last - block_of(Offset(s) + at[i] * eb) >= 4096))
-        break;
-      last = std::max(last, block_of(a + eb - 1));
+  int64_t prev = 0;
+  auto checked = [&](size_t j) {
+    const auto [a, b] = span(j);
+    if (a < 0 || b < a || b > Elements(s) || (j && a < prev))
+      throw std::logic_error("MeshFile::ReadSpans: spans out of range or not increasing");
+    prev = a;
+    return std::make_pair(a, b);
+  };
+  // Spans whose blocks touch or adjoin are one read of whole blocks, so no block is read twice
+  // however the elements straddle them (but where a 16 MiB run ends); a span of 16 MiB or more is
+  // read straight into its place.
+  for (size_t i = 0; i < count;) {
+    const auto [a0, b0] = checked(i);
+    if ((b0 - a0) * eb >= kRunBlocks * kMeshFileBlock) {
+      Read(s, a0, b0 - a0, o);
+      o += (b0 - a0) * eb;
+      ++i;
+      continue;
     }
-    const int64_t lo = kMeshFileHeader + block_of(Offset(s) + at[i] * eb) * kMeshFileBlock;
-    const int64_t hi = std::min(data_end_, kMeshFileHeader + (last + 1) * kMeshFileBlock);
-    run.resize(static_cast<size_t>(hi - lo));
-    ReadChecked(lo, hi, run.data());
-    for (size_t k = i; k < j; ++k)
-      std::memcpy(o + k * eb, run.data() + (Offset(s) + at[k] * eb - lo), static_cast<size_t>(eb));
-    i = j;
+    const int64_t first_block = block_of(Offset(s) + a0 * eb);
+    int64_t last = first_block - 1;
+    size_t j = i;
+    for (; j < count; ++j) {
+      const auto [a, b] = j == i ? std::make_pair(a0, b0) : checked(j);
+      if (b == a) continue;
+      const int64_t fa = Offset(s) + a * eb;
+      if (j > i &&
+          (block_of(fa) > last + 1 || block_of(Offset(s) + b * eb - 1) - first_block >= kRunBlocks))
+        break;
+      last = std::max(last, block_of(Offset(s) + b * eb - 1));
+    }
+    if (last >= first_block) {
+      const int64_t lo = kMeshFileHeader + first_block * kMeshFileBlock;
+      const int64_t hi = std::min(data_end_, kMeshFileHeader + (last + 1) * kMeshFileBlock);
+      run.resize(static_cast<size_t>(hi - lo));
+      ReadChecked(lo, hi, run.data());
+      for (size_t k = i; k < j; ++k) {
+        const auto [a, b] = span(k);
+        if (b > a)
+          std::memcpy(o, run.data() + (Offset(s) + a * eb - lo), static_cast<size_t>((b - a) * eb));
+        o += (b - a) * eb;
+      }
+    }
+    i = std::max(j, i + 1);
   }
 }
 

@@ -4,7 +4,8 @@
 // IN -o OUT.mrm` stores its vertices in Hilbert order and its triangles stably by smallest corner,
 // so contiguous ranges of ids are the Hilbert-range partition (partition.h) and a rank's triangles
 // are nearly one contiguous run. A refined file in the pieces layout (refine.h, written by many
-// ranks at once) keeps blocks of coarse triangles instead: readers need no particular order. Layout, little-endian, every section starting on 8 bytes:
+// ranks at once) keeps blocks of coarse triangles instead: readers need no particular order.
+// Layout, little-endian, every section starting on 8 bytes:
 //   header (128 bytes): magic "MRMESH1\n", u32 version (1), u32 block bytes (4096), i64 vertices
 //     V, i64 triangles T, u64 content id, 80 zero bytes, u64 hash of the 120 bytes before it;
 //   xy       V x 2 f64          coordinates;
@@ -30,7 +31,9 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/mesh.h"
@@ -78,6 +81,11 @@ class MeshFile {
   // Elements `at` (increasing, may repeat) of section `s`, one after another into `out`: each block
   // is read once however many of the elements lie in it.
   void ReadAt(Section s, const std::vector<int64_t>& at, void* out);
+  // Runs [first[i], end[i]) of elements of section `s` (starts non-decreasing, runs may be empty),
+  // one after another into `out`: blocks shared by neighbouring runs are read once (a rank's
+  // scattered part, read run by run of consecutive ids).
+  void ReadRuns(Section s, const std::vector<int64_t>& first, const std::vector<int64_t>& end,
+                void* out);
   uint64_t bytes_read() const { return bytes_read_; }
 
  private:
@@ -86,6 +94,8 @@ class MeshFile {
   void ReadChecked(int64_t a, int64_t b, char* out);
   void Fail(int64_t offset, const std::string& problem) const;
   void PreadAll(char* out, int64_t n, int64_t at);
+  void ReadSpans(Section s, size_t count,
+                 const std::function<std::pair<int64_t, int64_t>(size_t)>& span, char* out);
   uint64_t BlockHash(int64_t k);
 
   struct Fd {  // closed by its destructor, also when the constructor throws
@@ -121,8 +131,9 @@ uint64_t MeshFileHeaderHash(const char* header);
 // content id and header hash. Between the steps every rank must have finished the previous one.
 // Bytes [a, b) of `from` to the same place in `to` (which exists; nothing truncated).
 void CopyFileBytes(const std::string& from, const std::string& to, int64_t a, int64_t b);
-// Coordinates of vertices [first, first + xy.size() / 2) into the mesh file at `path`.
-void WriteMeshFileCoordinates(const std::string& path, int64_t first,
+// Coordinates of vertices `ids` (increasing; any set: a rank's part), two per id in `xy`, into the
+// mesh file at `path`, one write per run of consecutive ids.
+void WriteMeshFileCoordinates(const std::string& path, const std::vector<int64_t>& ids,
                               const std::vector<double>& xy);
 // The blocks holding the coordinates of `vertices` vertices: [0, CoordinateBlocks(vertices)).
 int64_t CoordinateBlocks(int64_t vertices);

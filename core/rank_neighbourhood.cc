@@ -21,125 +21,210 @@ int32_t RangeOwner(int64_t v, int64_t n, int32_t parts) {
   return static_cast<int32_t>(v * parts / n);
 }
 
-RankNeighbourhood ReadRankNeighbourhood(const std::string& path, int32_t rank, int32_t parts,
-                                        const GhostLookup& lookup) {
-  MeshFile f(path);
-  const int64_t n = f.vertices(), nt = f.triangles();
-  if (parts > n)
-    throw UsageError(std::to_string(parts) + " ranks for a mesh of " + std::to_string(n) +
-                     " vertices: at most one rank per vertex");
-  if (rank < 0 || rank >= parts) throw std::invalid_argument("ReadRankNeighbourhood: bad rank");
-  RankNeighbourhood nb;
-  nb.rank = rank, nb.parts = parts, nb.vertices = n, nb.triangles = nt;
-  nb.content_id = f.content_id();
-  const int64_t lo = RangeFirst(rank, n, parts), hi = RangeFirst(rank + 1, n, parts);
-  nb.first = lo, nb.last = hi;
-  auto fail = [&](const std::string& what) { throw InputError(path, 0, what); };
-
-  // The owned rows.
-  std::vector<int64_t> off(static_cast<size_t>(hi - lo + 1));
-  f.Read(MeshFile::kV2tOff, lo, hi - lo + 1, off.data());
-  if (lo == 0 && off[0] != 0) fail("v2t row offsets: the first is " + std::to_string(off[0]));
-  if (hi == n && off.back() != 3 * nt)
-    fail("v2t row offsets: the last is " + std::to_string(off.back()) + ", not 3 x " +
-         std::to_string(nt) + " triangles");
-  for (int64_t v = lo; v < hi; ++v) {
-    const int64_t a = off[v - lo], b = off[v - lo + 1];
-    if (a < 0 || b > 3 * nt || b <= a)
-      fail("vertex " + std::to_string(v) + ": v2t row [" + std::to_string(a) + ", " +
-           std::to_string(b) + ") is empty, reversed or outside 0.." + std::to_string(3 * nt));
+SortedIds::SortedIds(const std::vector<int64_t>& ids) {
+  for (size_t i = 0; i < ids.size(); ++i) {
+    if (i && ids[i] <= ids[i - 1]) throw std::logic_error("SortedIds: ids not increasing");
+    if (!i || ids[i] != ids[i - 1] + 1) start_.push_back(ids[i]), pos_.push_back(int64_t(i));
   }
-  nb.row_entries = off.back() - off.front();
-  std::vector<int32_t> rows(static_cast<size_t>(nb.row_entries));
-  f.Read(MeshFile::kV2t, off.front(), nb.row_entries, rows.data());
-  for (int64_t v = lo; v < hi; ++v)
-    for (int64_t k = off[v - lo]; k < off[v - lo + 1]; ++k) {
-      const int32_t t = rows[k - off.front()];
-      if (t < 0 || t >= nt || (k > off[v - lo] && t <= rows[k - 1 - off.front()]))
-        fail("vertex " + std::to_string(v) + ": its v2t row lists triangle " + std::to_string(t) +
-             " (out of 0.." + std::to_string(nt - 1) + " or not increasing)");
+  pos_.push_back(static_cast<int64_t>(ids.size()));
+}
+
+int64_t SortedIds::Find(int64_t g) const {
+  const size_t r = std::upper_bound(start_.begin(), start_.end(), g) - start_.begin();
+  if (r == 0) return -1;
+  const int64_t p = pos_[r - 1] + (g - start_[r - 1]);
+  return p < pos_[r] ? p : -1;
+}
+
+namespace {
+
+// The owned vertices' v2t rows, every triangle they list and its corners, checked: rows within
+// range, increasing and non-empty; corners within range; the rows list exactly the triangles that
+// hold each owned vertex (every (owned corner, triangle read) pair in the corner's row, and as
+// many pairs as row entries).
+struct OwnedRows {
+  std::vector<int64_t> start;  // owned vertex k's row is rows[start[k], start[k + 1])
+  std::vector<int32_t> rows;
+  std::vector<int64_t> tris;     // every triangle the rows list, increasing
+  std::vector<int32_t> corners;  // 3 per entry of tris
+};
+
+OwnedRows ReadOwnedRows(MeshFile& f, const std::vector<int64_t>& owned, const SortedIds& index) {
+  const std::string& path = f.path();
+  const int64_t n = f.vertices(), nt = f.triangles();
+  auto fail = [&](const std::string& what) { throw InputError(path, 0, what); };
+  // Runs of consecutive owned ids: a range partition's one run, a scattered part's many.
+  std::vector<int64_t> rf, re;
+  for (size_t k = 0; k < owned.size(); ++k)
+    if (!k || owned[k] != owned[k - 1] + 1) {
+      if (k) re.push_back(owned[k - 1] + 1);
+      rf.push_back(owned[k]);
+    }
+  if (!owned.empty()) re.push_back(owned.back() + 1);
+  // Each run's row offsets, one more than its vertices.
+  std::vector<int64_t> off(owned.size() + rf.size());
+  {
+    std::vector<int64_t> re1(re);
+    for (int64_t& e : re1) ++e;
+    f.ReadRuns(MeshFile::kV2tOff, rf, re1, off.data());
+  }
+  OwnedRows o;
+  o.start.resize(owned.size() + 1);
+  std::vector<int64_t> vf(rf.size()), ve(rf.size());  // each run's span of the v2t section
+  size_t k = 0, at = 0;
+  for (size_t r = 0; r < rf.size(); ++r, ++at) {
+    vf[r] = off[at];
+    if (rf[r] == 0 && off[at] != 0)
+      fail("v2t row offsets: the first is " + std::to_string(off[at]));
+    if (r && vf[r] < ve[r - 1])
+      fail("vertex " + std::to_string(rf[r]) + ": v2t row offset " + std::to_string(vf[r]) +
+           " is below the row of vertex " + std::to_string(re[r - 1] - 1) + "'s end " +
+           std::to_string(ve[r - 1]));
+    for (int64_t v = rf[r]; v < re[r]; ++v, ++k, ++at) {
+      const int64_t a = off[at], b = off[at + 1];
+      if (a < 0 || b > 3 * nt || b <= a)
+        fail("vertex " + std::to_string(v) + ": v2t row [" + std::to_string(a) + ", " +
+             std::to_string(b) + ") is empty, reversed or outside 0.." + std::to_string(3 * nt));
+      o.start[k + 1] = o.start[k] + (b - a);
+    }
+    ve[r] = off[at];
+    if (re[r] == n && off[at] != 3 * nt)
+      fail("v2t row offsets: the last is " + std::to_string(off[at]) + ", not 3 x " +
+           std::to_string(nt) + " triangles");
+  }
+  std::vector<int64_t>().swap(off);
+  o.rows.resize(static_cast<size_t>(o.start.back()));
+  f.ReadRuns(MeshFile::kV2t, vf, ve, o.rows.data());
+  for (size_t j = 0; j < owned.size(); ++j)
+    for (int64_t e = o.start[j]; e < o.start[j + 1]; ++e) {
+      const int32_t t = o.rows[e];
+      if (t < 0 || t >= nt || (e > o.start[j] && t <= o.rows[e - 1]))
+        fail("vertex " + std::to_string(owned[j]) + ": its v2t row lists triangle " +
+             std::to_string(t) + " (out of 0.." + std::to_string(nt - 1) + " or not increasing)");
     }
 
-  // Every triangle the rows list, in increasing id.
-  std::vector<int64_t> tris(rows.begin(), rows.end());
-  RadixSortUnique(&tris);
-  std::vector<int32_t> corners(3 * tris.size());
-  f.ReadAt(MeshFile::kTri, tris, corners.data());
-  for (size_t i = 0; i < tris.size(); ++i) {
-    const int32_t* c = &corners[3 * i];
-    for (int k = 0; k < 3; ++k)
-      if (c[k] < 0 || c[k] >= n)
-        fail("triangle " + std::to_string(tris[i]) + ": corner " + std::to_string(c[k]) +
+  o.tris.assign(o.rows.begin(), o.rows.end());
+  RadixSortUnique(&o.tris);
+  o.corners.resize(3 * o.tris.size());
+  f.ReadAt(MeshFile::kTri, o.tris, o.corners.data());
+  for (size_t i = 0; i < o.tris.size(); ++i) {
+    const int32_t* c = &o.corners[3 * i];
+    for (int j = 0; j < 3; ++j)
+      if (c[j] < 0 || c[j] >= n)
+        fail("triangle " + std::to_string(o.tris[i]) + ": corner " + std::to_string(c[j]) +
              " outside 0.." + std::to_string(n - 1));
   }
-  // Rows and triangles agree: every (owned corner, triangle read) pair is in the corner's row (a
-  // scan of a short row), and there are as many such pairs as row entries; so each row lists
-  // exactly the triangles that hold its vertex.
   int64_t pairs = 0;
-  for (size_t i = 0; i < tris.size(); ++i)
-    for (int k = 0; k < 3; ++k) {
-      const int32_t c = corners[3 * i + k];
-      if (c < lo || c >= hi) continue;
-      const int32_t* b = &rows[off[c - lo] - off.front()];
-      const int32_t* e = &rows[off[c - lo + 1] - off.front()];
-      if (std::find(b, e, static_cast<int32_t>(tris[i])) == e)
-        fail("triangle " + std::to_string(tris[i]) + " has vertex " + std::to_string(c) +
+  for (size_t i = 0; i < o.tris.size(); ++i)
+    for (int j = 0; j < 3; ++j) {
+      const int32_t c = o.corners[3 * i + j];
+      const int64_t kc = index.Find(c);
+      if (kc < 0) continue;
+      const int32_t* b = o.rows.data() + o.start[kc];
+      const int32_t* e = o.rows.data() + o.start[kc + 1];
+      if (std::find(b, e, static_cast<int32_t>(o.tris[i])) == e)
+        fail("triangle " + std::to_string(o.tris[i]) + " has vertex " + std::to_string(c) +
              " as a corner but is not in its v2t row");
       ++pairs;
     }
-  if (pairs != nb.row_entries)  // some row lists a triangle without its vertex: find it
-    for (int64_t v = lo; v < hi; ++v)
-      for (int64_t k = off[v - lo]; k < off[v - lo + 1]; ++k) {
-        const int32_t t = rows[k - off.front()];
+  if (pairs != o.start.back())  // some row lists a triangle without its vertex: find it
+    for (size_t j = 0; j < owned.size(); ++j)
+      for (int64_t e = o.start[j]; e < o.start[j + 1]; ++e) {
+        const int32_t t = o.rows[e];
         const int32_t* c =
-            &corners[3 * (std::lower_bound(tris.begin(), tris.end(), t) - tris.begin())];
-        if (c[0] != v && c[1] != v && c[2] != v)
-          fail("vertex " + std::to_string(v) + ": its v2t row lists triangle " + std::to_string(t) +
-               ", which does not have it as a corner");
+            &o.corners[3 * (std::lower_bound(o.tris.begin(), o.tris.end(), t) - o.tris.begin())];
+        if (c[0] != owned[j] && c[1] != owned[j] && c[2] != owned[j])
+          fail("vertex " + std::to_string(owned[j]) + ": its v2t row lists triangle " +
+               std::to_string(t) + ", which does not have it as a corner");
       }
+  return o;
+}
 
-  const size_t triangles_here = tris.size();
-  std::vector<int32_t>().swap(rows);  // the peak is the mesh built below: keep it lean
-  std::vector<int64_t>().swap(tris);
+std::vector<int64_t> RangeIds(int32_t rank, int64_t n, int32_t parts) {
+  std::vector<int64_t> ids(
+      static_cast<size_t>(RangeFirst(rank + 1, n, parts) - RangeFirst(rank, n, parts)));
+  for (size_t k = 0; k < ids.size(); ++k) ids[k] = RangeFirst(rank, n, parts) + int64_t(k);
+  return ids;
+}
 
-  // The vertices here: owned, and the ghosts (other corners), increasing global id.
+void CheckRanks(int64_t n, int32_t rank, int32_t parts) {
+  if (parts > n)
+    throw UsageError(std::to_string(parts) + " ranks for a mesh of " + std::to_string(n) +
+                     " vertices: at most one rank per vertex");
+  if (rank < 0 || rank >= parts) throw std::invalid_argument("a rank outside the job");
+}
+
+RankNeighbourhood ReadNeighbourhood(MeshFile& f, int32_t rank, int32_t parts,
+                                    std::vector<int64_t> owned, const GhostOwners& owners,
+                                    const GhostLookup& lookup) {
+  const std::string& path = f.path();
+  const int64_t n = f.vertices(), nt = f.triangles();
+  RankNeighbourhood nb;
+  nb.rank = rank, nb.parts = parts, nb.vertices = n, nb.triangles = nt;
+  nb.content_id = f.content_id();
+  nb.owned = static_cast<int64_t>(owned.size());
+  auto fail = [&](const std::string& what) { throw InputError(path, 0, what); };
+  if (!owned.empty() && (owned.front() < 0 || owned.back() >= n))
+    throw std::invalid_argument("ReadPartNeighbourhood: an owned id outside the mesh");
+  const SortedIds own_index(owned);
+  OwnedRows o = ReadOwnedRows(f, owned, own_index);
+  nb.row_entries = o.start.back();
+  const size_t triangles_here = o.tris.size();
+  std::vector<int32_t>().swap(o.rows);  // the peak is the mesh built below: keep it lean
+  std::vector<int64_t>().swap(o.tris);
+  std::vector<int32_t>& corners = o.corners;
+
+  // The vertices here: owned, and the ghosts (other corners), increasing global id. A run of
+  // consecutive owned ids has no ghost inside it, so it keeps consecutive local ids.
   std::vector<int64_t> ghosts;
   for (int32_t c : corners)
-    if (c < lo || c >= hi) ghosts.push_back(c);
+    if (own_index.Find(c) < 0) ghosts.push_back(c);
   RadixSortUnique(&ghosts);
-  const auto split = std::lower_bound(ghosts.begin(), ghosts.end(), lo) - ghosts.begin();
-  nb.gid.assign(ghosts.begin(), ghosts.begin() + split);
-  for (int64_t v = lo; v < hi; ++v) nb.gid.push_back(v);
-  nb.gid.insert(nb.gid.end(), ghosts.begin() + split, ghosts.end());
+  nb.gid.resize(owned.size() + ghosts.size());
+  std::merge(owned.begin(), owned.end(), ghosts.begin(), ghosts.end(), nb.gid.begin());
   const size_t total = nb.gid.size();
-  // Local ids: owned ones by offset, ghosts by search (few).
-  auto local_of = [&, before = split](int64_t g) -> int32_t {
-    if (g >= lo && g < hi) return static_cast<int32_t>(before + (g - lo));
-    const int64_t i = std::lower_bound(ghosts.begin(), ghosts.end(), g) - ghosts.begin();
-    return static_cast<int32_t>(g < lo ? i : i + (hi - lo));
-  };
+  const SortedIds local_index(nb.gid);
+  auto local_of = [&](int64_t g) { return static_cast<int32_t>(local_index.Find(g)); };
 
   // The owned vertices' data, then the ghosts' from their owners (or the file).
-  std::vector<uint8_t> flag(static_cast<size_t>(hi - lo));
+  std::vector<int64_t> rf, re;  // runs of owned ids again (few)
+  for (size_t k = 0; k < owned.size(); ++k)
+    if (!k || owned[k] != owned[k - 1] + 1) {
+      if (k) re.push_back(owned[k - 1] + 1);
+      rf.push_back(owned[k]);
+    }
+  if (!owned.empty()) re.push_back(owned.back() + 1);
+  std::vector<uint8_t> flag(owned.size());
   RawMesh raw;
   raw.vertex_file = raw.triangle_file = path;
   raw.xy.resize(2 * total);
-  const size_t before = static_cast<size_t>(split);
-  f.Read(MeshFile::kXy, lo, hi - lo, raw.xy.data() + 2 * before);
-  f.Read(MeshFile::kBoundary, lo, hi - lo, flag.data());
+  {
+    std::vector<double> oxy(2 * owned.size());
+    f.ReadRuns(MeshFile::kXy, rf, re, oxy.data());
+    for (size_t k = 0; k < owned.size(); ++k) {
+      const size_t l = static_cast<size_t>(local_of(owned[k]));
+      raw.xy[2 * l] = oxy[2 * k], raw.xy[2 * l + 1] = oxy[2 * k + 1];
+    }
+  }
+  f.ReadRuns(MeshFile::kBoundary, rf, re, flag.data());
   const OwnedLookup own = [&](int64_t g) {
-    if (g < lo || g >= hi)
+    const int64_t k = own_index.Find(g);
+    if (k < 0)
       throw InputError(path, 0,
                        "rank " + std::to_string(rank) + " was asked for vertex " +
                            std::to_string(g) + ", which it does not own");
-    const size_t l = before + static_cast<size_t>(g - lo);
-    return GhostRecord{raw.xy[2 * l], raw.xy[2 * l + 1], off[g - lo + 1] - off[g - lo],
-                       flag[g - lo]};
+    const size_t l = static_cast<size_t>(local_of(g));
+    return GhostRecord{raw.xy[2 * l], raw.xy[2 * l + 1], o.start[k + 1] - o.start[k], flag[k]};
   };
+  const std::vector<int32_t> ghost_owner = owners(ghosts);  // every rank calls it, ghosts or not
+  if (ghost_owner.size() != ghosts.size())
+    throw std::logic_error("ReadPartNeighbourhood: ghost owners of the wrong count");
+  for (int32_t q : ghost_owner)
+    if (q < 0 || q >= parts || q == rank)
+      throw std::logic_error("ReadPartNeighbourhood: a ghost owned by this rank or none");
   std::vector<GhostRecord> ghost;
   if (lookup) {
-    GhostRequest req{path, nb.content_id, n, ghosts, std::vector<int32_t>(ghosts.size())};
-    for (size_t i = 0; i < ghosts.size(); ++i) req.owner[i] = RangeOwner(ghosts[i], n, parts);
+    GhostRequest req{path, nb.content_id, n, ghosts, ghost_owner};
     ghost = lookup(req, own);
   } else {
     std::vector<double> gxy(2 * ghosts.size());
@@ -158,9 +243,9 @@ RankNeighbourhood ReadRankNeighbourhood(const std::string& path, int32_t rank, i
     }
   }
   if (ghost.size() != ghosts.size())
-    throw std::logic_error("ReadRankNeighbourhood: a ghost lookup answered the wrong count");
+    throw std::logic_error("ReadPartNeighbourhood: a ghost lookup answered the wrong count");
   for (size_t i = 0; i < ghosts.size(); ++i) {
-    const size_t l = i < before ? i : i + static_cast<size_t>(hi - lo);
+    const size_t l = static_cast<size_t>(local_of(ghosts[i]));
     raw.xy[2 * l] = ghost[i].x, raw.xy[2 * l + 1] = ghost[i].y;
   }
   raw.tri.resize(corners.size());
@@ -168,16 +253,16 @@ RankNeighbourhood ReadRankNeighbourhood(const std::string& path, int32_t rank, i
   std::vector<int32_t>().swap(corners);
   for (int64_t g : nb.gid) raw.vertex_tag.Push(g);  // BuildMesh's messages name global ids
   BuildReport report;
-  nb.mesh = BuildMesh(std::move(raw), &report);
+  if (total > 0) nb.mesh = BuildMesh(std::move(raw), &report);  // else an empty part: no mesh
   if (!report.kept.empty())  // every vertex here is a corner of a triangle read
     throw std::logic_error(
-        "ReadRankNeighbourhood: a vertex of the neighbourhood lies in no triangle");
+        "ReadPartNeighbourhood: a vertex of the neighbourhood lies in no triangle");
 
   // Boundary flags: the owned ones checked, the ghosts' taken from the file (their owners check).
-  for (int64_t v = lo; v < hi; ++v) {
-    const uint8_t mine = nb.mesh.boundary[local_of(v)];
-    if (flag[v - lo] != mine)
-      fail("vertex " + std::to_string(v) + ": boundary flag " + std::to_string(flag[v - lo]) +
+  for (size_t k = 0; k < owned.size(); ++k) {
+    const uint8_t mine = nb.mesh.boundary[local_of(owned[k])];
+    if (flag[k] != mine)
+      fail("vertex " + std::to_string(owned[k]) + ": boundary flag " + std::to_string(flag[k]) +
            ", but its triangles make it " + (mine ? "a boundary" : "an interior") + " vertex");
   }
   for (size_t i = 0; i < ghosts.size(); ++i) {
@@ -190,8 +275,8 @@ RankNeighbourhood ReadRankNeighbourhood(const std::string& path, int32_t rank, i
   for (size_t l = 0; l < total; ++l)
     if (!nb.mesh.boundary[l]) nb.mesh.interior.push_back(static_cast<int32_t>(l));
 
-  nb.part.resize(total);
-  for (size_t l = 0; l < total; ++l) nb.part[l] = RangeOwner(nb.gid[l], n, parts);
+  nb.part.assign(total, rank);
+  for (size_t i = 0; i < ghosts.size(); ++i) nb.part[local_of(ghosts[i])] = ghost_owner[i];
   // Global row sizes (triangles at each corner) for the quality weights, as GlobalQualityWeight.
   std::vector<int64_t> row(total);
   for (size_t i = 0; i < ghosts.size(); ++i) {
@@ -202,21 +287,20 @@ RankNeighbourhood ReadRankNeighbourhood(const std::string& path, int32_t rank, i
            std::to_string(here) + " that hold it");
     row[local_of(ghosts[i])] = ghost[i].triangles;
   }
-  for (int64_t v = lo; v < hi; ++v) row[local_of(v)] = off[v - lo + 1] - off[v - lo];
+  for (size_t k = 0; k < owned.size(); ++k) row[local_of(owned[k])] = o.start[k + 1] - o.start[k];
   const double inv_v = 1.0 / static_cast<double>(n);
   nb.weight.resize(triangles_here);
   for (size_t t = 0; t < triangles_here; ++t) {
     const int32_t* c = &nb.mesh.tri[3 * t];
     nb.weight[t] = QualityWeightOf(inv_v, row[c[0]], row[c[1]], row[c[2]]);
-    const int64_t smallest = nb.gid[std::min(c[0], std::min(c[1], c[2]))];
-    nb.owned_triangles += smallest >= lo && smallest < hi;
+    nb.owned_triangles += nb.part[std::min(c[0], std::min(c[1], c[2]))] == rank;
   }
-  for (int64_t v = lo; v < hi; ++v) {
-    const int32_t l = local_of(v);
+  for (size_t k = 0; k < owned.size(); ++k) {
+    const int32_t l = local_of(owned[k]);
     for (const int32_t* u = nb.mesh.v2v.RowBegin(l); u != nb.mesh.v2v.RowEnd(l); ++u)
       if (nb.part[*u] != rank) {
         nb.neighbours.push_back(nb.part[*u]);
-        nb.cut_edges += nb.gid[*u] > v;
+        nb.cut_edges += nb.gid[*u] > owned[k];
       }
   }
   std::sort(nb.neighbours.begin(), nb.neighbours.end());
@@ -225,20 +309,103 @@ RankNeighbourhood ReadRankNeighbourhood(const std::string& path, int32_t rank, i
   return nb;
 }
 
+}  // namespace
+
+RankNeighbourhood ReadRankNeighbourhood(const std::string& path, int32_t rank, int32_t parts,
+                                        const GhostLookup& lookup) {
+  MeshFile f(path);
+  const int64_t n = f.vertices();
+  CheckRanks(n, rank, parts);
+  const GhostOwners owners = [&](const std::vector<int64_t>& ghosts) {
+    std::vector<int32_t> q(ghosts.size());
+    for (size_t i = 0; i < ghosts.size(); ++i) q[i] = RangeOwner(ghosts[i], n, parts);
+    return q;
+  };
+  return ReadNeighbourhood(f, rank, parts, RangeIds(rank, n, parts), owners, lookup);
+}
+
+RankNeighbourhood ReadPartNeighbourhood(const std::string& path, int32_t rank, int32_t parts,
+                                        std::vector<int64_t> owned, const GhostOwners& owners,
+                                        const GhostLookup& lookup) {
+  MeshFile f(path);
+  CheckRanks(f.vertices(), rank, parts);
+  return ReadNeighbourhood(f, rank, parts, std::move(owned), owners, lookup);
+}
+
+GraphRows RangeGraphRows(const Mesh& m, int32_t rank, int32_t parts) {
+  const int64_t n = m.NumVertices();
+  CheckRanks(n, rank, parts);
+  GraphRows g;
+  g.vertices = n, g.first = RangeFirst(rank, n, parts);
+  const int64_t hi = RangeFirst(rank + 1, n, parts);
+  for (int64_t v = g.first; v < hi; ++v) {
+    const size_t a = g.adj.size();
+    for (const int32_t* q = m.v2v.RowBegin(static_cast<int32_t>(v));
+         q != m.v2v.RowEnd(static_cast<int32_t>(v)); ++q)
+      g.adj.push_back(*q);
+    std::sort(g.adj.begin() + static_cast<std::ptrdiff_t>(a), g.adj.end());
+    g.off.push_back(static_cast<int64_t>(g.adj.size()));
+  }
+  return g;
+}
+
+GraphRows ReadRangeGraphRows(const std::string& path, int32_t rank, int32_t parts) {
+  MeshFile f(path);
+  const int64_t n = f.vertices();
+  CheckRanks(n, rank, parts);
+  const std::vector<int64_t> owned = RangeIds(rank, n, parts);
+  const SortedIds index(owned);
+  OwnedRows o = ReadOwnedRows(f, owned, index);
+  GraphRows g;
+  g.vertices = n, g.first = owned.empty() ? 0 : owned.front();
+  g.bytes_read = f.bytes_read();
+  // Two neighbours per (owned corner, triangle) pair, then each row sorted and made unique, in
+  // place: the rows and triangle ids go first, so the peak is the pairs beside the corners.
+  std::vector<int32_t>().swap(o.rows);
+  std::vector<int64_t>().swap(o.tris);
+  std::vector<int64_t> at(o.start.begin(), o.start.end() - 1), pair(2 * o.start.back());
+  for (int64_t& a : at) a *= 2;
+  for (size_t i = 0; i < o.corners.size(); i += 3)
+    for (int j = 0; j < 3; ++j) {
+      const int64_t k = index.Find(o.corners[i + j]);
+      if (k < 0) continue;
+      pair[at[k]++] = o.corners[i + (j + 1) % 3];
+      pair[at[k]++] = o.corners[i + (j + 2) % 3];
+    }
+  std::vector<int64_t>().swap(at);
+  std::vector<int32_t>().swap(o.corners);
+  g.off.resize(owned.size() + 1);
+  int64_t w = 0;
+  for (size_t k = 0; k < owned.size(); ++k) {
+    auto b = pair.begin() + 2 * o.start[k], e = pair.begin() + 2 * o.start[k + 1];
+    std::sort(b, e);
+    e = std::unique(b, e);
+    const int64_t len = e - b;
+    if (pair.begin() + w != b) std::copy(b, e, pair.begin() + w);  // w <= 2 start[k]: backwards
+    g.off[k + 1] = w += len;
+  }
+  pair.resize(static_cast<size_t>(w));
+  pair.shrink_to_fit();
+  g.adj = std::move(pair);
+  return g;
+}
+
 GhostLookup GhostExchange(HaloTransport& tx) {
   return [&tx](const GhostRequest& req, const OwnedLookup& mine) {
     const int32_t P = tx.size(), me = tx.rank();
     const std::vector<int64_t>& wanted = req.wanted;
     const std::vector<int32_t>& owner = req.owner;
-    // The file's identity, then whom I ask and for how many: (rank, count) pairs, all-gathered.
-    std::vector<int64_t> need = {static_cast<int64_t>(req.content_id), req.vertices};
+    // The file's identity, then whom I ask and for how many: (rank, count) pairs by increasing
+    // rank, all-gathered. Owners may come in any order (a scattered part's ghosts).
+    std::vector<int64_t> per_owner(static_cast<size_t>(P));
     for (size_t i = 0; i < wanted.size(); ++i) {
       if (owner[i] == me || owner[i] < 0 || owner[i] >= P)
         throw std::logic_error("GhostExchange: a ghost owned by its own rank or none");
-      if (need.size() == 2 || need[need.size() - 2] != owner[i])
-        need.push_back(owner[i]), need.push_back(0);
-      ++need.back();
+      ++per_owner[owner[i]];
     }
+    std::vector<int64_t> need = {static_cast<int64_t>(req.content_id), req.vertices};
+    for (int32_t q = 0; q < P; ++q)
+      if (per_owner[q]) need.push_back(q), need.push_back(per_owner[q]);
     const std::vector<std::string> all =
         tx.AllGather(std::string(reinterpret_cast<const char*>(need.data()), 8 * need.size()));
     std::vector<std::vector<int64_t>> asks(P);
@@ -274,16 +441,17 @@ GhostLookup GhostExchange(HaloTransport& tx) {
         tx.Send(p, a.data(), a.size());
       }
     }
-    // My answers, in the order asked.
+    // My answers, back in the order of `wanted`.
+    std::vector<std::vector<size_t>> where(static_cast<size_t>(P));
+    for (size_t i = 0; i < wanted.size(); ++i) where[owner[i]].push_back(i);
     std::vector<GhostRecord> out(wanted.size());
-    size_t at = 0;
     for (int32_t q = 0; q < P; ++q) {
       if (request[q].empty()) continue;
       std::vector<double> a(4 * request[q].size());
       tx.Recv(q, a.data(), a.size());
-      for (size_t k = 0; k < request[q].size(); ++k, ++at)
-        out[at] = {a[4 * k], a[4 * k + 1], static_cast<int64_t>(a[4 * k + 2]),
-                   static_cast<uint8_t>(a[4 * k + 3])};
+      for (size_t k = 0; k < request[q].size(); ++k)
+        out[where[q][k]] = {a[4 * k], a[4 * k + 1], static_cast<int64_t>(a[4 * k + 2]),
+                            static_cast<uint8_t>(a[4 * k + 3])};
     }
     tx.Flush();
     return out;
@@ -292,36 +460,37 @@ GhostLookup GhostExchange(HaloTransport& tx) {
 
 RankShare ShareOf(const RankNeighbourhood& nb) {
   return {nb.content_id,  nb.vertices,  nb.triangles, nb.owned_triangles,
-          nb.row_entries, nb.cut_edges, nb.neighbours};
+          nb.row_entries, nb.cut_edges, nb.owned,     nb.neighbours};
 }
 
 std::string PackShare(const RankShare& s) {
-  std::string b(sizeof(uint64_t) + 5 * sizeof(int64_t), '\0');
+  std::string b(sizeof(uint64_t) + 6 * sizeof(int64_t), '\0');
   char* p = &b[0];
   std::memcpy(p, &s.content_id, 8);
-  const int64_t v[5] = {s.vertices, s.triangles, s.owned_triangles, s.row_entries, s.cut_edges};
+  const int64_t v[6] = {s.vertices,    s.triangles, s.owned_triangles,
+                        s.row_entries, s.cut_edges, s.owned};
   std::memcpy(p + 8, v, sizeof v);
   b.append(reinterpret_cast<const char*>(s.neighbours.data()), 4 * s.neighbours.size());
   return b;
 }
 
 RankShare UnpackShare(const std::string& b) {
-  if (b.size() < 48 || (b.size() - 48) % 4) throw std::logic_error("UnpackShare: bad size");
+  if (b.size() < 56 || (b.size() - 56) % 4) throw std::logic_error("UnpackShare: bad size");
   RankShare s;
-  int64_t v[5];
+  int64_t v[6];
   std::memcpy(&s.content_id, b.data(), 8);
   std::memcpy(v, b.data() + 8, sizeof v);
   s.vertices = v[0], s.triangles = v[1], s.owned_triangles = v[2], s.row_entries = v[3];
-  s.cut_edges = v[4];
-  s.neighbours.resize((b.size() - 48) / 4);
-  if (!s.neighbours.empty()) std::memcpy(s.neighbours.data(), b.data() + 48, b.size() - 48);
+  s.cut_edges = v[4], s.owned = v[5];
+  s.neighbours.resize((b.size() - 56) / 4);
+  if (!s.neighbours.empty()) std::memcpy(s.neighbours.data(), b.data() + 56, b.size() - 56);
   return s;
 }
 
 std::vector<std::vector<int32_t>> CheckRankShares(const std::string& path,
                                                   const std::vector<RankShare>& shares) {
   const int32_t parts = static_cast<int32_t>(shares.size());
-  int64_t tris = 0, entries = 0;
+  int64_t tris = 0, entries = 0, owned = 0;
   for (int32_t r = 0; r < parts; ++r) {
     const RankShare& s = shares[r];
     if (s.content_id != shares[0].content_id)
@@ -329,8 +498,13 @@ std::vector<std::vector<int32_t>> CheckRankShares(const std::string& path,
                        "rank " + std::to_string(r) +
                            " read another mesh file than rank 0 (content "
                            "ids differ): every rank must see the same file");
-    tris += s.owned_triangles, entries += s.row_entries;
+    tris += s.owned_triangles, entries += s.row_entries, owned += s.owned;
   }
+  const int64_t nv = parts ? shares[0].vertices : 0;
+  if (owned != nv)
+    throw InputError(path, 0,
+                     "the ranks own " + std::to_string(owned) + " vertices, the header says " +
+                         std::to_string(nv) + " (a partition that leaves out or repeats one)");
   const int64_t nt = parts ? shares[0].triangles : 0;
   if (tris != nt || entries != 3 * nt)
     throw InputError(path, 0,

@@ -1,9 +1,11 @@
 // One rank's share of a distributed mesh file (mesh_file.h), read without the rest of the mesh:
-// the owned range of vertex ids [RangeFirst(r), RangeFirst(r + 1)) -- the Hilbert-range partition
-// of partition.h when the file is in Hilbert order, HilbertRangeParts' own formula -- their v2t
-// rows, every triangle those rows list, and the ghost ring (the other corners of those triangles)
-// with coordinates, boundary flags and triangle counts. About (owned + ghosts) * 100 bytes of
-// reading, whatever the size of the mesh.
+// the owned vertices -- the range of ids [RangeFirst(r), RangeFirst(r + 1)) (the Hilbert-range
+// partition of partition.h when the file is in Hilbert order, HilbertRangeParts' own formula), or
+// any set of ids (a part PT-Scotch computed: core/part_directory.h says who owns what) --, their
+// v2t rows, every triangle those rows list, and the ghost ring (the other corners of those
+// triangles) with coordinates, boundary flags and triangle counts. About (owned + ghosts) * 100
+// bytes of reading, whatever the size of the mesh; a scattered part is read run by run of
+// consecutive ids, each block once.
 // The result is the neighbourhood as a Mesh of its own, local ids in increasing global id and
 // triangles in increasing global id, so BuildRankPart (rank_part.h) lays it out exactly as it lays
 // out the same rank from the whole mesh (the same local mesh of the part, the same rows, the same
@@ -35,7 +37,7 @@ struct RankNeighbourhood {
   int32_t rank = 0, parts = 1;
   int64_t vertices = 0, triangles = 0;  // of the whole mesh
   uint64_t content_id = 0;
-  int64_t first = 0, last = 0;      // owned global ids [first, last)
+  int64_t owned = 0;                // owned vertices (local ids hold them in increasing gid)
   Mesh mesh;                        // owned + ghosts, local ids by increasing global id
   std::vector<int64_t> gid;         // local -> global
   std::vector<int32_t> part;        // local -> owning rank
@@ -56,8 +58,8 @@ struct GhostRecord {
 // A rank's answer for one of its owned vertices (InputError for a vertex it does not own).
 using OwnedLookup = std::function<GhostRecord(int64_t gid)>;
 // What a rank asks of the others: the ghosts it needs (increasing global id) and their owners
-// (non-decreasing), with the file's name and content id, so an exchange can refuse ranks that read
-// different files before any of them answers for a vertex.
+// (in any order: a scattered part's ghosts), with the file's name and content id, so an exchange
+// can refuse ranks that read different files before any of them answers for a vertex.
 struct GhostRequest {
   std::string path;
   uint64_t content_id = 0;
@@ -85,20 +87,56 @@ GhostLookup GhostExchange(HaloTransport& tx);
 // vertices.
 RankNeighbourhood ReadRankNeighbourhood(const std::string& path, int32_t rank, int32_t parts,
                                         const GhostLookup& lookup = {});
+// The owners of a rank's ghosts (increasing global ids), one per ghost: called once by every rank
+// at the same point, ghosts or none, so an implementation may ask the other ranks
+// (part_directory.h's LookUpParts).
+using GhostOwners = std::function<std::vector<int32_t>(const std::vector<int64_t>& ghosts)>;
+// The neighbourhood of any owned set (increasing ids; empty: a part with no vertex, which still
+// takes part in the collective calls). The same checks as ReadRankNeighbourhood; every vertex
+// must be owned by exactly one rank, which CheckRankShares verifies from the shares' counts.
+RankNeighbourhood ReadPartNeighbourhood(const std::string& path, int32_t rank, int32_t parts,
+                                        std::vector<int64_t> owned, const GhostOwners& owners,
+                                        const GhostLookup& lookup = {});
+
+// Positions in an increasing list of ids, found by binary search over its runs of consecutive
+// ids: a range is one run, a part of a Hilbert-ordered file a few per hundred vertices, so the
+// search stays in cache where a search of the ids themselves would not.
+class SortedIds {
+ public:
+  explicit SortedIds(const std::vector<int64_t>& ids);  // std::logic_error unless increasing
+  int64_t Find(int64_t id) const;                       // its position, or -1
+ private:
+  std::vector<int64_t> start_, pos_;
+};
+
+// Rows of the vertex graph (neighbours by global id, each row increasing) for the vertices
+// [first, first + off.size() - 1) of a graph of `vertices` vertices: what a distributed
+// partitioner (PT-Scotch) is given by each rank.
+struct GraphRows {
+  int64_t vertices = 0, first = 0;
+  std::vector<int64_t> off = {0}, adj;
+  uint64_t bytes_read = 0;  // of the mesh file (ReadRangeGraphRows)
+};
+// Rank r's range of rows, from the whole mesh or from a mesh file (its rows and triangles only,
+// checked as ReadRankNeighbourhood checks them).
+GraphRows RangeGraphRows(const Mesh& m, int32_t rank, int32_t parts);
+GraphRows ReadRangeGraphRows(const std::string& path, int32_t rank, int32_t parts);
 
 // What each rank contributes to the checks no single rank can make.
 struct RankShare {
   uint64_t content_id = 0;
   int64_t vertices = 0, triangles = 0, owned_triangles = 0, row_entries = 0, cut_edges = 0;
+  int64_t owned = 0;
   std::vector<int32_t> neighbours;
 };
 RankShare ShareOf(const RankNeighbourhood& nb);
 std::string PackShare(const RankShare& s);
 RankShare UnpackShare(const std::string& bytes);  // std::logic_error when short
 // Every rank calls it with every rank's share (by rank) and gets the same verdict: InputError when
-// ranks read different files (content ids differ), when the owned triangles do not add up to the
-// file's T or the rows to 3T (a triangle some row omits), or when the neighbour relation is not
-// symmetric. Returns the part graph (each rank's neighbours) for the colouring.
+// ranks read different files (content ids differ), when the owned vertices do not add up to the
+// file's V, the owned triangles to its T or the rows to 3T (a triangle some row omits), or when the
+// neighbour relation is not symmetric. Returns the part graph (each rank's neighbours) for the
+// colouring.
 std::vector<std::vector<int32_t>> CheckRankShares(const std::string& path,
                                                   const std::vector<RankShare>& shares);
 

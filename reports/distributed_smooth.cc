@@ -14,6 +14,7 @@
 #include "core/mesh_io.h"
 #include "core/orderings/registry.h"
 #include "core/output_file.h"
+#include "core/part_directory.h"
 #include "core/partition.h"
 #include "core/permutation.h"
 #include "core/rank_neighbourhood.h"
@@ -114,14 +115,18 @@ bool WriteInRanges(const DistSmoothConfig& cfg, const RankPart& p, HaloTransport
   const int64_t size = st.st_size;
   CopyFileBytes(cfg.mesh, tmp, size * r / P, size * (r + 1) / P);
   barrier();
-  int64_t first = INT64_MAX;  // the owned ids are a range: [first, first + owned)
-  for (int32_t k = 0; k < p.owned; ++k) first = std::min(first, p.gid[k]);
-  std::vector<double> xy(2 * static_cast<size_t>(p.owned));
-  for (int32_t k = 0; k < p.owned; ++k) {
-    xy[2 * (p.gid[k] - first)] = p.xy[2 * int64_t{k}];
-    xy[2 * (p.gid[k] - first) + 1] = p.xy[2 * int64_t{k} + 1];
+  // The owned coordinates by increasing global id (a range, or a PT-Scotch part's runs).
+  std::vector<int32_t> by_id(static_cast<size_t>(p.owned));
+  for (int32_t k = 0; k < p.owned; ++k) by_id[k] = k;
+  std::sort(by_id.begin(), by_id.end(), [&p](int32_t a, int32_t b) { return p.gid[a] < p.gid[b]; });
+  std::vector<int64_t> ids(by_id.size());
+  std::vector<double> xy(2 * by_id.size());
+  for (size_t i = 0; i < by_id.size(); ++i) {
+    ids[i] = p.gid[by_id[i]];
+    xy[2 * i] = p.xy[2 * int64_t{by_id[i]}];
+    xy[2 * i + 1] = p.xy[2 * int64_t{by_id[i]} + 1];
   }
-  if (p.owned) WriteMeshFileCoordinates(tmp, first, xy);
+  WriteMeshFileCoordinates(tmp, ids, xy);
   out.Finish(CoordinateBlocks(res->vertices));  // only the coordinates changed
   if (r == 0) {
     log.Say("wrote " + cfg.output);
@@ -133,7 +138,7 @@ bool WriteInRanges(const DistSmoothConfig& cfg, const RankPart& p, HaloTransport
 }  // namespace
 
 bool ReadsRanges(const DistSmoothConfig& cfg) {
-  return cfg.partition == "ranges" && IsMeshFilePath(cfg.mesh);
+  return (cfg.partition == "ranges" || cfg.partition == "ptscotch") && IsMeshFilePath(cfg.mesh);
 }
 
 Mesh LoadForRanks(const std::string& path, int32_t parts, const Log& log) {
@@ -192,13 +197,34 @@ DistSmoothResult RunDistributedSmooth(const DistSmoothConfig& cfg, HaloTransport
   RankPart p;
   SmoothRankStats st;
   if (ReadsRanges(cfg)) {
-    // Each rank reads its range, gets its ghosts from their owners, and one all-gather of counts
-    // checks what no rank can alone and gives every rank the part graph to colour.
-    log.Say("reading rank " + std::to_string(rank) + "'s range of " + cfg.mesh);
-    RankNeighbourhood nb = ReadRankNeighbourhood(cfg.mesh, rank, parts, GhostExchange(tx));
-    log.Say("rank " + std::to_string(rank) + " read " + Grouped(nb.last - nb.first) +
-            " owned vertices and " + Grouped(nb.mesh.NumVertices() - (nb.last - nb.first)) +
-            " ghosts (" + Fixed(nb.bytes_read / 1048576.0, 1) + " MB of the file)");
+    // Each rank reads its part (its range, or its PT-Scotch part), gets its ghosts from their
+    // owners, and one all-gather of counts checks what no rank can alone and gives every rank the
+    // part graph to colour.
+    RankNeighbourhood nb;
+    uint64_t rows_read = 0;
+    if (cfg.partition == "ptscotch") {
+      log.Say("reading rank " + std::to_string(rank) + "'s range of graph rows of " + cfg.mesh);
+      GraphRows rows = ReadRangeGraphRows(cfg.mesh, rank, parts);
+      rows_read = rows.bytes_read;
+      const int64_t n = rows.vertices;
+      log.Say("partitioning " + Grouped(n) + " vertices into " + std::to_string(parts) +
+              " parts (PT-Scotch, all ranks)");
+      const std::vector<int32_t> mine = cfg.job_partition(rows, parts, cfg.seed);
+      rows = GraphRows();  // the rows are PT-Scotch's alone: freed before the part is read
+      std::vector<int64_t> owned = GatherOwnedIds(tx, n, mine);
+      log.Say("reading rank " + std::to_string(rank) + "'s PT-Scotch part of " + cfg.mesh);
+      nb = ReadPartNeighbourhood(
+          cfg.mesh, rank, parts, std::move(owned),
+          [&](const std::vector<int64_t>& ghosts) { return LookUpParts(tx, n, mine, ghosts); },
+          GhostExchange(tx));
+    } else {
+      log.Say("reading rank " + std::to_string(rank) + "'s range of " + cfg.mesh);
+      nb = ReadRankNeighbourhood(cfg.mesh, rank, parts, GhostExchange(tx));
+    }
+    nb.bytes_read += rows_read;
+    log.Say("rank " + std::to_string(rank) + " read " + Grouped(nb.owned) + " owned vertices and " +
+            Grouped(nb.mesh.NumVertices() - nb.owned) + " ghosts (" +
+            Fixed(nb.bytes_read / 1048576.0, 1) + " MB of the file)");
     std::vector<RankShare> shares;
     for (const std::string& b : tx.AllGather(PackShare(ShareOf(nb))))
       shares.push_back(UnpackShare(b));
@@ -217,7 +243,9 @@ DistSmoothResult RunDistributedSmooth(const DistSmoothConfig& cfg, HaloTransport
       pm.mesh = LoadForRanks(cfg.mesh, parts, log);
       log.Say("partitioning " + std::to_string(pm.mesh.NumVertices()) + " vertices into " +
               std::to_string(parts) + " parts (PT-Scotch, all ranks)");
-      pm.part = cfg.job_partition(pm.mesh, parts, cfg.seed);
+      const std::vector<int32_t> mine =
+          cfg.job_partition(RangeGraphRows(pm.mesh, rank, parts), parts, cfg.seed);
+      pm.part = AllParts(tx, pm.mesh.NumVertices(), mine);
     } else {
       pm = LoadPartitioned(cfg.mesh, cfg.partition, parts, cfg.seed, log);
     }

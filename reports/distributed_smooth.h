@@ -2,11 +2,13 @@
 // 3b): every rank reads the mesh (a mesh that fits one node), computes the same partition
 // (Hilbert ranges, METIS seeded, or ranges of ids) and colouring -- or, for a mesh file
 // (FILE.mrm) with the ranges partition, reads only its range and ghost ring (rank_neighbourhood.h)
-// and learns the part graph from one all-gather --, keeps its part (core/rank_part.h) and smooths
-// it with the ghost exchanges of core/halo_smoother.h; rank 0 gathers the moved vertices, writes
-// the smoothed mesh (equal to the serial smoother's output: bit for bit at -np 1, and along the
-// gathered order pi at any P), pi itself, and a table per rank. The transport moves the bytes
-// (MPI in cli/mpi_main.cc, threads in core/halo_threads.h).
+// and learns the part graph from one all-gather; with PT-Scotch, reads its range's graph rows,
+// partitions them with the other ranks, learns its part's ids and its ghosts' owners from the
+// directory (part_directory.h) and reads only that part and its ghost ring --, keeps its part
+// (core/rank_part.h) and smooths it with the ghost exchanges of core/halo_smoother.h; rank 0
+// gathers the moved vertices, writes the smoothed mesh (equal to the serial smoother's output: bit
+// for bit at -np 1, and along the gathered order pi at any P), pi itself, and a table per rank. The
+// transport moves the bytes (MPI in cli/mpi_main.cc, threads in core/halo_threads.h).
 #pragma once
 
 #include <cstdint>
@@ -16,6 +18,7 @@
 
 #include "core/halo_smoother.h"
 #include "core/mesh.h"
+#include "core/rank_neighbourhood.h"
 #include "core/table.h"
 #include "reports/log.h"
 #include "reports/run_info.h"
@@ -32,9 +35,12 @@ struct DistSmoothConfig {
   std::string output;  // the smoothed mesh (rank 0 writes it)
   std::string pi_out;  // the serial visit order the run equals (ordered mode)
   // `--partition ptscotch`: a partition the job's ranks compute together (PT-Scotch over MPI; set
-  // by cli/mpi_main.cc, which holds the communicator). Every rank calls it at once with the whole
-  // mesh and gets every vertex's part. Empty: ptscotch is refused (threads, or a build without it).
-  std::function<std::vector<int32_t>(const Mesh& m, int32_t parts, uint64_t seed)> job_partition;
+  // by cli/mpi_main.cc, which holds the communicator). Every rank calls it at once with its range
+  // of graph rows (core/rank_neighbourhood.h) and gets those rows' parts; who owns what then
+  // follows from core/part_directory.h. Empty: ptscotch is refused (threads, or a build without
+  // it).
+  std::function<std::vector<int32_t>(const GraphRows& rows, int32_t parts, uint64_t seed)>
+      job_partition;
 };
 
 struct SmoothRankStats {
@@ -66,8 +72,8 @@ struct PartitionedMesh {
 };
 PartitionedMesh LoadPartitioned(const std::string& path, const std::string& method, int32_t parts,
                                 uint64_t seed, const Log& log);
-// Whether each rank reads only its range of MESH (a mesh file, FILE.mrm, with --partition
-// ranges: core/rank_neighbourhood.h) rather than the whole mesh.
+// Whether each rank reads only its part of MESH (a mesh file, FILE.mrm, with --partition ranges
+// or ptscotch: core/rank_neighbourhood.h) rather than the whole mesh.
 bool ReadsRanges(const DistSmoothConfig& cfg);
 // MESH as every rank reads it: the serial smoother's default layout (vertex ids unchanged,
 // triangles sorted by their smallest corner); UsageError when `parts` exceeds its vertices.

@@ -132,6 +132,54 @@ TEST(MeshFile, RangesAndScatteredReadsEqualElementReads) {
   }
 }
 
+// Runs of elements (a scattered part's runs of consecutive ids): what each run's elements are,
+// empty and adjoining runs included; no more bytes read than reading each run alone (blocks that
+// runs share are read once).
+TEST(MeshFile, RunsEqualElementReadsAndReadEachBlockOnce) {
+  TempDir dir;
+  const Mesh m = Bigger();
+  const std::string p = dir / "m.mrm";
+  WriteMeshFile(m, p);
+  std::mt19937_64 rng(5);
+  for (int s = 0; s < MeshFile::kSections; ++s) {
+    const auto sec = static_cast<MeshFile::Section>(s);
+    MeshFile whole(p);
+    const int64_t n = whole.Elements(sec), eb = whole.ElementBytes(sec);
+    std::vector<char> all(static_cast<size_t>(n * eb));
+    whole.Read(sec, 0, n, all.data());
+    for (int trial = 0; trial < 20; ++trial) {
+      std::vector<int64_t> first, end;
+      int64_t at = static_cast<int64_t>(rng() % 50);
+      while (at < n) {
+        const int64_t len = std::min<int64_t>(n - at, static_cast<int64_t>(rng() % 40));
+        first.push_back(at), end.push_back(at + len);
+        at += len + static_cast<int64_t>(rng() % 3 == 0 ? 0 : rng() % 300);
+      }
+      std::vector<char> want;
+      for (size_t i = 0; i < first.size(); ++i)
+        want.insert(want.end(), all.begin() + first[i] * eb, all.begin() + end[i] * eb);
+      MeshFile f(p);
+      const uint64_t before = f.bytes_read();
+      std::vector<char> got(want.size() + 1);
+      f.ReadRuns(sec, first, end, got.data());
+      EXPECT_EQ(std::memcmp(got.data(), want.data(), want.size()), 0) << s << " " << trial;
+      MeshFile g(p);
+      const uint64_t g0 = g.bytes_read();
+      for (size_t i = 0; i < first.size(); ++i)
+        if (end[i] > first[i]) g.Read(sec, first[i], end[i] - first[i], got.data());
+      EXPECT_LE(f.bytes_read() - before, g.bytes_read() - g0) << s << " " << trial;
+    }
+    // One run of everything, and runs that misbehave.
+    MeshFile f(p);
+    std::vector<char> got(all.size() + 1);
+    f.ReadRuns(sec, {0}, {n}, got.data());
+    EXPECT_EQ(std::memcmp(got.data(), all.data(), all.size()), 0);
+    EXPECT_THROW(f.ReadRuns(sec, {5, 2}, {6, 3}, got.data()), std::logic_error);
+    EXPECT_THROW(f.ReadRuns(sec, {0}, {n + 1}, got.data()), std::logic_error);
+    EXPECT_THROW(f.ReadRuns(sec, {3}, {2}, got.data()), std::logic_error);
+  }
+}
+
 TEST(MeshFile, DamagedFilesAreRefusedByName) {
   TempDir dir;
   const Mesh m = Bigger();

@@ -15,6 +15,7 @@
 #include "core/error.h"
 #include "core/halo_threads.h"
 #include "core/mesh_file.h"
+#include "core/part_directory.h"
 #include "core/partition.h"
 #include "core/rank_part.h"
 #include "core/synthetic.h"
@@ -101,6 +102,97 @@ TEST(RankNeighbourhood, PartsEqualTheWholeMeshsWithRangeParts) {
                             BuildRankPart(m, part, P, ps.colour, r, ordering, 5, pl));
           }
     }
+  }
+}
+
+// Any partition, not only ranges: a rank that reads the ids of its part (METIS's compact parts, a
+// hash's scattered ones, one with an empty part) lays out the part BuildRankPart makes from the
+// whole mesh with the same partition -- with ghosts from the file, and with ghosts from their
+// owners and the owned ids and ghost owners from the directory (part_directory.h) on threads.
+TEST(RankNeighbourhood, AnyPartitionsPartsEqualTheWholeMeshs) {
+  TempDir dir;
+  const std::string p = dir / "m.mrm";
+  int checked = 0;
+  for (const Mesh& m0 : MeshCorpus()) {
+    Mesh m = m0.Clone();
+    LayOutForRanks(&m);
+    WriteMeshFile(m, p);
+    const int64_t n = m.NumVertices();
+    for (int32_t P = 2; P <= std::min<int64_t>(4, n); ++P)
+      for (int kind = 0; kind < 3; ++kind) {
+        std::vector<int32_t> part(static_cast<size_t>(n));
+        if (kind == 0) part = MetisParts(m, P, 3);
+        for (int64_t v = 0; v < n && kind; ++v)
+          part[v] = static_cast<int32_t>((v * 2654435761u >> 7) % (kind == 2 ? P - 1 : P));
+        SCOPED_TRACE(std::to_string(n) + " vertices, P " + std::to_string(P) + ", kind " +
+                     std::to_string(kind));
+        const PartitionStats ps = MeasurePartition(m, part, P);
+        const GhostOwners owners = [&](const std::vector<int64_t>& g) {
+          std::vector<int32_t> q;
+          for (int64_t v : g) q.push_back(part[v]);
+          return q;
+        };
+        std::vector<RankShare> shares;
+        std::vector<RankNeighbourhood> nbs;
+        for (int32_t r = 0; r < P; ++r) {
+          std::vector<int64_t> owned;
+          for (int64_t v = 0; v < n; ++v)
+            if (part[v] == r) owned.push_back(v);
+          nbs.push_back(ReadPartNeighbourhood(p, r, P, owned, owners));
+          shares.push_back(ShareOf(nbs.back()));
+        }
+        int32_t colours = 0;
+        const std::vector<int32_t> colour =
+            GreedyPartColouring(CheckRankShares(p, shares), &colours);
+        EXPECT_EQ(colour, ps.colour);
+        int64_t cut = 0;
+        for (const RankShare& s : shares) cut += s.cut_edges;
+        EXPECT_EQ(cut, ps.cut_edges);
+        // On threads: the directory from each rank's range of parts, the ghosts from the owners.
+        std::vector<RankNeighbourhood> got(P);
+        HaloThreads::Run(P, [&](HaloTransport& tx) {
+          const int64_t a = RangeFirst(tx.rank(), n, P), b = RangeFirst(tx.rank() + 1, n, P);
+          const std::vector<int32_t> mine(part.begin() + a, part.begin() + b);
+          got[tx.rank()] = ReadPartNeighbourhood(
+              p, tx.rank(), P, GatherOwnedIds(tx, n, mine),
+              [&](const std::vector<int64_t>& g) { return LookUpParts(tx, n, mine, g); },
+              GhostExchange(tx));
+        });
+        for (int32_t r = 0; r < P; ++r) {
+          SCOPED_TRACE("rank " + std::to_string(r));
+          const RankPart whole =
+              BuildRankPart(m, part, P, ps.colour, r, "bfs", 5, CutPlacement::kLast);
+          ExpectSameParts(BuildRankPart(nbs[r], colour, "bfs", 5, CutPlacement::kLast), whole);
+          ExpectSameParts(BuildRankPart(got[r], colour, "bfs", 5, CutPlacement::kLast), whole);
+          ++checked;
+        }
+      }
+  }
+  EXPECT_GT(checked, 20);
+}
+
+// The graph rows a rank hands a distributed partitioner: the same from the file as from the mesh.
+TEST(RankNeighbourhood, GraphRowsFromTheFileAreTheMeshs) {
+  TempDir dir;
+  const std::string p = dir / "m.mrm";
+  for (const Mesh& m0 : MeshCorpus()) {
+    Mesh m = m0.Clone();
+    LayOutForRanks(&m);
+    WriteMeshFile(m, p);
+    for (int32_t P = 1; P <= std::min(4, m.NumVertices()); ++P)
+      for (int32_t r = 0; r < P; ++r) {
+        const GraphRows a = RangeGraphRows(m, r, P), b = ReadRangeGraphRows(p, r, P);
+        EXPECT_EQ(a.vertices, b.vertices);
+        EXPECT_EQ(a.first, b.first);
+        EXPECT_EQ(a.off, b.off);
+        EXPECT_EQ(a.adj, b.adj);
+        EXPECT_EQ(a.first, RangeFirst(r, m.NumVertices(), P));
+        EXPECT_EQ(static_cast<int64_t>(a.off.size()) - 1,
+                  RangeFirst(r + 1, m.NumVertices(), P) - a.first);
+        for (size_t i = 0; i + 1 < a.off.size(); ++i)  // each row the vertex's neighbours, sorted
+          EXPECT_TRUE(std::is_sorted(a.adj.begin() + a.off[i], a.adj.begin() + a.off[i + 1]));
+        EXPECT_GT(b.bytes_read, 0u);
+      }
   }
 }
 
@@ -223,6 +315,7 @@ TEST(RankNeighbourhood, WhatNoRankSeesAloneIsRefusedOnEveryRank) {
     RankShare s;
     s.content_id = id, s.vertices = 10, s.triangles = 8;
     s.owned_triangles = tris, s.row_entries = entries, s.neighbours = std::move(nbrs);
+    s.owned = 5;
     return s;
   };
   const std::vector<RankShare> good = {share(1, 5, 12, {1}), share(1, 3, 12, {0})};
@@ -243,6 +336,11 @@ TEST(RankNeighbourhood, WhatNoRankSeesAloneIsRefusedOnEveryRank) {
       << error({share(1, 4, 12, {1}), share(1, 3, 12, {0})});
   EXPECT_TRUE(HasText(error({share(1, 5, 12, {1}), share(1, 3, 11, {0})}), "23 v2t entries"))
       << error({share(1, 5, 12, {1}), share(1, 3, 11, {0})});
+  {  // a partition that leaves a vertex out (or gives one to two ranks)
+    std::vector<RankShare> s = {share(1, 5, 12, {1}), share(1, 3, 12, {0})};
+    s[1].owned = 4;
+    EXPECT_TRUE(HasText(error(s), "the ranks own 9 vertices, the header says 10")) << error(s);
+  }
   EXPECT_TRUE(HasText(error({share(1, 5, 12, {1}), share(1, 3, 12, {})}), "ranks 0 and 1 disagree"))
       << error({share(1, 5, 12, {1}), share(1, 3, 12, {})});
   EXPECT_TRUE(HasText(error({share(1, 5, 12, {2}), share(1, 3, 12, {})}), "ranks 0 and 2 disagree"))

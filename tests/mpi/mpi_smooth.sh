@@ -144,6 +144,31 @@ for np in 1 3; do
   equal "mrm written by $np ranks == serial along pi" "$tmp/serial.mrm" "$tmp/out.mrm"
 done
 check "mrm output reads" 0 "$bin" mesh info "$tmp/out.mrm"
+# PT-Scotch on the mesh file: each rank hands PT-Scotch its range's rows, learns its part's ids and
+# its ghosts' owners from the directory and reads only its part; the same parts (the same rows go
+# to PT-Scotch), pi and result as every rank reading the whole mesh (the same ids, as .node), the
+# serial sweep along pi, and -o FILE.mrm written by every rank byte for byte the serial file.
+if ((ptscotch)); then
+  for np in 2 3 4; do
+    check "ptscotch mrm np $np" 0 run $np "$mpi" smooth "$tmp/fine.mrm" --partition ptscotch \
+      --ordering bfs --max-iters 4 --tol -1 -o "$tmp/np.vtk" --pi-out "$tmp/pi" --quiet
+    contains "ptscotch mrm np $np" "ptscotch partition"
+    check "ptscotch whole np $np" 0 run $np "$mpi" smooth "$tmp/fineh.node" --partition ptscotch \
+      --ordering bfs --max-iters 4 --tol -1 -o "$tmp/whole.vtk" --pi-out "$tmp/piw" --quiet
+    tail -n +2 "$tmp/pi" >"$tmp/pi.body"
+    tail -n +2 "$tmp/piw" >"$tmp/piw.body"
+    equal "ptscotch mrm np $np: the whole read's pi" "$tmp/piw.body" "$tmp/pi.body"
+    equal "ptscotch mrm np $np == whole read" "$tmp/whole.vtk" "$tmp/np.vtk"
+    check "serial along pi (ptscotch mrm)" 0 "$bin" smooth "$tmp/fine.mrm" --visit-order "$tmp/pi" \
+      --max-iters 4 --tol -1 -o "$tmp/along.vtk" --quiet
+    equal "ptscotch mrm np $np == serial along pi" "$tmp/along.vtk" "$tmp/np.vtk"
+  done
+  check "ptscotch mrm to mrm np 3" 0 run 3 "$mpi" smooth "$tmp/fine.mrm" --partition ptscotch \
+    --max-iters 3 --tol -1 -o "$tmp/out.mrm" --pi-out "$tmp/pi" --quiet
+  check "serial to mrm (ptscotch pi)" 0 "$bin" smooth "$tmp/fine.mrm" --visit-order "$tmp/pi" \
+    --max-iters 3 --tol -1 -o "$tmp/serial.mrm" --quiet
+  equal "ptscotch mrm written by 3 ranks == serial along pi" "$tmp/serial.mrm" "$tmp/out.mrm"
+fi
 ls "$tmp"/*.tmp.* &>/dev/null && { fail=$((fail + 1)); echo "FAIL a temporary left behind"; } || pass=$((pass + 1))
 # Damaged, truncated and foreign files: exit 2 on every rank, the file and the place named.
 size=$(stat -c %s "$tmp/fine.mrm")
@@ -184,6 +209,15 @@ per_owned=400; "$bin" --version | grep -q Release || per_owned=1000000
 awk -v w="$whole_mb" -v f="$mrm_size" -v b="$per_owned" '$1 ~ /^[01]$/ && NF == 18 {n++; if ($17 > 0.8 * w) bad = 1; if ($18 > b) bad = 1; if ($10 * 1048576 > 0.56 * f) bad = 1}
   END {exit !(n == 2 && !bad)}' "$tmp/out" && pass=$((pass + 1)) || {
   fail=$((fail + 1)); echo "FAIL np 2 mrm memory or reading: a whole-reading rank ${whole_mb} MB, file $mrm_size B"; cat "$tmp/out"; }
+# With PT-Scotch's parts: a rank reads its range's rows (the graph PT-Scotch is given: 77% of a
+# range's bytes), then only its part, so at most 95% of the file at -np 2 (1.9/P); PT-Scotch's
+# structures beside the rows raise the peak to at most 0.85 of a whole-reading rank's.
+if ((ptscotch)); then
+  check "np 2 10^6 mrm ptscotch" 0 run 2 "$mpi" smooth "$tmp/big.mrm" --partition ptscotch --max-iters 3 --quiet
+  awk -v w="$whole_mb" -v f="$mrm_size" -v b="$per_owned" '$1 ~ /^[01]$/ && NF == 18 {n++; if ($17 > 0.85 * w) bad = 1; if ($18 > b) bad = 1; if ($10 * 1048576 > 0.95 * f) bad = 1}
+    END {exit !(n == 2 && !bad)}' "$tmp/out" && pass=$((pass + 1)) || {
+    fail=$((fail + 1)); echo "FAIL np 2 mrm ptscotch memory or reading: a whole-reading rank ${whole_mb} MB, file $mrm_size B"; cat "$tmp/out"; }
+fi
 
 # meshreuse-mpi refine: the mesh file every rank writes a range of is byte for byte one process's
 # (`mesh refine --layout pieces`, the whole mesh in memory) at -np 1..4, at a level where some
