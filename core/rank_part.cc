@@ -154,12 +154,36 @@ RankPart BuildPart(const Mesh& m, const std::vector<int32_t>& part, int32_t part
       p.v2v.idx.push_back(local[*u]);
     p.v2v.off[k + 1] = static_cast<int64_t>(p.v2v.idx.size());
   }
-  // Triangles owned here: those whose smallest corner (global id) is owned.
-  for (int32_t t : tris) {
+  // Triangles owned here: those whose smallest corner (global id) is owned. With `ori` in the
+  // input's order (the part as stored, like the paper's ORI); with any other ordering stably by
+  // their smallest local corner, as `reorder` stores a reordered mesh's (TriangleOrder::kSorted),
+  // so the quality pass follows the rank's layout rather than the input's triangle order (a file
+  // in random order at -np 2 with `--ordering hilbert`: 110 ms a sweep before, 32 after; bfs and
+  // grid-wave parts of plate6 1.7x and 2.1x faster; but ori on a pieces-layout file 9% slower
+  // sorted, so ori keeps the file's). The quality is an exact sum: the order costs no bit. A
+  // counting sort placed straight into the part's arrays: no second copy of them.
+  auto owned_here = [&](int32_t t) {
     const int32_t* c = &m.tri[3 * int64_t{t}];
-    if (part[std::min(c[0], std::min(c[1], c[2]))] != rank) continue;
-    for (int k = 0; k < 3; ++k) p.tri.push_back(local[c[k]]);
-    p.weight.push_back(weight ? weight[t] : GlobalQualityWeight(m, t));
+    return part[std::min(c[0], std::min(c[1], c[2]))] == rank;
+  };
+  auto smallest = [&](int32_t t) {
+    const int32_t* c = &m.tri[3 * int64_t{t}];
+    return std::min(local[c[0]], std::min(local[c[1]], local[c[2]]));
+  };
+  const bool as_stored = spec.name == "ori";
+  int64_t seen = 0;  // with ori, the key is the position among the owned triangles
+  std::vector<int64_t> start(static_cast<size_t>(p.total) + 1, 0);
+  for (int32_t t : tris)
+    if (owned_here(t)) ++start[as_stored ? 0 : smallest(t) + 1];
+  for (size_t k = 1; k < start.size(); ++k) start[k] += start[k - 1];
+  p.tri.resize(3 * static_cast<size_t>(start.back()));
+  p.weight.resize(static_cast<size_t>(start.back()));
+  for (int32_t t : tris) {
+    if (!owned_here(t)) continue;
+    const int64_t to = as_stored ? seen++ : start[smallest(t)]++;
+    const int32_t* c = &m.tri[3 * int64_t{t}];
+    for (int k = 0; k < 3; ++k) p.tri[3 * to + k] = local[c[k]];
+    p.weight[to] = weight ? weight[t] : GlobalQualityWeight(m, t);
   }
   // Links, both lists by increasing global id (`mine` is).
   std::map<int32_t, RankLink> links;

@@ -27,21 +27,40 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     fuzz::Exercise(std::move(raw));
   } catch (const InputError&) {
   }
-  for (int32_t P = 1; P <= 3; ++P) {
-    try {
-      std::vector<RankShare> shares;
-      std::vector<RankNeighbourhood> nbs;
-      for (int32_t r = 0; r < P; ++r) {
-        nbs.push_back(ReadRankNeighbourhood(f.path(), r, P));
-        shares.push_back(ShareOf(nbs.back()));
-      }
-      int32_t colours = 0;
-      const std::vector<int32_t> colour =
-          GreedyPartColouring(CheckRankShares(f.path(), shares), &colours);
-      for (RankNeighbourhood& nb : nbs) BuildRankPart(std::move(nb), colour, "bfs");
-    } catch (const InputError&) {
-    } catch (const UsageError&) {  // more ranks than vertices
-    }
+  int64_t vertices = -1;
+  try {
+    vertices = MeshFile(f.path()).vertices();
+  } catch (const InputError&) {
   }
+  for (int32_t P = 1; P <= 3; ++P)
+    for (bool scattered : {false, true}) try {
+        if (scattered && (vertices < P || vertices > (1 << 20))) continue;
+        auto part_of = [P](int64_t v) { return static_cast<int32_t>((v * 2654435761u >> 5) % P); };
+        const GhostOwners owners = [&](const std::vector<int64_t>& g) {
+          std::vector<int32_t> q;
+          for (int64_t v : g) q.push_back(part_of(v));
+          return q;
+        };
+        std::vector<RankShare> shares;
+        std::vector<RankNeighbourhood> nbs;
+        for (int32_t r = 0; r < P; ++r) {
+          if (!scattered) {
+            nbs.push_back(ReadRankNeighbourhood(f.path(), r, P));
+          } else {
+            ReadRangeGraphRows(f.path(), r, P);
+            std::vector<int64_t> owned;
+            for (int64_t v = 0; v < vertices; ++v)
+              if (part_of(v) == r) owned.push_back(v);
+            nbs.push_back(ReadPartNeighbourhood(f.path(), r, P, owned, owners));
+          }
+          shares.push_back(ShareOf(nbs.back()));
+        }
+        int32_t colours = 0;
+        const std::vector<int32_t> colour =
+            GreedyPartColouring(CheckRankShares(f.path(), shares), &colours);
+        for (RankNeighbourhood& nb : nbs) BuildRankPart(std::move(nb), colour, "bfs");
+      } catch (const InputError&) {
+      } catch (const UsageError&) {  // more ranks than vertices
+      }
   return 0;
 }
