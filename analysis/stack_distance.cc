@@ -17,6 +17,7 @@ constexpr uint32_t kGroup = 512;
 StackDistance::StackDistance(uint64_t dense_ids, uint32_t min_capacity)
     : dense_ids_(std::min<uint64_t>(dense_ids, kHashedBit)),
       min_capacity_(std::max<uint32_t>(kGroup, (min_capacity + kGroup - 1) & ~(kGroup - 1))) {
+  window_set_ = dense_ids_ > 0;  // a known-dense range: entry i is id i
   // A small window to start with: a stream's memory follows its own accesses (a trace announcing
   // 256 thread streams with a handful of records each costs a few kilobytes per stream).
   capacity_ = kGroup;
@@ -41,31 +42,85 @@ uint32_t* StackDistance::FindHashed(uint64_t id, size_t* slot_index) {
   return keys_[j] == id ? &hashed_last_[slots_[j]] : nullptr;
 }
 
-void StackDistance::GrowDense(uint64_t id) {
+void StackDistance::GrowDense(uint64_t index) {
   const uint64_t old = dense_last_.size();
-  const uint64_t cap = id < dense_ids_ ? dense_ids_ : kHashedBit;
+  const uint64_t cap = index < dense_ids_ ? dense_ids_ : kHashedBit;
   // Growth by a quarter, not a doubling: the array is written (resident) to its size, and at the
   // end of a stream a doubling leaves up to half of it unused.
-  dense_last_.resize(std::max<uint64_t>(id + 1, std::min<uint64_t>(cap, old + old / 4 + 1024)),
+  dense_last_.resize(std::max<uint64_t>(index + 1, std::min<uint64_t>(cap, old + old / 4 + 1024)),
                      kNone);
+  MoveHashedIntoArray();
+}
+
+void StackDistance::GrowDown(uint64_t entries) {
+  // The window's start moves down: every entry and every direct marker's key moves up by
+  // `entries` (O(array + window), so by at least a quarter of the array at a time).
+  dense_last_.insert(dense_last_.begin(), entries, kNone);
+  base_ -= entries << shift_;
+  for (uint32_t w = 0; w < bits_.size(); ++w)
+    for (uint64_t x = bits_[w]; x; x &= x - 1) {
+      uint32_t& key = owner_[w * 64 + __builtin_ctzll(x)];
+      if (!(key & kHashedBit)) key += static_cast<uint32_t>(entries);
+    }
+  MoveHashedIntoArray();
+}
+
+void StackDistance::MoveHashedIntoArray() {
   if (hash_used_ == 0) return;
   // Hashed ids now inside the array move there (their markers' owners too), each deleted from the
   // table where it stands (backward shift, O(its cluster)): rebuilding the whole table per growth
   // step, as before, cost about a fifth of the time on a stride-64 address scan.
   const uint64_t now = dense_last_.size();
   for (size_t j = 0; j < keys_.size();) {
-    const uint64_t key = keys_[j];
-    if (key == kEmptyKey || key >= now) {
+    const uint64_t i = keys_[j] == kEmptyKey ? kHashedBit : WindowIndex(keys_[j]);
+    if (i >= now) {
       ++j;
       continue;
     }
     const uint32_t slot = slots_[j];
     const uint32_t pos = hashed_last_[slot];
-    dense_last_[key] = pos;
-    if (pos != kNone) owner_[pos] = static_cast<uint32_t>(key);
+    dense_last_[i] = pos;
+    if (pos != kNone) owner_[pos] = static_cast<uint32_t>(i);
     hashed_last_[slot] = kNone;
     EraseAt(j);  // may move a later entry into j: look at j again
   }
+}
+
+void StackDistance::SetWindow() {
+  std::vector<uint64_t> ids;
+  for (uint64_t k : keys_)
+    if (k != kEmptyKey) ids.push_back(k);
+  // The stride: the largest 2^s (s <= 32) that three quarters of the ids share a residue modulo
+  // (a few ids of another alignment or another region must not decide it).
+  shift_ = 0;
+  uint64_t residue = 0;
+  std::vector<uint64_t> r(ids.size());
+  for (uint32_t sh = 32; sh > 0; --sh) {
+    const uint64_t m = (uint64_t{1} << sh) - 1;
+    for (size_t i = 0; i < ids.size(); ++i) r[i] = ids[i] & m;
+    std::sort(r.begin(), r.end());
+    size_t best = 0;
+    for (size_t i = 0, j = 0; i < r.size(); i = j) {
+      while (j < r.size() && r[j] == r[i]) ++j;
+      if (j - i > best) best = j - i, residue = r[i];
+    }
+    if (4 * best >= 3 * ids.size()) {
+      shift_ = sh;
+      break;
+    }
+  }
+  mask_ = (uint64_t{1} << shift_) - 1;
+  residue = shift_ ? residue : 0;
+  // The base: 32 Ki strides below the median of the ids on the stride (the window grows down as
+  // well as up, so the ids below it come in as they are met).
+  std::vector<uint64_t> on;
+  for (uint64_t id : ids)
+    if ((id & mask_) == residue) on.push_back(id);
+  std::nth_element(on.begin(), on.begin() + on.size() / 2, on.end());
+  const uint64_t median = on[on.size() / 2];
+  constexpr uint64_t kSlack = 1u << 15;
+  base_ = median >= (kSlack << shift_) ? median - (kSlack << shift_) : residue;
+  window_set_ = true;
 }
 
 void StackDistance::EraseAt(size_t j) {
@@ -87,12 +142,32 @@ void StackDistance::EraseAt(size_t j) {
 }
 
 uint32_t& StackDistance::LastOfSlow(uint64_t id, uint32_t* key) {
-  // Not covered by the array (the inline path takes those). Grow it over `id` when `id` is in the
-  // known-dense range, or when the array would stay within 8 entries per distinct id (+ 64 Ki).
-  if (id < dense_ids_ || (id < kHashedBit && id < 8 * (distinct_ + 8192))) {
-    GrowDense(id);
-    *key = static_cast<uint32_t>(id);
-    return dense_last_[id];
+  // Not covered by the array (the inline path takes those). Once 64 distinct ids are known the
+  // window is chosen; then grow the array over `id` when `id` is in the known-dense range, or when
+  // the array would stay within 8 entries per distinct id (+ 64 Ki).
+  if (!window_set_ && distinct_ >= 64) SetWindow();
+  if (window_set_) {
+    const uint64_t i = WindowIndex(id);
+    if (i < dense_last_.size()) {  // covered since SetWindow (the array may be empty before)
+      *key = static_cast<uint32_t>(i);
+      return dense_last_[i];
+    }
+    if (id < dense_ids_ || (i < kHashedBit && i < 8 * (distinct_ + 8192))) {
+      GrowDense(i);
+      *key = static_cast<uint32_t>(i);
+      return dense_last_[i];
+    }
+    // Below the window, on its stride: grow it down while it stays within the same bound.
+    if (dense_ids_ == 0 && id < base_ && ((base_ - id) & mask_) == 0) {
+      const uint64_t need = (base_ - id) >> shift_, size = dense_last_.size();
+      const uint64_t grow = std::min(std::max(need, size / 4 + 1024), base_ >> shift_);
+      if (size + grow < std::min<uint64_t>(kHashedBit, 8 * (distinct_ + 8192))) {
+        GrowDown(grow);
+        const uint64_t j = WindowIndex(id);
+        *key = static_cast<uint32_t>(j);
+        return dense_last_[j];
+      }
+    }
   }
   if (id == kEmptyKey) throw std::invalid_argument("id 2^64-1 is reserved");
   if (2 * (hash_used_ + 1) > keys_.size()) {  // grow at load 1/2
@@ -181,8 +256,10 @@ template uint64_t StackDistance::Visit<false>(uint64_t);
 bool StackDistance::Remove(uint64_t id) {
   uint32_t* last = nullptr;
   size_t j = 0;
-  if (id < dense_last_.size()) {
-    if (dense_last_[id] != kNone) last = &dense_last_[id];
+  const uint64_t i = WindowIndex(id);
+  const bool direct = i < dense_last_.size();
+  if (direct) {
+    if (dense_last_[i] != kNone) last = &dense_last_[i];
   } else if (id != kEmptyKey) {
     last = FindHashed(id, &j);
   }
@@ -190,7 +267,7 @@ bool StackDistance::Remove(uint64_t id) {
   ClearMarker(*last);
   --live_;
   *last = kNone;
-  if (id >= dense_last_.size()) EraseAt(j);  // backward-shift deletion keeps probing exact
+  if (!direct) EraseAt(j);  // backward-shift deletion keeps probing exact
   return true;
 }
 
@@ -206,7 +283,8 @@ std::vector<uint64_t> StackDistance::StackBottomUp() const {
   for (uint32_t w = 0; w < bits_.size(); ++w)
     for (uint64_t x = bits_[w]; x; x &= x - 1) {
       const uint32_t key = owner_[w * 64 + __builtin_ctzll(x)];
-      out.push_back(key & kHashedBit ? slot_id[key & ~kHashedBit] : key);
+      out.push_back(key & kHashedBit ? slot_id[key & ~kHashedBit]
+                                     : base_ + (uint64_t{key} << shift_));
     }
   return out;
 }

@@ -19,6 +19,7 @@
 // window are 32-bit.
 #pragma once
 
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <cstdlib>
@@ -64,11 +65,15 @@ class StackDistance {
  public:
   static constexpr uint64_t kCold = std::numeric_limits<uint64_t>::max();
 
-  // Ids live in a direct array (one 4-byte entry per id up to the largest covered) or a hash
-  // table. Ids below dense_ids (a known-dense range, e.g. vertex ids) are always direct; the array
-  // grows over larger ids (below 2^31) while it stays within 8 entries per distinct id seen (plus
-  // 64 Ki), so small-id traces of unknown range get the direct path too without letting one large
-  // id cost gigabytes; hashed ids move into the array when it grows over them.
+  // Ids live in a direct array or a hash table. Ids below dense_ids (a known-dense range, e.g.
+  // vertex ids) are always direct, entry i for id i. Otherwise the array is a strided window,
+  // entry i for id base + i * 2^shift, chosen from the first 64 distinct ids (hashed until then):
+  // 2^shift the largest power of two that three quarters of them share a residue modulo, base 32
+  // Ki strides below the median of those (or the residue itself, near 0). So addresses at element
+  // granularity -- multiples of their element size, clustered far from 0 -- are direct too, as
+  // small ids are. The window grows up and down while it stays within 8 entries per distinct id
+  // seen (plus 64 Ki), so no one far id costs gigabytes; ids off it (another residue, too far)
+  // stay hashed; hashed ids move into the array when it grows over them.
   explicit StackDistance(uint64_t dense_ids = 0, uint32_t min_capacity = 1u << 16);
   StackDistance(StackDistance&&) = default;
   StackDistance& operator=(StackDistance&&) = default;
@@ -92,6 +97,7 @@ class StackDistance {
   uint64_t distinct() const { return distinct_; }  // ids ever seen (not reduced by Remove)
   uint64_t live() const { return live_; }          // ids tracked now
   uint64_t compactions() const { return compactions_; }
+  uint64_t hashed() const { return hash_used_; }  // ids in the hash table now (not direct)
   size_t MemoryBytes() const;
 
  private:
@@ -101,18 +107,28 @@ class StackDistance {
   static constexpr uint32_t kShortWords = 16;
 
   uint32_t& LastOf(uint64_t id, uint32_t* key) {
-    if (id < dense_last_.size()) {  // the common case for vertex ids: inline
-      *key = static_cast<uint32_t>(id);
-      return dense_last_[id];
+    const uint64_t off = id - base_;  // wraps below base_: then far beyond the array
+    if ((off & mask_) == 0 && (off >> shift_) < dense_last_.size()) {  // inline: the common case
+      *key = static_cast<uint32_t>(off >> shift_);
+      return dense_last_[off >> shift_];
     }
     return LastOfSlow(id, key);
   }
+  // The array entry `id` would have in the window (kHashedBit when it has none).
+  uint64_t WindowIndex(uint64_t id) const {
+    const uint64_t off = id - base_;
+    if (id < base_ || (off & mask_) != 0) return kHashedBit;
+    return std::min<uint64_t>(off >> shift_, kHashedBit);
+  }
+  void SetWindow();  // from the hashed ids so far
   uint32_t& LastOfSlow(uint64_t id, uint32_t* key);
   template <bool kDistance>
   uint64_t Visit(uint64_t id);
   uint32_t* FindHashed(uint64_t id, size_t* slot_index);
-  void GrowDense(uint64_t id);  // cover id, moving hashed ids in the new range into the array
-  void EraseAt(size_t index);   // deletes a table entry (its slot freed), later ones moved back
+  void GrowDense(uint64_t index);   // cover entry index, moving hashed ids it covers there
+  void GrowDown(uint64_t entries);  // the window starts `entries` strides lower
+  void MoveHashedIntoArray();       // hashed ids the array covers move there
+  void EraseAt(size_t index);       // deletes a table entry (its slot freed), later ones moved back
   uint64_t LiveAfter(uint32_t p) const;  // live markers at positions > p (p < t_)
   void TreeAdd(uint32_t group, int32_t delta) {
     for (uint32_t i = group + 1; i < tree_.size(); i += i & (0u - i)) tree_[i] += delta;
@@ -126,7 +142,10 @@ class StackDistance {
 
   uint64_t dense_ids_;
   uint32_t min_capacity_;
-  std::vector<uint32_t> dense_last_;   // by id
+  uint64_t base_ = 0, mask_ = 0;  // the window: entry i for id base_ + (i << shift_)
+  uint32_t shift_ = 0;
+  bool window_set_ = false;
+  std::vector<uint32_t> dense_last_;   // by window entry
   std::vector<uint32_t> hashed_last_;  // by hash slot number
   std::vector<uint32_t> free_slots_;   // hashed_last_ entries freed by Remove
   std::vector<uint64_t> keys_;         // open addressing, kEmptyKey = free

@@ -24,11 +24,17 @@ IdIndex::IdIndex(const std::vector<uint64_t>& ids) {
   if (ids.size() >= kAbsent) throw std::length_error("IdIndex: too many ids");
   if (ids.empty()) return;
   const auto [lo, hi] = std::minmax_element(ids.begin(), ids.end());
-  const uint64_t range = *hi - *lo;  // ids are distinct, so range >= size - 1
+  // The stride every id shares from the least (addresses: their alignment or a scan's step).
+  uint64_t spread = 0;
+  for (uint64_t id : ids) spread |= id - *lo;
+  shift_ = spread ? std::min(32, __builtin_ctzll(spread)) : 0;
+  const uint64_t range = (*hi - *lo) >> shift_;  // ids are distinct, so range >= size - 1
   if (range < 4 * ids.size() + 65536) {
     lo_ = *lo;
+    mask_ = (uint64_t{1} << shift_) - 1;
     direct_.assign(range + 1, kAbsent);
-    for (size_t k = 0; k < ids.size(); ++k) direct_[ids[k] - lo_] = static_cast<uint32_t>(k);
+    for (size_t k = 0; k < ids.size(); ++k)
+      direct_[(ids[k] - lo_) >> shift_] = static_cast<uint32_t>(k);
     return;
   }
   direct_mode_ = false;

@@ -25,9 +25,11 @@
 
 namespace meshreuse {
 
-// id -> its index in a list of distinct ids: a direct array over the ids' range when that range is
-// within 4 entries per id (+ 64 Ki; vertex ids of one chunk under a good ordering), else an
-// open-addressing table at load <= 1/2 with each key and its index in one slot.
+// id -> its index in a list of distinct ids: a direct array over the ids' range, at the stride
+// they all share from the least (2^s: addresses' alignment, a scan's step), when that range is
+// within 4 entries per id (+ 64 Ki; vertex ids of one chunk under a good ordering, a chunk of
+// addresses), else an open-addressing table at load <= 1/2 with each key and its index in one
+// slot.
 class IdIndex {
  public:
   static constexpr uint32_t kAbsent = ~uint32_t{0};
@@ -35,7 +37,7 @@ class IdIndex {
   uint32_t Find(uint64_t id) const {
     if (direct_mode_) {
       const uint64_t x = id - lo_;  // ids below lo_ wrap to large values
-      return x < direct_.size() ? direct_[x] : kAbsent;
+      return (x & mask_) == 0 && (x >> shift_) < direct_.size() ? direct_[x >> shift_] : kAbsent;
     }
     return FindHashed(id);
   }
@@ -48,7 +50,8 @@ class IdIndex {
   };
   uint32_t FindHashed(uint64_t id) const;
   bool direct_mode_ = true;
-  uint64_t lo_ = 0;
+  uint64_t lo_ = 0, mask_ = 0;
+  uint32_t shift_ = 0;
   std::vector<uint32_t> direct_;
   std::vector<Slot> slots_;
 };

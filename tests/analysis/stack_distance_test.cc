@@ -210,6 +210,71 @@ TEST(StackDistance, RemoveAndStackMatchAListReference) {
   EXPECT_EQ(sd.Access(5), kCold) << "a removed id is cold again";
 }
 
+// Addresses as ids (element granularity): a strided window makes them direct wherever they lie.
+// Scans in shuffled laps over 3,000 addresses at base B and stride 2^s, with ids off the stride,
+// below the window and far beyond it mixed in: every distance the textbook's; only those odd ids
+// hashed; the stack bottom-up the ids themselves (checked by StackBottomUp against a list).
+TEST(StackDistance, StridedAddressesAreDirectWhereverTheyLie) {
+  SplitMix64 rng(17);
+  for (uint64_t base : {uint64_t{0}, uint64_t{4096 * 7 + 64}, uint64_t{0x7f3a12345000}})
+    for (int s : {0, 3, 6, 12}) {
+      SCOPED_TRACE("base " + std::to_string(base) + " stride 2^" + std::to_string(s));
+      std::vector<uint64_t> lap;
+      for (uint64_t i = 0; i < 3000; ++i) lap.push_back(base + (i << s) + (uint64_t{1} << 20 << s));
+      std::vector<uint64_t> t, odd;
+      if (s > 0) odd.push_back(lap[5] + 1);  // off the stride
+      odd.push_back(lap[0] - (uint64_t{1} << 19 << s) - (uint64_t{1} << 16 << s));  // below
+      odd.push_back(lap[0] + (uint64_t{1} << 40));                                  // far beyond
+      for (int k = 0; k < 3; ++k) {
+        for (size_t i = lap.size(); i > 1; --i) std::swap(lap[i - 1], lap[rng.Below(i)]);
+        for (size_t i = 0; i < lap.size(); ++i) {
+          t.push_back(lap[i]);
+          if (i % 500 == 7) t.insert(t.end(), odd.begin(), odd.end());
+        }
+      }
+      EXPECT_EQ(Distances(t, 0, 512), TextbookStackDistances(t));
+      StackDistance sd(0, 512);
+      ListStack ref;
+      for (uint64_t id : t) ASSERT_EQ(sd.Access(id), ref.Access(id));
+      EXPECT_EQ(sd.hashed(), odd.size()) << "the strided ids went direct, the odd ones not";
+      EXPECT_EQ(sd.StackBottomUp(), ref.s);
+      for (uint64_t id : {lap[3], odd[0], lap[9]}) {
+        ASSERT_EQ(sd.Remove(id), ref.Remove(id));
+        ASSERT_EQ(sd.Access(lap[4]), ref.Access(lap[4]));
+        ASSERT_EQ(sd.Access(id), ref.Access(id));
+      }
+      EXPECT_EQ(sd.StackBottomUp(), ref.s);
+    }
+}
+
+// A window that must grow down: a scan from high addresses to low (the first 64 ids, which place
+// the window, are its top), twice, on the stride of 8 far from 0; then ids below 0's reach.
+TEST(StackDistance, TheWindowGrowsDownToIdsBelowIt) {
+  std::vector<uint64_t> t;
+  const uint64_t top = 0x55d0c0000000;
+  for (int lap = 0; lap < 2; ++lap)
+    for (uint64_t i = 0; i < 200000; ++i) t.push_back(top - 8 * i);
+  EXPECT_EQ(Distances(t, 0, 512), TextbookStackDistances(t));
+  StackDistance sd(0, 512);
+  for (uint64_t id : t) sd.Access(id);
+  EXPECT_EQ(sd.hashed(), 0u) << "every id of the scan direct";
+  EXPECT_LT(sd.MemoryBytes(), 25u * 200000) << "4 bytes an entry, not a table's 28 per id";
+  // Then ids far below the window (hashed: growing down to them would break the bound), twice.
+  std::vector<uint64_t> low;
+  for (uint64_t i = 0; i < 5000; ++i) low.push_back(8 * (5000 - i) + 8);
+  for (uint64_t id : low) t.push_back(id);
+  t.insert(t.end(), low.begin(), low.end());
+  EXPECT_EQ(Distances(t, 0, 512), TextbookStackDistances(t));
+  ListStack ref;
+  StackDistance sd2(0, 512);
+  std::vector<uint64_t> head(t.begin(), t.begin() + 3000), tail(t.end() - 20000, t.end());
+  for (uint64_t id : head) ASSERT_EQ(sd2.Access(id), ref.Access(id));
+  for (uint64_t id : tail) ASSERT_EQ(sd2.Access(id), ref.Access(id));
+  ASSERT_TRUE(sd2.Remove(head[10]));
+  ASSERT_TRUE(ref.Remove(head[10]));
+  EXPECT_EQ(sd2.StackBottomUp(), ref.s);
+}
+
 TEST(StackDistance, EdgeCases) {
   EXPECT_TRUE(Distances({}, 100, 128).empty());
   EXPECT_EQ(Distances({5}, 100, 128), (std::vector<uint64_t>{kCold}));

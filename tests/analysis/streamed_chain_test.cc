@@ -55,6 +55,22 @@ TEST(IdIndex, FindsExactlyItsIds) {
     }
   }
   EXPECT_EQ(IdIndex({}).Find(0), IdIndex::kAbsent);
+  // Addresses on a power-of-two stride far from 0: direct (an array, not a table), and ids off
+  // the stride, before the first or after the last absent.
+  for (uint64_t stride : {uint64_t{64}, uint64_t{4096}}) {
+    std::vector<uint64_t> ids;
+    const uint64_t base = 0x7f3a12345000;
+    for (uint64_t i = 0; i < 5000; ++i) ids.push_back(base + ((i * 7919) % 5000) * stride);
+    const IdIndex x(ids);
+    for (size_t k = 0; k < ids.size(); ++k) {
+      ASSERT_EQ(x.Find(ids[k]), k);
+      ASSERT_EQ(x.Find(ids[k] + stride / 2), IdIndex::kAbsent);
+      ASSERT_EQ(x.Find(ids[k] + 1), IdIndex::kAbsent);
+    }
+    EXPECT_EQ(x.Find(base - stride), IdIndex::kAbsent);
+    EXPECT_EQ(x.Find(base + 5000 * stride), IdIndex::kAbsent);
+    EXPECT_LE(x.MemoryBytes(), 4u * 5000) << "direct, one entry per stride (a table: 256 KiB)";
+  }
 }
 
 TEST(ChunkResolver, EqualsReplayChunkByChunk) {
