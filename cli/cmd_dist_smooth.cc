@@ -33,7 +33,8 @@ int DistSmoothCommand(const Args& args, HaloTransport& tx, const JobPartition& j
       "of a split set (`gmsh -part P -part_split`; P ranks); ranges: contiguous ranges of the "
       "stored ids. For a mesh file (FILE.mrm, written by `meshreuse mesh convert MESH -o "
       "FILE.mrm` in Hilbert order) the default is ranges, and each rank then reads only its "
-      "range and ghost ring (the other methods read the whole file on every rank)")(
+      "range and ghost ring; with ptscotch its range's rows, then only its part and ghost ring "
+      "(the other methods read the whole file on every rank)")(
       "ordering", po::value(&cfg.ordering)->default_value("ori"),
       ("each rank's layout of its part: " + OrderingNames()).c_str())(
       "seed", po::value(&seed)->default_value("1"), "seed of METIS and seeded orderings")(
@@ -51,10 +52,10 @@ int DistSmoothCommand(const Args& args, HaloTransport& tx, const JobPartition& j
       "at most this many sweeps")(
       "output,o", po::value(&cfg.output),
       "write the smoothed mesh (PATH.vtk, PATH.mrm or a .node/.ele prefix), gathered on rank 0; "
-      "a mesh file read in ranges and written as PATH.mrm is written by every rank at once")(
-      "pi-out", po::value(&cfg.pi_out),
-      "write the serial visit order this run equals (ordered mode): `meshreuse smooth MESH "
-      "--visit-order FILE` reproduces the run bit for bit")(
+      "a mesh file read in ranges or parts and written as PATH.mrm is written by every rank at "
+      "once")("pi-out", po::value(&cfg.pi_out),
+              "write the serial visit order this run equals (ordered mode): `meshreuse smooth MESH "
+              "--visit-order FILE` reproduces the run bit for bit")(
       "out", po::value(&out_dir), "write sweeps.csv, ranks.csv and run.json here")(
       "quiet,q", "no progress on stderr");
   po::positional_options_description pos;
