@@ -113,6 +113,12 @@ OwnedRows ReadOwnedRows(MeshFile& f, const std::vector<int64_t>& owned, const So
       if (c[j] < 0 || c[j] >= n)
         fail("triangle " + std::to_string(o.tris[i]) + ": corner " + std::to_string(c[j]) +
              " outside 0.." + std::to_string(n - 1));
+    // A repeated corner would count one (vertex, triangle) pair twice below, and could balance a
+    // row that lists a triangle without its vertex (found by fuzz_mesh_file: ReadRangeGraphRows
+    // then overran a row's room).
+    if (c[0] == c[1] || c[1] == c[2] || c[0] == c[2])
+      fail("triangle " + std::to_string(o.tris[i]) + ": degenerate triangle: vertex " +
+           std::to_string(c[c[0] == c[1] ? 0 : 2]) + " is used twice");
   }
   int64_t pairs = 0;
   for (size_t i = 0; i < o.tris.size(); ++i)

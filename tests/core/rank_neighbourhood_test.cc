@@ -291,6 +291,30 @@ TEST(RankNeighbourhood, InconsistentFilesAreRefusedByTheOwner) {
       }
     EXPECT_TRUE(seen);
   }
+  // A corner repeated (c0, c0, c2): c0's pair with the triangle counts twice, balancing the
+  // count of c1's row, which lists the triangle without c1 (the graph-rows reader once overran a
+  // row's room on such a file: fuzz_mesh_file). Every rank whose rows list it refuses it, by both
+  // readers.
+  x = b;
+  std::memcpy(&x[tris + 12 * tt + 4], &m.tri[3 * tt], 4);
+  {
+    WriteBytes(bad, RehashMeshFile(x));
+    int refused = 0;
+    for (int32_t r = 0; r < P; ++r)
+      for (int reader = 0; reader < 2; ++reader) try {
+          if (reader == 0)
+            ReadRankNeighbourhood(bad, r, P);
+          else
+            ReadRangeGraphRows(bad, r, P);
+        } catch (const InputError& e) {
+          ++refused;
+          EXPECT_TRUE(HasText(e.what(), "triangle " + std::to_string(tt) +
+                                            ": degenerate triangle: vertex " +
+                                            std::to_string(m.tri[3 * tt]) + " is used twice"))
+              << e.what();
+        }
+    EXPECT_GE(refused, 2);
+  }
   // A row out of order.
   const int32_t rv = m.interior[m.interior.size() / 2];
   x = b;
