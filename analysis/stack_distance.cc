@@ -142,10 +142,10 @@ void StackDistance::EraseAt(size_t j) {
 }
 
 uint32_t& StackDistance::LastOfSlow(uint64_t id, uint32_t* key) {
-  // Not covered by the array (the inline path takes those). Once 64 distinct ids are known the
-  // window is chosen; then grow the array over `id` when `id` is in the known-dense range, or when
-  // the array would stay within 8 entries per distinct id (+ 64 Ki).
-  if (!window_set_ && distinct_ >= 64) SetWindow();
+  // Not covered by the array (the inline path takes those). Once 64 ids are held in the table the
+  // window is chosen from them; then grow the array over `id` when `id` is in the known-dense
+  // range, or when the array would stay within 8 entries per distinct id (+ 64 Ki).
+  if (!window_set_ && hash_used_ >= 64) SetWindow();  // 64 ids held now (a sampler removes some)
   if (window_set_) {
     const uint64_t i = WindowIndex(id);
     if (i < dense_last_.size()) {  // covered since SetWindow (the array may be empty before)

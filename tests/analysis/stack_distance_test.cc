@@ -203,6 +203,28 @@ TEST(StackDistance, RemoveAndStackMatchAListReference) {
     EXPECT_EQ(sd.StackBottomUp(), ref.s) << "trial " << trial;
     EXPECT_EQ(sd.live(), ref.s.size());
   }
+  // Without a known-dense range the window is chosen from the ids held: removals before it
+  // (a sampler's) leave it unchosen until 64 are held again, then every distance still exact.
+  for (int trial = 0; trial < 10; ++trial) {
+    StackDistance sd(0, 512);
+    ListStack ref;
+    const uint64_t stride = uint64_t{8} << (trial % 4), base = trial % 2 ? 0x7f0000001000 : 64;
+    for (uint64_t i = 0; i < 64; ++i)
+      ASSERT_EQ(sd.Access(base + i * stride), ref.Access(base + i * stride));
+    for (uint64_t i = 0; i < 64; ++i)
+      ASSERT_EQ(sd.Remove(base + i * stride), ref.Remove(base + i * stride));
+    for (int i = 0; i < 20000; ++i) {
+      const uint64_t id = base + rng.Below(3000) * stride + (rng.Below(50) == 0 ? 1 : 0);
+      if (rng.Below(10) == 0)
+        ASSERT_EQ(sd.Remove(id), ref.Remove(id)) << "trial " << trial << " step " << i;
+      else
+        ASSERT_EQ(sd.Access(id), ref.Access(id)) << "trial " << trial << " step " << i;
+    }
+    EXPECT_EQ(sd.StackBottomUp(), ref.s) << "trial " << trial;
+    uint64_t off_stride = 0;  // held ids off the stride: the only ones hashed
+    for (uint64_t id : ref.s) off_stride += (id - base) % stride != 0;
+    EXPECT_EQ(sd.hashed(), off_stride) << "trial " << trial;
+  }
   StackDistance sd(0);
   EXPECT_FALSE(sd.Remove(5));
   EXPECT_EQ(sd.Access(5), kCold);
