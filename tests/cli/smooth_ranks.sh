@@ -89,6 +89,9 @@ for r in 1 3; do
     -o "$tmp/rs.mrm" --quiet
   if [[ -s $tmp/rt.mrm ]] && cmp -s "$tmp/rt.mrm" "$tmp/rs.mrm"; then pass=$((pass + 1)); else fail=$((fail + 1)); echo "FAIL mrm as $r threads != serial along pi"; fi
 done
+# A repeated corner (tests/data/broken) refused by the ranks that read the triangle, by name.
+check "mrm repeated corner as 2 threads" 2 "$bin" smooth-ranks "$data/broken/mrm_repeated_corner.mrm" --ranks 2 --quiet
+contains "mrm repeated corner as 2 threads" "triangle 0: degenerate triangle: vertex 0 is used twice"
 
 # A mesh file is a mesh to the analyzer, the simulator and the tracer (found by its name): the same
 # tables as the same mesh in text.

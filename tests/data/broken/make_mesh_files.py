@@ -84,6 +84,11 @@ def main():
     b = bytearray(g)
     struct.pack_into("<i", b, tris + 4, 99)
     files["mrm_corner.mrm"] = mend(bytes(b))
+    # Mended: triangle 0's second corner made its first (a repeated corner, which once let a
+    # rank's graph rows overrun a row: found by fuzz_mesh_file).
+    b = bytearray(g)
+    b[tris + 4 : tris + 8] = b[tris : tris + 4]
+    files["mrm_repeated_corner.mrm"] = mend(bytes(b))
     for name, data in files.items():
         with open(f"{out}/{name}", "wb") as f:
             f.write(data)
