@@ -27,9 +27,14 @@ SortedIds::SortedIds(const std::vector<int64_t>& ids) {
     if (!i || ids[i] != ids[i - 1] + 1) start_.push_back(ids[i]), pos_.push_back(int64_t(i));
   }
   pos_.push_back(static_cast<int64_t>(ids.size()));
+  for (size_t r = 0; r < start_.size(); ++r)
+    if (pos_[r + 1] - pos_[r] > big_len_)
+      big_first_ = start_[r], big_pos_ = pos_[r], big_len_ = pos_[r + 1] - pos_[r];
 }
 
 int64_t SortedIds::Find(int64_t g) const {
+  // The longest run first: a range's owned ids are one run beside its ghosts' many short ones.
+  if (g >= big_first_ && g - big_first_ < big_len_) return big_pos_ + (g - big_first_);
   const size_t r = std::upper_bound(start_.begin(), start_.end(), g) - start_.begin();
   if (r == 0) return -1;
   const int64_t p = pos_[r - 1] + (g - start_[r - 1]);

@@ -99,14 +99,15 @@ RankNeighbourhood ReadPartNeighbourhood(const std::string& path, int32_t rank, i
                                         const GhostLookup& lookup = {});
 
 // Positions in an increasing list of ids, found by binary search over its runs of consecutive
-// ids: a range is one run, a part of a Hilbert-ordered file a few per hundred vertices, so the
-// search stays in cache where a search of the ids themselves would not.
+// ids (the longest run tried first: a range's owned ids are one run), so the search stays in
+// cache where a search of the ids themselves would not.
 class SortedIds {
  public:
   explicit SortedIds(const std::vector<int64_t>& ids);  // std::logic_error unless increasing
   int64_t Find(int64_t id) const;                       // its position, or -1
  private:
   std::vector<int64_t> start_, pos_;
+  int64_t big_first_ = 0, big_pos_ = 0, big_len_ = 0;  // the longest run
 };
 
 // Rows of the vertex graph (neighbours by global id, each row increasing) for the vertices

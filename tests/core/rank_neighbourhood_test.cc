@@ -63,6 +63,32 @@ std::vector<Mesh> LaidOutCorpus() {
   return corpus;
 }
 
+// SortedIds against a search of the ids themselves: one long run among short ones (a range and
+// its ghosts), scattered ids, runs at both ends, empty.
+TEST(RankNeighbourhood, SortedIdsFindWhatASearchFinds) {
+  uint64_t state = 7;
+  auto next = [&state] {
+    return (state = state * 6364136223846793005ull + 1442695040888963407ull) >> 33;
+  };
+  for (int kind = 0; kind < 4; ++kind) {
+    std::vector<int64_t> ids;
+    for (int64_t v = 0; v < 20000; ++v) {
+      const bool in = kind == 0   ? (v >= 5000 && v < 15000) || next() % 50 == 0
+                      : kind == 1 ? next() % 3 == 0
+                      : kind == 2 ? v < 100 || v >= 19900 || next() % 7 == 0
+                                  : false;
+      if (in) ids.push_back(v);
+    }
+    const SortedIds index(ids);
+    for (int64_t g = -3; g < 20003; ++g) {
+      const auto it = std::lower_bound(ids.begin(), ids.end(), g);
+      const int64_t want = it != ids.end() && *it == g ? it - ids.begin() : -1;
+      ASSERT_EQ(index.Find(g), want) << "kind " << kind << " id " << g;
+    }
+  }
+  EXPECT_THROW(SortedIds({3, 3}), std::logic_error);
+}
+
 TEST(RankNeighbourhood, RangeFormulaIsHilbertRangePartsOwn) {
   for (int64_t n : {1, 2, 3, 7, 10, 1000, 1001})
     for (int32_t P = 1; P <= std::min<int64_t>(n, 9); ++P) {
