@@ -623,7 +623,7 @@ ReuseOptions ChunkOptions(const AnalyzeConfig& cfg, const SummaryFile& s) {
 }
 
 // The chunk's summary entries from its analysis (the exact chunk and the sampled ids' chunk of
-// each stream).
+// each stream); the first touches are moved out of the analysis, not copied.
 void Collect(ReuseAnalysis& a, SummaryFile* out) {
   SummaryFile& s = *out;
   s.info = a.info();
@@ -631,22 +631,23 @@ void Collect(ReuseAnalysis& a, SummaryFile* out) {
   for (int t = 0; t < a.threads(); ++t) {
     s.moves.push_back(a.moves(t));
     for (Granularity sg : {Granularity::kElement, Granularity::kLine}) {
-      const StreamAnalysis* x = a.stream(t, sg);
-      if (!x) continue;
+      if (!a.stream(t, sg)) continue;
+      StreamAnalysis* x = &a.MakeStream(t, sg);  // the same stream: its lists are moved out
+      const uint64_t stream_accesses = x->exact ? x->sd.accesses() : x->added;
       // The exact chunk, and the sampled ids' chunk: one entry each.
-      for (const StreamAnalysis* y :
-           {x->exact ? x : nullptr, static_cast<const StreamAnalysis*>(x->sampled_chunk.get())}) {
+      for (StreamAnalysis* y : {x->exact ? x : nullptr, x->sampled_chunk.get()}) {
         if (!y) continue;
         StreamSummary ss;
         ss.thread = static_cast<uint32_t>(t);
         ss.granularity = sg;
         ss.sampled = y != x;
         ss.accesses = y->sd.accesses();
-        ss.stream_accesses = x->exact ? x->sd.accesses() : x->added;
+        ss.stream_accesses = stream_accesses;
         ss.offset = ss.sampled ? 0 : x->offset;
-        ss.chunk.first_ids = y->first_ids;
-        ss.chunk.first_positions = y->first_positions;
+        ss.chunk.first_ids = std::move(y->first_ids);
+        ss.chunk.first_positions = std::move(y->first_positions);
         ss.chunk.stack = y->sd.StackBottomUp();
+        y->sd = StackDistance();  // its memory, free for what follows
         y->hist.ForEach([&](uint64_t d, uint64_t n) { ss.hist.emplace_back(d, n); });
         const auto& steps = y->profile.steps();
         for (size_t i = 0; i < steps.size(); ++i)
@@ -809,7 +810,10 @@ SummaryFile SummarizeChunk(const AnalyzeConfig& cfg, uint32_t r, uint32_t p, con
   } else if (fmt) {
     eoff = loff = {s.first};  // one stream, one access per record (fixed records are 1 byte)
   } else {
-    TraceOffsets(in, s.first, cfg.line_bytes, &eoff, &loff);
+    // Only a profile needs the true offsets (reading back to the sweep's start); a distributed
+    // run without one sets them from the ranks before (RunDistributed), a summary file must hold
+    // them (its merge may write a profile).
+    TraceOffsets(in, cfg.profile || !cfg.transport ? s.first : 0, cfg.line_bytes, &eoff, &loff);
   }
 
   ReuseAnalysis a(ChunkOptions(cfg, s));
