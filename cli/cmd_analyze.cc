@@ -1,6 +1,7 @@
 // meshreuse analyze: reuse distances, quantiles, histograms, profiles and modelled misses of
 // meshes (streamed, no file), trace files or other tools' traces (reports/analyze.h).
 #include <cstdio>
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -10,6 +11,7 @@
 #include "core/output_file.h"
 #include "reports/analyze.h"
 #include "reports/chunk_summary.h"
+#include "reports/chunk_threads.h"
 #include "tracer/trace_formats.h"
 
 namespace meshreuse::cli {
@@ -87,9 +89,10 @@ int AnalyzeCommand(const Args& args, ChunkTransport* transport) {
       "the inputs are the summaries of chunks 0..P-1, in order: merge them into exactly the "
       "serial analysis (every table and output below)")(
       "rank-stats", po::value(&rank_stats),
-      "meshreuse-mpi: write each rank's CPU seconds per phase, wall seconds, records, distinct "
-      "ids, stack ids received and sent, bytes sent and peak memory (JSON) to this file")(
-      "quiet,q", "no progress on stderr");
+      "meshreuse-mpi, or --threads over a plain trace file (a chunk per thread): write each "
+      "rank's (thread's) CPU seconds per phase, wall seconds, records, distinct ids, stack ids "
+      "received and sent, bytes sent and peak memory (JSON) to this file")("quiet,q",
+                                                                           "no progress on stderr");
   AddRankOptions(desc, &rank_text,
                  "meshes: analyse each of P ranks' parts as the distributed smoother lays it out "
                  "and sweeps it (owned non-cut, cut, boundary, ghosts; --orderings inside each "
@@ -156,8 +159,17 @@ int AnalyzeCommand(const Args& args, ChunkTransport* transport) {
     RunChunk(cfg, MakeLog(progress));
     return 0;
   }
-  if (!rank_stats.empty() && !transport)
-    throw UsageError("--rank-stats is for a distributed run (mpirun ... meshreuse-mpi analyze)");
+  if (!rank_stats.empty() && !transport) {
+    bool chunked = cfg.threads > 1 && cfg.ranks == 0;
+    for (const std::string& in : cfg.inputs)  // a missing file is reported by the analysis
+      chunked = chunked && (!std::filesystem::exists(in) ||
+                            ((!cfg.format.empty() || ClassifyInput(in) != InputKind::kMesh) &&
+                             CanAnalyzeInChunks(cfg, in)));
+    if (!chunked)
+      throw UsageError(
+          "--rank-stats is for a distributed run (mpirun ... meshreuse-mpi analyze), or "
+          "--threads over plain trace files (a chunk per thread)");
+  }
   if (writer) {
     if (!rank_stats.empty()) CheckOutputPath(rank_stats, "--rank-stats", InputFiles(cfg.inputs));
     for (const auto& [path, opt] :

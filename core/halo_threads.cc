@@ -1,9 +1,9 @@
 // HaloThreads: mailboxes under one mutex; collectives counted in rounds (halo_threads.h).
 #include "core/halo_threads.h"
 
-#include <exception>
 #include <stdexcept>
-#include <thread>
+
+#include "core/rank_threads.h"
 
 namespace meshreuse {
 
@@ -71,7 +71,7 @@ class HaloThreads::Endpoint : public HaloTransport {
 template <class Ready>
 void HaloThreads::Wait(std::unique_lock<std::mutex>& lock, Ready ready) {
   cv_.wait(lock, [&] { return failed_ || ready(); });
-  if (failed_) throw std::runtime_error("another rank failed");
+  if (failed_) throw RankThreadsFailed();
 }
 
 void HaloThreads::Fail() {
@@ -82,30 +82,13 @@ void HaloThreads::Fail() {
 
 void HaloThreads::Run(int32_t size, const std::function<void(HaloTransport&)>& body) {
   HaloThreads net(size);
-  std::vector<std::exception_ptr> error(size);
-  std::vector<std::thread> threads;
-  for (int32_t r = 0; r < size; ++r)
-    threads.emplace_back([&, r] {
-      Endpoint e(net, r);
-      try {
+  RunRankThreads(
+      size,
+      [&](int32_t r) {
+        Endpoint e(net, r);
         body(e);
-      } catch (...) {
-        error[r] = std::current_exception();
-        net.Fail();
-      }
-    });
-  for (std::thread& t : threads) t.join();
-  // The first failure, not a rank that only saw it: "another rank failed" comes last.
-  for (int pass = 0; pass < 2; ++pass)
-    for (int32_t r = 0; r < size; ++r)
-      if (error[r]) {
-        try {
-          std::rethrow_exception(error[r]);
-        } catch (const std::runtime_error& e) {
-          if (pass == 0 && std::string(e.what()) == "another rank failed") continue;
-          throw;
-        }
-      }
+      },
+      [&] { net.Fail(); });
 }
 
 }  // namespace meshreuse

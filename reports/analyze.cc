@@ -16,6 +16,7 @@
 #include "core/orderings/registry.h"
 #include "core/schedule.h"
 #include "reports/chunk_summary.h"
+#include "reports/chunk_threads.h"
 #include "reports/inputs.h"
 #include "reports/rank_locality.h"
 #include "reports/run_info.h"
@@ -233,6 +234,16 @@ AnalyzeResult RunAnalyze(const AnalyzeConfig& cfg, const Log& log) {
             " s");
         r.runs.push_back(std::move(a));
       }
+      continue;
+    }
+    if (cfg.threads > 1 && CanAnalyzeInChunks(cfg, in)) {
+      AnalyzeConfig one = cfg;
+      one.inputs = {in};
+      log.Say("analysing " + in + " in " + std::to_string(cfg.threads) + " chunks on " +
+              std::to_string(cfg.threads) + " threads, each reading its own");
+      AnalyzeResult part = AnalyzeChunksOnThreads(one, cfg.threads, log);
+      r.runs.push_back(std::move(part.runs.at(0)));
+      r.ranks.insert(r.ranks.end(), part.ranks.begin(), part.ranks.end());
       continue;
     }
     ReuseOptions o = opt;

@@ -6,7 +6,8 @@
 # boundaries) and lackey, fewer accesses than chunks and sizes not divisible by P (lib.sh's
 # traces); a mesh's stream regenerated per chunk (Gauss-Seidel on 1 and 2 threads, Jacobi);
 # SHARDS at a fixed rate (with and without --sample-error) equal to the serial estimate;
-# --threads 2 and 3 (the streamed merge) equal too; each bad merge refused by name with
+# --threads 2 and 3 equal too (a chunk per thread on every format; the batched analyzer on a zstd
+# trace, standard input and the samplers chunks cannot run); each bad merge refused by name with
 # exit 2: reordered, repeated, missing, truncated, corrupt, foreign and non-summary files; chunks
 # of a zstd trace refused before any work; no summary left behind.
 # Usage: chunks.sh MESHREUSE DATA
@@ -68,14 +69,43 @@ for opts in "--orderings rdr -k 3" "--orderings bfs -k 2 --threads 2" "--orderin
   done
 done
 
-# The streamed merge on threads: the same outputs.
+# Threads: a plain trace file is cut into one chunk per thread, each read by its own thread, the
+# stacks streamed thread to thread (reports/chunk_threads.h); a zstd trace, standard input and a
+# pipe go through the batched analyzer (one reader, the streamed merge per batch), as do the
+# samplers chunks cannot run. The same outputs, every one.
 for th in 2 3; do
-  outputs "$tmp/serial" "$bin" analyze "$tmp/uniform.u64" --format u64 --granularity element
-  outputs "$tmp/threads" "$bin" analyze "$tmp/uniform.u64" --format u64 --granularity element --threads "$th"
-  same "uniform.u64 --threads $th" "$tmp/serial" "$tmp/threads"
   outputs "$tmp/serial" "$bin" analyze "$tmp/mesh.trace"
   outputs "$tmp/threads" "$bin" analyze "$tmp/mesh.trace" --threads "$th"
   same "mesh.trace --threads $th" "$tmp/serial" "$tmp/threads"
+  for f in "${trace_specs[@]}"; do
+    set -- $f
+    outputs "$tmp/serial" "$bin" analyze "$tmp/$1" --format "$2" --granularity "$3"
+    outputs "$tmp/threads" "$bin" analyze "$tmp/$1" --format "$2" --granularity "$3" --threads "$th"
+    same "$1 --threads $th" "$tmp/serial" "$tmp/threads"
+  done
+done
+# Without a profile to write, a chunk does not read back to its sweep's start: the table alone.
+"$bin" analyze "$tmp/mesh.trace" --csv --quiet >"$tmp/serial.csv"
+"$bin" analyze "$tmp/mesh.trace" --threads 3 --csv --quiet >"$tmp/threads.csv"
+if cmp -s "$tmp/threads.csv" "$tmp/serial.csv"; then pass=$((pass + 1)); else fail=$((fail + 1)); echo "FAIL mesh.trace --threads 3 without a profile differs"; fi
+outputs "$tmp/serial" "$bin" analyze "$tmp/mesh.trace.zst"
+outputs "$tmp/threads" "$bin" analyze "$tmp/mesh.trace.zst" --threads 2
+same "mesh.trace.zst --threads 2 (batched)" "$tmp/serial" "$tmp/threads"
+"$bin" analyze - --format u64 --granularity element --threads 2 --csv --quiet <"$tmp/uniform.u64" >"$tmp/stdin.csv"
+"$bin" analyze "$tmp/uniform.u64" --format u64 --granularity element --csv --quiet >"$tmp/serial.csv"
+# the input column names "-" there
+if cmp -s <(cut -d, -f2- "$tmp/stdin.csv") <(cut -d, -f2- "$tmp/serial.csv") && [[ -s $tmp/serial.csv ]]; then pass=$((pass + 1)); else fail=$((fail + 1)); echo "FAIL stdin --threads 2 differs"; fi
+# Each chunk's phases, as meshreuse-mpi's ranks report them; not where no chunk runs.
+check "threads rank stats" 0 "$bin" analyze "$tmp/uniform.u64" --format u64 --threads 3 --rank-stats "$tmp/rs.json" --quiet
+check "threads rank stats: three chunks" 0 /usr/bin/python3 -c "import json,sys; d=json.load(open(sys.argv[1])); assert [r['rank'] for r in d] == [0,1,2] and sum(r['records'] for r in d) > 0" "$tmp/rs.json"
+check "zstd rank stats" 2 "$bin" analyze "$tmp/mesh.trace.zst" --threads 2 --rank-stats "$tmp/rs2.json" --quiet
+contains "zstd rank stats" "--threads over plain trace files"
+[[ ! -e $tmp/rs2.json ]] && pass=$((pass + 1)) || { fail=$((fail + 1)); echo "FAIL zstd rank stats written"; }
+for extra in "--sample-rate 0.1 --sample-error" "--sample-size 100 --sample-error" \
+             "--sample-rate 0.1 --sample-exact-below 16"; do
+  outputs "$tmp/serial" "$bin" analyze "$tmp/uniform.u64" --format u64 $extra
+  outputs "$tmp/threads" "$bin" analyze "$tmp/uniform.u64" --format u64 $extra --threads 2
+  same "uniform.u64 --threads 2 $extra" "$tmp/serial" "$tmp/threads"
 done
 
 # Bad merges, each refused by name.

@@ -1,0 +1,207 @@
+// The distributed analysis on threads (reports/chunk_threads.h): the transport relays ids in
+// order with each stream's end, bounded; its collectives equal naive ones; a failing rank ends
+// the run with its own error, the blocked ranks released; and a trace analysed in P chunks on P
+// threads (P = 1-5, fewer accesses than chunks, a meshreuse trace of 2 threads and 3 sweeps with
+// its profile, with and without a profile, SHARDS at a fixed rate) gives every table byte for
+// byte as the serial analyzer.
+#include "reports/chunk_threads.h"
+
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <cstdint>
+#include <fstream>
+#include <random>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "core/rank_threads.h"
+#include "reports/analyze.h"
+#include "reports/trace.h"
+#include "tests/test_util.h"
+
+namespace meshreuse {
+namespace {
+
+TEST(ChunkThreads, RelaysIdsInOrderWithEachStreamsEnd) {
+  for (int p = 1; p <= 4; ++p) {
+    std::vector<std::vector<uint64_t>> got(p);
+    ChunkThreads::Run(p, [&](ChunkTransport& tx) {
+      const int r = tx.rank();
+      ASSERT_EQ(tx.size(), p);
+      // Two streams: rank r forwards what it received, then 10 blocks of its own (sizes 1..10),
+      // then the end; a stream's end arrives as 0.
+      for (int stream = 0; stream < 2; ++stream) {
+        std::vector<uint64_t> in;
+        if (r > 0)
+          while (tx.RecvIds(&in) > 0) {
+            got[r].insert(got[r].end(), in.begin(), in.end());
+            if (r + 1 < p) tx.SendIds(in.data(), in.size());
+          }
+        got[r].push_back(~uint64_t{0});  // marks the end of this stream
+        if (r + 1 == p) continue;
+        for (uint64_t b = 1; b <= 10; ++b) {
+          std::vector<uint64_t> block(b);
+          for (uint64_t i = 0; i < b; ++i) block[i] = (stream * 100 + r) * 1000 + b * 10 + i;
+          tx.SendIds(block.data(), block.size());
+        }
+        tx.SendIds(nullptr, 0);
+      }
+    });
+    for (int r = 1; r < p; ++r) {  // rank r holds, per stream, ranks 0..r-1's blocks in order
+      std::vector<uint64_t> want;
+      for (int stream = 0; stream < 2; ++stream) {
+        for (int from = 0; from < r; ++from)
+          for (uint64_t b = 1; b <= 10; ++b)
+            for (uint64_t i = 0; i < b; ++i)
+              want.push_back((stream * 100 + from) * 1000 + b * 10 + i);
+        want.push_back(~uint64_t{0});
+      }
+      EXPECT_EQ(got[r], want) << "p " << p << " rank " << r;
+    }
+  }
+}
+
+TEST(ChunkThreads, BytesAndCollectives) {
+  const int p = 5;
+  std::vector<std::vector<uint64_t>> max(p), scan(p);
+  std::vector<std::string> at0;
+  ChunkThreads::Run(p, [&](ChunkTransport& tx) {
+    const int r = tx.rank();
+    for (int round = 0; round < 3; ++round) {  // collectives in a row reuse the slots
+      const std::vector<uint64_t> v = {uint64_t(r * (round + 1)), uint64_t(7 - r), 1};
+      max[r] = tx.AllReduceMax(v);
+      scan[r] = tx.ExclusiveScanSum(v);
+      uint64_t s0 = 0, s1 = 0;
+      for (int q = 0; q < r; ++q) s0 += uint64_t(q * (round + 1)), s1 += uint64_t(7 - q);
+      EXPECT_EQ(scan[r], (std::vector<uint64_t>{s0, s1, uint64_t(r)})) << "rank " << r;
+      EXPECT_EQ(max[r], (std::vector<uint64_t>{uint64_t((p - 1) * (round + 1)), 7, 1}));
+    }
+    if (r != 0) {
+      tx.SendBytes(0, std::string(static_cast<size_t>(r) * 1000, char('a' + r)));
+      tx.SendBytes(0, "second " + std::to_string(r));
+    } else {
+      for (int q = p - 1; q >= 1; --q) {  // any order of senders
+        at0.push_back(tx.RecvBytes(q));
+        at0.push_back(tx.RecvBytes(q));
+      }
+    }
+  });
+  ASSERT_EQ(at0.size(), 8u);
+  for (int q = p - 1, i = 0; q >= 1; --q, i += 2) {
+    EXPECT_EQ(at0[i], std::string(static_cast<size_t>(q) * 1000, char('a' + q)));
+    EXPECT_EQ(at0[i + 1], "second " + std::to_string(q));
+  }
+}
+
+TEST(ChunkThreads, AFailingRankEndsTheRunWithItsOwnError) {
+  // Rank 2 fails while the others wait on it: in a collective, for ids, for bytes. Run returns
+  // (no hang) and rethrows rank 2's error, not another rank's "another rank failed".
+  for (int where = 0; where < 3; ++where) {
+    std::atomic<int> released{0};
+    try {
+      ChunkThreads::Run(4, [&](ChunkTransport& tx) {
+        if (tx.rank() == 2) throw std::invalid_argument("rank 2 broke");
+        try {
+          if (where == 0) tx.AllReduceMax({1});
+          if (where == 1 && tx.rank() == 3) {
+            std::vector<uint64_t> in;
+            tx.RecvIds(&in);
+          }
+          if (where == 1 && tx.rank() != 3) tx.AllReduceMax({1});
+          if (where == 2) tx.RecvBytes(2);
+        } catch (const RankThreadsFailed&) {
+          ++released;
+          throw;
+        }
+      });
+      FAIL() << "no exception";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_STREQ(e.what(), "rank 2 broke");
+    }
+    EXPECT_EQ(released.load(), 3) << "where " << where;
+  }
+}
+
+void WriteU64(const std::string& path, const std::vector<uint64_t>& ids) {
+  std::ofstream f(path, std::ios::binary);
+  f.write(reinterpret_cast<const char*>(ids.data()), static_cast<std::streamsize>(ids.size() * 8));
+}
+
+// Every table of an analysis, as CSV.
+std::string Tables(const AnalyzeResult& r, const AnalyzeConfig& cfg) {
+  return AnalyzeTable(r, cfg, false).Csv() + HistogramTable(r).Csv() + ProfileTable(r).Csv() +
+         MrcTable(r).Csv();
+}
+
+void ExpectChunksOnThreadsEqualSerial(const AnalyzeConfig& cfg, const std::string& what) {
+  const std::string serial = Tables(RunAnalyze(cfg, Log()), cfg);
+  ASSERT_GT(serial.size(), 200u) << what;
+  for (int p = 1; p <= 5; ++p) {
+    ASSERT_TRUE(CanAnalyzeInChunks(cfg, cfg.inputs[0])) << what;
+    EXPECT_EQ(Tables(AnalyzeChunksOnThreads(cfg, p, Log()), cfg), serial) << what << " p " << p;
+    AnalyzeConfig t = cfg;  // and through the runner's --threads
+    t.threads = p;
+    EXPECT_EQ(Tables(RunAnalyze(t, Log()), cfg), serial) << what << " threads " << p;
+  }
+}
+
+TEST(AnalyzeChunksOnThreads, EqualsTheSerialAnalyzer) {
+  testing::TempDir dir;
+  std::mt19937_64 rng(3);
+  std::vector<uint64_t> uniform(30011), scan, hashed(20000), tiny = {5, 5, 9};
+  for (uint64_t& x : uniform) x = rng() % 4096 * 8 + 0x7f3a12345000;
+  for (int rep = 0; rep < 7; ++rep)
+    for (uint64_t i = 0; i < 3001; ++i) scan.push_back(i * 64);
+  for (uint64_t& x : hashed) x = rng() % 3000 * 0x9e3779b97f4a7c15ull >> 1;
+  for (const auto& [name, ids] : {std::pair{"uniform", uniform}, std::pair{"scan", scan},
+                                  std::pair{"hashed", hashed}, std::pair{"tiny", tiny}}) {
+    AnalyzeConfig cfg;
+    cfg.inputs = {dir / (std::string(name) + ".u64")};
+    WriteU64(cfg.inputs[0], ids);
+    cfg.format = "u64";
+    for (Granularity g : {Granularity::kElement, Granularity::kLine}) {
+      cfg.granularity = g;
+      ExpectChunksOnThreadsEqualSerial(cfg, name);
+    }
+  }
+  // A meshreuse trace: 2 threads, 3 sweeps, both granularities, with and without a profile.
+  TraceConfig tc;
+  tc.mesh = testing::DataPath("plate41.msh");
+  tc.ordering = "rdr", tc.iterations = 3, tc.threads = 2;
+  tc.output = dir / "mesh.trace";
+  RunTrace(tc, Log());
+  AnalyzeConfig cfg;
+  cfg.inputs = {tc.output};
+  for (bool profile : {true, false}) {
+    cfg.profile = profile;
+    ExpectChunksOnThreadsEqualSerial(cfg, profile ? "mesh trace" : "mesh trace, no profile");
+  }
+  cfg.sample = true, cfg.sample_error = true;  // SHARDS at a fixed rate beside the exact analysis
+  cfg.shards.rate = 0.1;
+  ExpectChunksOnThreadsEqualSerial(cfg, "mesh trace sampled");
+  cfg.shards.s_max = 100;  // a fixed-size sample depends on every id before: not in chunks
+  EXPECT_FALSE(CanAnalyzeInChunks(cfg, tc.output));
+}
+
+TEST(AnalyzeChunksOnThreads, OnlyPlainRegularFiles) {
+  testing::TempDir dir;
+  TraceConfig tc;
+  tc.mesh = testing::DataPath("two_interior.node");
+  tc.output = dir / "t.trace.zst";
+  tc.compress = true;
+  RunTrace(tc, Log());
+  AnalyzeConfig cfg;
+  EXPECT_FALSE(CanAnalyzeInChunks(cfg, tc.output));  // zstd cannot be entered mid-stream
+  EXPECT_FALSE(CanAnalyzeInChunks(cfg, "-"));
+  EXPECT_FALSE(CanAnalyzeInChunks(cfg, dir / "missing"));
+  EXPECT_FALSE(CanAnalyzeInChunks(cfg, dir.path().string()));  // a directory
+  tc.output = dir / "t.trace";
+  tc.compress = false;
+  RunTrace(tc, Log());
+  EXPECT_TRUE(CanAnalyzeInChunks(cfg, tc.output));
+}
+
+}  // namespace
+}  // namespace meshreuse
