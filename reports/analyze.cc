@@ -413,7 +413,9 @@ Json RankStatsJson(const std::vector<RankStats>& ranks) {
                  {"bytes_sent", r.bytes_sent},
                  {"peak_rss_bytes", r.peak_rss_bytes},
                  {"histogram_bytes", r.histogram_bytes},
-                 {"dense_histogram_bytes", r.dense_histogram_bytes}});
+                 {"dense_histogram_bytes", r.dense_histogram_bytes},
+                 {"pairs", r.pairs},
+                 {"pairs_added", r.pairs_added}});
   return a;
 }
 

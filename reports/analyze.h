@@ -78,13 +78,17 @@ struct RankStats {
   // on rank 0 also the merged ones (paged: reuse_histogram.h); and what one array as long as the
   // largest distance would have taken (8 bytes a distance), for comparison.
   uint64_t histogram_bytes = 0, dense_histogram_bytes = 0;
+  // (distance, count) pairs of this rank's resolved chunk, and those it received and added in
+  // the reduction tree (the reduction's cost per pair comes from these).
+  uint64_t pairs = 0, pairs_added = 0;
 };
 
 struct AnalyzeResult {
   std::vector<std::unique_ptr<ReuseAnalysis>> runs;  // one per input (x ordering for meshes)
   Granularity granularity = Granularity::kBoth;
   std::string granularity_note;  // the default chosen for a foreign trace, to say under the table
-  std::vector<RankStats> ranks;  // a distributed run, on rank 0: every rank's (threads: each chunk's)
+  std::vector<RankStats>
+      ranks;  // a distributed run, on rank 0: every rank's (threads: each chunk's)
   // Merged summaries that were sampled: the sampling the chunk runs used (the tables need it),
   // and whether they ran the exact analysis too.
   std::optional<ShardsOptions> sampling;

@@ -951,6 +951,71 @@ AnalyzeResult MergeSummaries(const AnalyzeConfig& cfg, const Log& log) {
   return m.Finish();
 }
 
+namespace {
+
+// Sorted (key, value) lists added into one sorted list, values of equal keys added.
+template <class T, class Key, class Add>
+std::vector<T> AddSorted(std::vector<T>&& a, std::vector<T>&& b, Key key, Add add) {
+  auto less = [&](const T& x, const T& y) { return key(x) < key(y); };
+  if (!std::is_sorted(a.begin(), a.end(), less)) std::sort(a.begin(), a.end(), less);
+  if (!std::is_sorted(b.begin(), b.end(), less)) std::sort(b.begin(), b.end(), less);
+  std::vector<T> out;
+  out.reserve(a.size() + b.size());
+  size_t i = 0, j = 0;
+  while (i < a.size() || j < b.size()) {
+    if (j == b.size() || (i < a.size() && key(a[i]) < key(b[j]))) {
+      out.push_back(a[i++]);
+    } else if (i == a.size() || key(b[j]) < key(a[i])) {
+      out.push_back(b[j++]);
+    } else {
+      out.push_back(a[i++]);
+      add(&out.back(), b[j++]);
+    }
+  }
+  return out;
+}
+
+// Adds the resolved chunks `b` (those right after `a`'s, from the rank named `name`) into `a`.
+void AddResolved(SummaryFile* a, SummaryFile&& b, const std::string& name) {
+  if (!(b.id == a->id) || b.info.threads != a->info.threads || b.moves.size() != a->moves.size())
+    throw InputError(name, 0, "corrupt: a resolved message of another analysis");
+  if (b.first != a->end)
+    throw InputError(name, 0, "corrupt: its records do not follow the previous chunk's");
+  a->end = b.end;
+  for (size_t t = 0; t < a->moves.size(); ++t) a->moves[t] += b.moves[t];
+  for (StreamSummary& y : b.streams) {
+    if (!y.resolved) throw InputError(name, 0, "corrupt: a stream not resolved");
+    auto x = std::find_if(a->streams.begin(), a->streams.end(), [&](const StreamSummary& z) {
+      return z.thread == y.thread && z.granularity == y.granularity && z.sampled == y.sampled;
+    });
+    if (x == a->streams.end()) {  // the stream's first accesses are in b's chunks
+      a->streams.push_back(std::move(y));
+      continue;
+    }
+    x->accesses += y.accesses;
+    x->stream_accesses += y.stream_accesses;
+    using Pair = std::pair<uint64_t, uint64_t>;
+    x->hist = AddSorted(
+        std::move(x->hist), std::move(y.hist), [](const Pair& p) { return p.first; },
+        [](Pair* p, const Pair& q) { p->second += q.second; });
+    using Step = StreamSummary::Step;
+    x->profile = AddSorted(
+        std::move(x->profile), std::move(y.profile), [](const Step& p) { return p.index; },
+        [](Step* p, const Step& q) {
+          p->accesses += q.accesses, p->cold += q.cold, p->sum += q.sum;
+        });
+  }
+}
+
+// What a rank's resolved histograms take (16 bytes a distance it counts).
+uint64_t ResolvedBytes(const SummaryFile& s) {
+  uint64_t n = 0;
+  for (const StreamSummary& x : s.streams) n += x.hist.capacity() * 16;
+  return n;
+}
+
+}  // namespace
+
 AnalyzeResult RunDistributed(const AnalyzeConfig& cfg, ChunkTransport& tx, const Log& log) {
   const int rank = tx.rank(), ranks = tx.size();
   const Log quiet;
@@ -1062,27 +1127,44 @@ AnalyzeResult RunDistributed(const AnalyzeConfig& cfg, ChunkTransport& tx, const
     stats.resolve_cpu += ThreadCpuSeconds() - resolve0;
   }
   lap();
-  // Rank 0 gathers the resolved chunks, in order, and adds them up (integers: exact).
+  // A binary tree of ranks adds the resolved chunks up (integers: exact in any grouping): at the
+  // level of `step`, a rank r with r % 2 step == step sends what it holds (chunks [r, r + step))
+  // to r - step, which adds it to its own. log2(P) levels, each adding two sorted lists of at most
+  // the distinct distances, where rank 0 adding P lists one after another cost P times those.
   stats.bytes_sent = stats.stack_ids_sent * 8 + 16 * keys;  // blocks, and the two collectives
+  if (rank == 0) log.Say("adding up " + std::to_string(ranks) + " resolved chunks");
+  for (const StreamSummary& x : s.streams) stats.pairs += x.hist.size();
+  for (int step = 1; step < ranks; step *= 2) {
+    if (rank % (2 * step) == step) {
+      const std::string b = EncodeSummary(s);
+      tx.SendBytes(rank - step, b);
+      stats.bytes_sent += b.size();
+      break;
+    }
+    if (rank + step < ranks) {
+      const std::string name = "rank " + std::to_string(rank + step);
+      SummaryFile o = DecodeSummary(name, tx.RecvBytes(rank + step), true);
+      for (const StreamSummary& x : o.streams) stats.pairs_added += x.hist.size();
+      AddResolved(&s, std::move(o), name);
+    }
+  }
+  stats.histogram_bytes = std::max(stats.histogram_bytes, ResolvedBytes(s));
   if (rank != 0) {
-    const std::string b = EncodeSummary(s);
-    tx.SendBytes(0, b);
-    stats.bytes_sent += b.size();
     stats.reduce_cpu = lap();
     stats.wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
     stats.peak_rss_bytes = PeakRssBytes();
     tx.SendBytes(0, std::string(reinterpret_cast<const char*>(&stats), sizeof stats));
     return AnalyzeResult();
   }
-  log.Say("adding up " + std::to_string(ranks) + " resolved chunks");
+  // Rank 0 holds every chunk, resolved: one summary of one chunk for the merger.
+  s.chunk = 0, s.id.chunks = 1;
   SummaryMerger m(cfg.profile);
-  m.Add(std::move(s), "rank 0", static_cast<size_t>(ranks));
+  m.Add(std::move(s), "rank 0", 1);
   std::vector<RankStats> all(1);
   for (int r = 1; r < ranks; ++r) {
-    const std::string name = "rank " + std::to_string(r);
-    m.Add(DecodeSummary(name, tx.RecvBytes(r), true), name, static_cast<size_t>(ranks));
     const std::string b = tx.RecvBytes(r);
-    if (b.size() != sizeof(RankStats)) throw InputError(name, 0, "corrupt statistics message");
+    if (b.size() != sizeof(RankStats))
+      throw InputError("rank " + std::to_string(r), 0, "corrupt statistics message");
     all.emplace_back();
     std::memcpy(&all.back(), b.data(), sizeof(RankStats));
   }
