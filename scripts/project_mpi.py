@@ -7,10 +7,17 @@ seconds per stack id received, t_ft = resolve CPU seconds per first touch, memor
 distinct id of a rank's chunk. Model for N accesses over M ids on P ranks (blocks of B = 65,536
 ids of s = 8 bytes; latency alpha, bandwidth beta):
   T(P) = t_a N / P + (M / B + P) (B (t_f + s / beta) + alpha) + t_ft min(M, N / P)
-the chunk, the stack's pipelined pass through every rank, and the rank's first touches.
+         + sum over the log2(P) levels k of the reduction tree of
+           H_k (2 t_r + 16 / beta) + alpha,   H_k = min(M, 2^k N / P)
+the chunk, the stack's pipelined pass through every rank, the rank's first touches, and the
+resolved histograms added up a binary tree of ranks (t_r = reduce CPU seconds per
+(distance, count) pair received and added; H_k bounds the pairs of 2^k chunks by the distinct
+distances, at most M and at most the accesses: the worst case, uniform ids; a mesh trace's
+chunks hold far fewer, the measured `pairs` per rank).
 Writes OUT/runs.json, OUT/constants.json, OUT/projection.md."""
 import argparse
 import json
+import math
 import statistics
 import sys
 
@@ -24,6 +31,10 @@ def main():
     ap.add_argument("--project-ids", type=float, default=1e8)
     ap.add_argument("--alpha", type=float, default=2e-6)
     ap.add_argument("--beta", type=float, default=1e10)
+    ap.add_argument("--ranks", default="64,128,256,512,1024")
+    # Ranks as threads of one process (scripts/scale_threads.sh): each reports the process's peak,
+    # so a rank's share is that over the ranks.
+    ap.add_argument("--threads-of-one-process", action="store_true")
     a = ap.parse_args()
     runs = []
     for r in a.runs:
@@ -33,7 +44,7 @@ def main():
     by_np = {}
     for r in runs:
         by_np.setdefault(r["np"], []).append(r)
-    ta, tf, tft, mem = [], [], [], []
+    ta, tf, tft, mem, tr, pairs = [], [], [], [], [], []
     for r in runs:
         for k in r["ranks"]:
             if k["accesses"]:
@@ -42,10 +53,16 @@ def main():
                 tf.append(k["stream_cpu_s"] / k["stack_ids_in"])
             if k["distinct"]:
                 tft.append(k["resolve_cpu_s"] / k["distinct"])
-                mem.append(k["peak_rss_bytes"] / k["distinct"])
+                share = len(r["ranks"]) if a.threads_of_one_process else 1
+                mem.append(k["peak_rss_bytes"] / share / k["distinct"])
+            if k.get("pairs_added"):
+                tr.append(k["reduce_cpu_s"] / k["pairs_added"])
+            if k.get("pairs") is not None and k["accesses"]:
+                pairs.append(k["pairs"])
     med = lambda v: statistics.median(v) if v else float("nan")
     c = {"t_a_ns": 1e9 * med(ta), "t_f_ns": 1e9 * med(tf), "t_ft_ns": 1e9 * med(tft),
-         "bytes_per_distinct_id": med(mem), "cores": a.cores}
+         "bytes_per_distinct_id": med(mem), "t_r_ns": 1e9 * med(tr),
+         "pairs_per_rank": med(pairs), "cores": a.cores}
     scaling = []
     base = med([r["wall_s"] for r in by_np.get(1, [])])
     for np_ in sorted(by_np):
@@ -64,20 +81,27 @@ def main():
     tb = B * (c["t_f_ns"] * 1e-9 + s / a.beta) + a.alpha
     serial = c["t_a_ns"] * 1e-9 * N
     rows = []
-    for P in (64, 128, 256, 512, 1024):
+    t_r = c["t_r_ns"] * 1e-9 if c["t_r_ns"] == c["t_r_ns"] else 0.0
+    for P in (int(x) for x in a.ranks.split(",")):
         analyse = c["t_a_ns"] * 1e-9 * N / P
         stream = (M / B + P) * tb
         first = c["t_ft_ns"] * 1e-9 * min(M, N / P)
-        total = analyse + stream + first
-        rows.append((P, analyse, stream, first, total, serial / total, serial / total / P,
-                     c["bytes_per_distinct_id"] * min(M, N / P) / 1e9, M * s / 1e9))
+        levels = math.ceil(math.log2(P)) if P > 1 else 0
+        reduce = sum(min(M, 2 ** k * N / P) * (2 * t_r + 16 / a.beta) + a.alpha
+                     for k in range(levels))
+        total = analyse + stream + first + reduce
+        rows.append((P, analyse, stream, first, reduce, total, serial / total,
+                     serial / total / P, c["bytes_per_distinct_id"] * min(M, N / P) / 1e9,
+                     M * s / 1e9))
     with open(f"{a.out}/runs.json", "w") as f:
         json.dump(runs, f, indent=1)
     with open(f"{a.out}/constants.json", "w") as f:
         json.dump(c, f, indent=1)
     md = [f"Measured here: t_a = {c['t_a_ns']:.1f} ns per access (reading included), "
           f"t_f = {c['t_f_ns']:.2f} ns per streamed id, t_ft = {c['t_ft_ns']:.1f} ns per first "
-          f"touch, {c['bytes_per_distinct_id']:.0f} bytes of peak memory per distinct id of a "
+          f"touch, t_r = {c['t_r_ns']:.1f} ns per histogram pair added in the reduction tree "
+          f"({c['pairs_per_rank']:.0f} pairs per rank's chunk here), "
+          f"{c['bytes_per_distinct_id']:.0f} bytes of peak memory per distinct id of a "
           f"chunk.", "",
           "| np | wall s (median, min-max) | slowest rank's wall s | CPU s, all ranks | "
           "bytes sent, busiest rank | speed-up (wall) |", "|---|---|---|---|---|---|"]
@@ -85,14 +109,15 @@ def main():
         md.append(f"| {r['np']}{' (oversubscribed)' if r['oversubscribed'] else ''} | "
                   f"{r['wall_s_median']:.2f} ({r['wall_s_min']:.2f}-{r['wall_s_max']:.2f}) | "
                   f"{r['rank_wall_s_median']:.2f} | {r['cpu_s_all_ranks_median']:.2f} | "
-                  f"{r['max_bytes_sent_per_rank']:.3g} | "
-                  f"{r['speedup_wall']:.2f}x |")
+                  f"{r['max_bytes_sent_per_rank']:.3g} | " +
+                  (f"{r['speedup_wall']:.2f}x |" if r['speedup_wall'] else "- |"))
     md += ["", f"Model for N = {N:.3g} accesses over M = {M:.3g} ids (serial: {serial:.0f} s), "
            f"alpha = {a.alpha:g} s, beta = {a.beta:.3g} bytes/s (stated, not measured):", "",
-           "| P | analyse s | stream s | first touches s | total s | speed-up | efficiency | "
-           "memory per rank GB | bytes sent per rank GB |", "|---|---|---|---|---|---|---|---|---|"]
-    for P, an, st, ft, tot, sp, eff, memg, sentg in rows:
-        md.append(f"| {P} | {an:.1f} | {st:.2f} | {ft:.2f} | {tot:.1f} | {sp:.0f}x | "
+           "| P | analyse s | stream s | first touches s | reduction tree s (at most) | total s | "
+           "speed-up | efficiency | memory per rank GB | bytes sent per rank GB |",
+           "|---|---|---|---|---|---|---|---|---|---|"]
+    for P, an, st, ft, rd, tot, sp, eff, memg, sentg in rows:
+        md.append(f"| {P} | {an:.2f} | {st:.2f} | {ft:.2f} | {rd:.2f} | {tot:.2f} | {sp:.1f}x | "
                   f"{100 * eff:.0f}% | {memg:.2f} | {sentg:.2f} |")
     with open(f"{a.out}/projection.md", "w") as f:
         f.write("\n".join(md) + "\n")

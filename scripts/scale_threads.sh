@@ -1,0 +1,131 @@
+#!/usr/bin/env bash
+# The threaded analyzer's speed-up on this machine, whole process: `meshreuse analyze TRACE
+# --threads T` against `--threads 1` on the same trace, the two alternating (T, 1, T, 1, ...) so
+# that drift hits both, --repeat times each; wall seconds, user + system CPU seconds and peak
+# memory from /usr/bin/time; every run's table checked identical to the serial one. Traces (made
+# once in OUT, seed 1, 20 M accesses by default over 2^20 ids): uniform ids, a stride-64 address
+# scan from 0 and from a heap-like base (every reuse across the chunks), random 64-bit ids (hashed,
+# oracleGeneral-like), uniform ids as a text trace (cut at line boundaries), and a mesh trace
+# (plate41 refined 4 times, RDR, 4 sweeps, both granularities; --no-mesh skips it). Then the model
+# of scripts/project_mpi.py from the threads' own per-chunk phases (--rank-stats), for 32 and 64
+# threads. Writes OUT/threads.csv (every run), OUT/threads.md (the table) and OUT/model/.
+#
+# Usage: scripts/scale_threads.sh [--threads 2,4,...] [--repeat R] [--accesses N --ids M]
+#          [--no-mesh] [--out DIR]
+#   default: --threads 2 (and the cores here, when more), --repeat 5, out/scale_threads
+set -euo pipefail
+caller=$PWD
+cd "$(dirname "$0")/.."
+threads="" repeat=5 accesses=20000000 ids=1048576 mesh=1 out="out/scale_threads"
+usage() { sed -n '2,16p' "$0" | sed 's/^# \{0,1\}//'; }
+die() { echo "scale_threads.sh: $*" >&2; exit 2; }
+while (($#)); do
+  case $1 in
+    --threads) threads=$2; shift ;;
+    --repeat) repeat=$2; shift ;;
+    --accesses) accesses=$2; shift ;;
+    --ids) ids=$2; shift ;;
+    --no-mesh) mesh=0 ;;
+    --out) out=$2; shift ;;
+    -h|--help) usage; exit 0 ;;
+    *) die "unknown option '$1' (see --help)" ;;
+  esac
+  shift
+done
+[[ $out = /* ]] || out=$caller/$out
+for v in "$accesses" "$ids" "$repeat"; do
+  [[ $v =~ ^[1-9][0-9]{0,11}$ ]] || die "'$v' is not a positive count"
+done
+cores=$(env -u OMP_NUM_THREADS -u OMP_THREAD_LIMIT nproc)
+[[ -n $threads ]] || { threads=2; ((cores > 2)) && threads="2,$cores"; }
+[[ $threads =~ ^[0-9]+(,[0-9]+)*$ ]] || die "--threads takes counts like 2,4, found '$threads'"
+bin=${MESHREUSE_BIN:-build/release/cli/meshreuse}
+[[ -x $bin ]] || die "no $bin: build Release first (scripts/test.sh or cmake)"
+[[ -x /usr/bin/time ]] || die "no /usr/bin/time (apt-get install time)"
+/usr/bin/python3 -c 'import numpy' 2>/dev/null || die "no numpy for /usr/bin/python3 (apt-get install python3-numpy)"
+mkdir -p "$out/model"
+if [[ ! -e $out/uniform.u64 ]]; then
+  echo "scale_threads.sh: writing the traces in $out ($accesses accesses over $ids ids, seed 1)" >&2
+  /usr/bin/python3 - "$out" "$accesses" "$ids" <<'PY'
+import numpy as np, sys
+out, n, m = sys.argv[1], int(sys.argv[2]), int(sys.argv[3])
+rng = np.random.default_rng(1)
+u = rng.integers(0, m, n, dtype=np.uint64)
+u.tofile(out + "/uniform.u64")
+scan = np.resize(np.arange(m, dtype=np.uint64) * np.uint64(64), n)
+scan.tofile(out + "/scan.u64")
+(scan + np.uint64(0x7f3a12345000)).tofile(out + "/scan_heap.u64")
+ids = rng.integers(1, 2**63, m, dtype=np.uint64)
+ids[rng.integers(0, m, n)].tofile(out + "/random64.u64")
+with open(out + "/uniform.txt", "w") as f:
+    for at in range(0, n, 1 << 20):
+        f.write("\n".join(map(str, u[at:at + (1 << 20)].tolist())) + "\n")
+PY
+fi
+traces=("uniform.u64 u64 element" "scan.u64 u64 element" "scan_heap.u64 u64 element"
+        "random64.u64 u64 element" "uniform.txt text element")
+if ((mesh)); then
+  if [[ ! -e $out/mesh.trace ]]; then
+    echo "scale_threads.sh: writing the mesh trace (plate41 refined 4 times, RDR, 4 sweeps)" >&2
+    "$bin" mesh refine tests/data/plate41.msh --levels 4 --jitter 0.3 -o "$out/plate4" --quiet >/dev/null
+    "$bin" trace "$out/plate4.node" --ordering rdr -k 4 -o "$out/mesh.trace" --quiet >/dev/null
+  fi
+  traces+=("mesh.trace - -")
+fi
+echo "trace,threads,run,wall_s,cpu_s,peak_kb,serial_wall_s,serial_cpu_s,serial_peak_kb,speedup" >"$out/threads.csv"
+timed() {  # timed RESULT_PREFIX ARGS... : wall, cpu, peak KB in $t_wall $t_cpu $t_peak
+  local p=$1
+  shift
+  local t0 t1
+  t0=$(date +%s%N)
+  /usr/bin/time -f "%U %S %M" -o "$p.time" "$bin" analyze "$@" --csv --quiet >"$p.csv"
+  t1=$(date +%s%N)
+  read -r u s t_peak <"$p.time"
+  t_wall=$(awk -v a="$t0" -v b="$t1" 'BEGIN { printf "%.3f", (b - a) / 1e9 }')
+  t_cpu=$(awk -v u="$u" -v s="$s" 'BEGIN { printf "%.2f", u + s }')
+}
+model_runs=()
+for spec in "${traces[@]}"; do
+  set -- $spec
+  name=$1 args=("$out/$1")
+  [[ $2 != - ]] && args+=(--format "$2" --granularity "$3")
+  IFS=, read -ra ts <<<"$threads"
+  for t in "${ts[@]}"; do
+    for ((k = 1; k <= repeat; k++)); do
+      echo "scale_threads.sh: $name, --threads $t against 1, run $k of $repeat" >&2
+      timed "$out/run" "${args[@]}" --threads "$t" --rank-stats "$out/model/$name-t$t-$k.json"
+      w=$t_wall c=$t_cpu m=$t_peak
+      timed "$out/serial" "${args[@]}"
+      cmp -s "$out/run.csv" "$out/serial.csv" || die "$name: --threads $t's table differs from the serial one"
+      echo "$name,$t,$k,$w,$c,$m,$t_wall,$t_cpu,$t_peak,$(awk -v a="$t_wall" -v b="$w" 'BEGIN { printf "%.3f", a / b }')" >>"$out/threads.csv"
+      [[ $name = uniform.u64 ]] && model_runs+=("$t:$w:$out/model/$name-t$t-$k.json")
+    done
+  done
+done
+/usr/bin/python3 - "$out/threads.csv" "$out/threads.md" <<'PY'
+import csv, statistics, sys
+rows = list(csv.DictReader(open(sys.argv[1])))
+md = lambda v: statistics.median(v)
+out = ["| trace | threads | 1 thread: wall s (min-max) | T threads: wall s (min-max) | speed-up, pair by pair: median (min-max) | CPU s, 1 / T | peak MB, 1 / T |",
+       "|---|---|---|---|---|---|---|"]
+keys = []
+for r in rows:
+    if (r["trace"], r["threads"]) not in keys:
+        keys.append((r["trace"], r["threads"]))
+for tr, t in keys:
+    g = [r for r in rows if r["trace"] == tr and r["threads"] == t]
+    f = lambda k: [float(r[k]) for r in g]
+    out.append(f"| {tr} | {t} | {md(f('serial_wall_s')):.3f} ({min(f('serial_wall_s')):.3f}-{max(f('serial_wall_s')):.3f}) "
+               f"| {md(f('wall_s')):.3f} ({min(f('wall_s')):.3f}-{max(f('wall_s')):.3f}) "
+               f"| **{md(f('speedup')):.2f}x** ({min(f('speedup')):.2f}-{max(f('speedup')):.2f}) "
+               f"| {md(f('serial_cpu_s')):.2f} / {md(f('cpu_s')):.2f} "
+               f"| {md(f('serial_peak_kb')) / 1024:.0f} / {md(f('peak_kb')) / 1024:.0f} |")
+open(sys.argv[2], "w").write("\n".join(out) + "\n")
+print("\n".join(out))
+PY
+# The model from the threads' phases on the uniform trace (thread CPU seconds per chunk), with an
+# in-process "network": a block handed over in about 10 us, copied at about 5 GB/s.
+/usr/bin/python3 scripts/project_mpi.py --out "$out/model" --cores "$cores" --project-accesses "$accesses" \
+  --project-ids "$ids" --ranks 2,4,8,16,32,64 --alpha 1e-5 --beta 5e9 --threads-of-one-process \
+  "${model_runs[@]}" >/dev/null
+echo "scale_threads.sh: wrote $out/threads.csv, $out/threads.md and $out/model/projection.md" >&2

@@ -1,0 +1,36 @@
+#!/usr/bin/env bash
+# scripts/scale_threads.sh end to end on small traces (50,000 accesses over 2,000 ids, no mesh
+# trace): every trace gets its rows (the script itself fails if a threaded table differs from the
+# serial one), the table and the model come out with finite numbers for 2..64 threads, and bad
+# options exit 2.
+# Usage: scale_threads_test.sh MESHREUSE
+set -u
+bin=$1
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+here=$(cd "$(dirname "$0")/../.." && pwd)
+fail=0
+/usr/bin/python3 -c 'import numpy' 2>/dev/null || { echo "skipped: no numpy for /usr/bin/python3"; exit 77; }
+MESHREUSE_BIN=$bin "$here/scripts/scale_threads.sh" --accesses 50000 --ids 2000 --no-mesh --repeat 1 \
+  --threads 2,3 --out "$tmp/out" >"$tmp/log" 2>&1 || { echo "FAIL scale_threads.sh exited $?"; cat "$tmp/log"; exit 1; }
+for f in threads.csv threads.md model/projection.md model/constants.json; do
+  [[ -s $tmp/out/$f ]] || { echo "FAIL no $f"; fail=1; }
+done
+for t in uniform.u64 scan.u64 scan_heap.u64 random64.u64 uniform.txt; do
+  for th in 2 3; do
+    grep -q "^$t,$th,1," "$tmp/out/threads.csv" || { echo "FAIL no row for $t at $th threads"; fail=1; }
+    grep -q "^| $t | $th |" "$tmp/out/threads.md" || { echo "FAIL no table row for $t at $th threads"; fail=1; }
+  done
+done
+rows=$(grep -cE '^\| (2|4|8|16|32|64) \|' "$tmp/out/model/projection.md")
+[[ $rows -eq 6 ]] || { echo "FAIL projection rows: $rows"; fail=1; }
+grep -qiE 'nan|inf' "$tmp/out/model/projection.md" && { echo "FAIL a number is not finite"; fail=1; }
+/usr/bin/python3 -c "import json,sys; c=json.load(open(sys.argv[1])); assert c['t_a_ns'] > 0 and c['t_r_ns'] > 0 and c['pairs_per_rank'] > 0, c" \
+  "$tmp/out/model/constants.json" || { echo "FAIL constants"; fail=1; }
+for bad in "--threads two" "--repeat 0" "--bogus"; do
+  MESHREUSE_BIN=$bin "$here/scripts/scale_threads.sh" $bad --out "$tmp/bad" >"$tmp/log" 2>&1
+  rc=$?
+  [[ $rc -eq 2 ]] || { echo "FAIL '$bad' exited $rc, expected 2"; fail=1; }
+done
+((fail == 0)) && echo "scale_threads_test: passed"
+((fail == 0))
