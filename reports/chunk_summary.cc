@@ -1134,21 +1134,21 @@ AnalyzeResult RunDistributed(const AnalyzeConfig& cfg, ChunkTransport& tx, const
   stats.bytes_sent = stats.stack_ids_sent * 8 + 16 * keys;  // blocks, and the two collectives
   if (rank == 0) log.Say("adding up " + std::to_string(ranks) + " resolved chunks");
   for (const StreamSummary& x : s.streams) stats.pairs += x.hist.size();
+  stats.histogram_bytes = std::max(stats.histogram_bytes, ResolvedBytes(s));
   for (int step = 1; step < ranks; step *= 2) {
     if (rank % (2 * step) == step) {
-      const std::string b = EncodeSummary(s);
-      tx.SendBytes(rank - step, b);
-      stats.bytes_sent += b.size();
+      stats.bytes_sent += tx.SendSummary(rank - step, std::move(s));
+      s = SummaryFile();
       break;
     }
     if (rank + step < ranks) {
       const std::string name = "rank " + std::to_string(rank + step);
-      SummaryFile o = DecodeSummary(name, tx.RecvBytes(rank + step), true);
+      SummaryFile o = tx.RecvSummary(rank + step, name);
       for (const StreamSummary& x : o.streams) stats.pairs_added += x.hist.size();
       AddResolved(&s, std::move(o), name);
+      stats.histogram_bytes = std::max(stats.histogram_bytes, ResolvedBytes(s));
     }
   }
-  stats.histogram_bytes = std::max(stats.histogram_bytes, ResolvedBytes(s));
   if (rank != 0) {
     stats.reduce_cpu = lap();
     stats.wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();

@@ -146,6 +146,16 @@ class ChunkTransport {
   virtual std::string RecvBytes(int from) = 0;
   virtual std::vector<uint64_t> AllReduceMax(const std::vector<uint64_t>& v) = 0;
   virtual std::vector<uint64_t> ExclusiveScanSum(const std::vector<uint64_t>& v) = 0;
+  // A rank's resolved chunks to rank `to` (returns the bytes sent) and from rank `from` (`name`
+  // names it in errors): as bytes by default; ranks within one process hand the object over.
+  virtual uint64_t SendSummary(int to, SummaryFile&& s) {
+    const std::string b = EncodeSummary(s);
+    SendBytes(to, b);
+    return b.size();
+  }
+  virtual SummaryFile RecvSummary(int from, const std::string& name) {
+    return DecodeSummary(name, RecvBytes(from), true);
+  }
 };
 // Rank r analyses chunk r of P = size() (reading only its own records), the LRU stacks stream
 // rank to rank, each rank resolves its first touches, rank 0 adds the resolved chunks up: its

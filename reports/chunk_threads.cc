@@ -52,6 +52,20 @@ class ChunkThreads::Endpoint : public ChunkTransport {
     box.pop_front();
     return b;
   }
+  uint64_t SendSummary(int to, SummaryFile&& s) override {
+    std::lock_guard<std::mutex> lock(net_.mu_);
+    net_.summaries_[{rank_, to}].push_back(std::move(s));
+    net_.cv_.notify_all();
+    return 0;  // no bytes: the object changes hands
+  }
+  SummaryFile RecvSummary(int from, const std::string&) override {
+    std::unique_lock<std::mutex> lock(net_.mu_);
+    auto& box = net_.summaries_[{from, rank_}];
+    net_.Wait(lock, [&] { return !box.empty(); });
+    SummaryFile s = std::move(box.front());
+    box.pop_front();
+    return s;
+  }
   std::vector<uint64_t> AllReduceMax(const std::vector<uint64_t>& v) override {
     const auto all = Collect(v);
     std::vector<uint64_t> m = all[0];

@@ -50,6 +50,7 @@ class ChunkThreads {
   bool failed_ = false;
   std::vector<std::deque<std::vector<uint64_t>>> ids_;  // ids_[r]: from rank r - 1 (empty: end)
   std::map<std::pair<int, int>, std::deque<std::string>> bytes_;
+  std::map<std::pair<int, int>, std::deque<SummaryFile>> summaries_;  // handed over, not encoded
   int arrived_ = 0;
   uint64_t round_ = 0;
   std::vector<std::vector<uint64_t>> slots_;

@@ -22,7 +22,7 @@ for t in uniform.u64 scan.u64 scan_heap.u64 random64.u64 uniform.txt; do
     grep -q "^| $t | $th |" "$tmp/out/threads.md" || { echo "FAIL no table row for $t at $th threads"; fail=1; }
   done
 done
-rows=$(grep -cE '^\| (2|4|8|16|32|64) \|' "$tmp/out/model/projection.md")
+rows=$(sed -n '/^Model for/,$p' "$tmp/out/model/projection.md" | grep -cE '^\| (2|4|8|16|32|64) \|')
 [[ $rows -eq 6 ]] || { echo "FAIL projection rows: $rows"; fail=1; }
 grep -qiE 'nan|inf' "$tmp/out/model/projection.md" && { echo "FAIL a number is not finite"; fail=1; }
 /usr/bin/python3 -c "import json,sys; c=json.load(open(sys.argv[1])); assert c['t_a_ns'] > 0 and c['t_r_ns'] > 0 and c['pairs_per_rank'] > 0, c" \
