@@ -415,7 +415,8 @@ Json RankStatsJson(const std::vector<RankStats>& ranks) {
                  {"histogram_bytes", r.histogram_bytes},
                  {"dense_histogram_bytes", r.dense_histogram_bytes},
                  {"pairs", r.pairs},
-                 {"pairs_added", r.pairs_added}});
+                 {"pairs_added", r.pairs_added},
+                 {"merge_cpu_s", r.merge_cpu}});
   return a;
 }
 

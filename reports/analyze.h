@@ -81,6 +81,7 @@ struct RankStats {
   // (distance, count) pairs of this rank's resolved chunk, and those it received and added in
   // the reduction tree (the reduction's cost per pair comes from these).
   uint64_t pairs = 0, pairs_added = 0;
+  double merge_cpu = 0;  // thread CPU seconds adding them (in reduce_cpu; no waiting, no decoding)
 };
 
 struct AnalyzeResult {

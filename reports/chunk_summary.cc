@@ -1145,7 +1145,9 @@ AnalyzeResult RunDistributed(const AnalyzeConfig& cfg, ChunkTransport& tx, const
       const std::string name = "rank " + std::to_string(rank + step);
       SummaryFile o = tx.RecvSummary(rank + step, name);
       for (const StreamSummary& x : o.streams) stats.pairs_added += x.hist.size();
+      const double merge0 = ThreadCpuSeconds();
       AddResolved(&s, std::move(o), name);
+      stats.merge_cpu += ThreadCpuSeconds() - merge0;
       stats.histogram_bytes = std::max(stats.histogram_bytes, ResolvedBytes(s));
     }
   }

@@ -8,12 +8,15 @@ distinct id of a rank's chunk. Model for N accesses over M ids on P ranks (block
 ids of s = 8 bytes; latency alpha, bandwidth beta):
   T(P) = t_a N / P + (M / B + P) (B (t_f + s / beta) + alpha) + t_ft min(M, N / P)
          + sum over the log2(P) levels k of the reduction tree of
-           H_k (2 t_r + 16 / beta) + alpha,   H_k = min(M, 2^k N / P)
+           H_k (t_r + 16 / beta) + alpha,   H_k = min(M, 2^k H),  H = min(M, N / P, h M / m)
 the chunk, the stack's pipelined pass through every rank, the rank's first touches, and the
-resolved histograms added up a binary tree of ranks (t_r = reduce CPU seconds per
-(distance, count) pair received and added; H_k bounds the pairs of 2^k chunks by the distinct
-distances, at most M and at most the accesses: the worst case, uniform ids; a mesh trace's
-chunks hold far fewer, the measured `pairs` per rank).
+resolved histograms added up a binary tree of ranks: t_r = CPU seconds per (distance, count)
+pair received and added into a sorted list (merge_cpu: neither waiting nor decoding, which the
+16 / beta stands for), and rank 0 adding the merged lists, min(M, P H) t_r. A chunk's
+(distance, count) pairs H, its distinct distances, scale with the ids from those measured: h
+pairs per chunk of m distinct ids (uniform ids: h = m, so H = M, the worst case; a mesh trace's
+first touches spread too: h = 0.54 m for the RDR plate measured); the pairs of 2^k chunks at most
+add up.
 Writes OUT/runs.json, OUT/constants.json, OUT/projection.md."""
 import argparse
 import json
@@ -44,7 +47,7 @@ def main():
     by_np = {}
     for r in runs:
         by_np.setdefault(r["np"], []).append(r)
-    ta, tf, tft, mem, tr, pairs = [], [], [], [], [], []
+    ta, tf, tft, mem, tr, pairs, dist = [], [], [], [], [], [], []
     for r in runs:
         for k in r["ranks"]:
             if k["accesses"]:
@@ -56,13 +59,14 @@ def main():
                 share = len(r["ranks"]) if a.threads_of_one_process else 1
                 mem.append(k["peak_rss_bytes"] / share / k["distinct"])
             if k.get("pairs_added"):
-                tr.append(k["reduce_cpu_s"] / k["pairs_added"])
-            if k.get("pairs") is not None and k["accesses"]:
+                tr.append(k["merge_cpu_s"] / k["pairs_added"])
+            if k.get("pairs") is not None and k["distinct"]:
                 pairs.append(k["pairs"])
+                dist.append(k["distinct"])
     med = lambda v: statistics.median(v) if v else float("nan")
     c = {"t_a_ns": 1e9 * med(ta), "t_f_ns": 1e9 * med(tf), "t_ft_ns": 1e9 * med(tft),
          "bytes_per_distinct_id": med(mem), "t_r_ns": 1e9 * med(tr),
-         "pairs_per_rank": med(pairs), "cores": a.cores}
+         "pairs_per_rank": med(pairs), "distinct_per_rank": med(dist), "cores": a.cores}
     scaling = []
     base = med([r["wall_s"] for r in by_np.get(1, [])])
     for np_ in sorted(by_np):
@@ -87,8 +91,10 @@ def main():
         stream = (M / B + P) * tb
         first = c["t_ft_ns"] * 1e-9 * min(M, N / P)
         levels = math.ceil(math.log2(P)) if P > 1 else 0
-        reduce = sum(min(M, 2 ** k * N / P) * (2 * t_r + 16 / a.beta) + a.alpha
-                     for k in range(levels))
+        h = c["pairs_per_rank"] * M / c["distinct_per_rank"] if c["distinct_per_rank"] else M
+        H = min(M, N / P, h)
+        reduce = sum(min(M, 2 ** k * H) * (t_r + 16 / a.beta) + a.alpha for k in range(levels))
+        reduce += min(M, P * H) * t_r  # rank 0 adds the merged lists into its histograms
         total = analyse + stream + first + reduce
         rows.append((P, analyse, stream, first, reduce, total, serial / total,
                      serial / total / P, c["bytes_per_distinct_id"] * min(M, N / P) / 1e9,
@@ -99,8 +105,9 @@ def main():
         json.dump(c, f, indent=1)
     md = [f"Measured here: t_a = {c['t_a_ns']:.1f} ns per access (reading included), "
           f"t_f = {c['t_f_ns']:.2f} ns per streamed id, t_ft = {c['t_ft_ns']:.1f} ns per first "
-          f"touch, t_r = {c['t_r_ns']:.1f} ns per histogram pair added in the reduction tree "
-          f"({c['pairs_per_rank']:.0f} pairs per rank's chunk here), "
+          f"touch, t_r = {c['t_r_ns']:.1f} ns per histogram pair merged in the reduction tree "
+          f"({c['pairs_per_rank']:.0f} pairs per rank's chunk of {c['distinct_per_rank']:.0f} "
+          f"distinct ids here), "
           f"{c['bytes_per_distinct_id']:.0f} bytes of peak memory per distinct id of a "
           f"chunk.", "",
           "| np | wall s (median, min-max) | slowest rank's wall s | CPU s, all ranks | "
