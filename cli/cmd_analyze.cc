@@ -38,7 +38,8 @@ int AnalyzeCommand(const Args& args, ChunkTransport* transport) {
       "for meshes: sweeps to analyse")(
       "threads,t", po::value(&cfg.threads)->default_value(1),
       "for meshes: the smoother's threads (one stream each); for trace files: the analyzer's "
-      "threads per stream (exact: chunks and the streamed merge)")(
+      "threads (exact): a plain file is cut into one chunk per thread, each read by its own "
+      "thread; a zstd trace or standard input is read by one thread in batches")(
       "mode", po::value(&mode)->default_value("gauss-seidel"),
       "for meshes: gauss-seidel or jacobi")(
       "format", po::value(&cfg.format),

@@ -32,7 +32,8 @@ struct AnalyzeConfig {
   uint64_t seed = 1;                             // orderings and the sampling hash
   int iterations = 1;                            // for meshes: sweeps
   // For meshes: the smoother's threads (one stream each); for trace files: the analyzer's
-  // threads per stream (exact: chunks and the streamed merge).
+  // threads (exact): a plain file in a chunk per thread (chunk_threads.h), else batches
+  // (ReuseOptions::workers).
   int threads = 1;
   UpdateMode mode = UpdateMode::kGaussSeidel;
   TriangleOrder triangle_order = TriangleOrder::kSorted;
