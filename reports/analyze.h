@@ -89,8 +89,7 @@ struct AnalyzeResult {
   std::vector<std::unique_ptr<ReuseAnalysis>> runs;  // one per input (x ordering for meshes)
   Granularity granularity = Granularity::kBoth;
   std::string granularity_note;  // the default chosen for a foreign trace, to say under the table
-  std::vector<RankStats>
-      ranks;  // a distributed run, on rank 0: every rank's (threads: each chunk's)
+  std::vector<RankStats> ranks;  // a distributed run (or threads), on rank 0: every rank's
   // Merged summaries that were sampled: the sampling the chunk runs used (the tables need it),
   // and whether they ran the exact analysis too.
   std::optional<ShardsOptions> sampling;

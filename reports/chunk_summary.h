@@ -158,8 +158,9 @@ class ChunkTransport {
   }
 };
 // Rank r analyses chunk r of P = size() (reading only its own records), the LRU stacks stream
-// rank to rank, each rank resolves its first touches, rank 0 adds the resolved chunks up: its
-// result equals the serial analyzer's; the other ranks return an empty result.
+// rank to rank, each rank resolves its first touches, and a binary tree of ranks adds the
+// resolved chunks up to rank 0: its result equals the serial analyzer's; the other ranks return
+// an empty result.
 AnalyzeResult RunDistributed(const AnalyzeConfig& cfg, ChunkTransport& tx, const Log& log);
 
 }  // namespace meshreuse

@@ -2,10 +2,10 @@
 // chunk_summary.h) with P ranks as P threads. `meshreuse analyze TRACE --threads P` runs on it:
 // each thread reads and analyses its own chunk of the file (reading is parallel too, which the
 // batched analyzer's one reader is not), the LRU stacks stream thread to thread in blocks, and the
-// resolved chunks are added up on rank 0, exactly as across MPI ranks. The tests run the
-// distributed runner on it without MPI. The stack's blocks between two ranks are a bounded queue
-// (memory: a few blocks per link whatever the stack's size). A rank that throws fails the
-// network: every rank blocked in it throws too, so a failure never hangs.
+// resolved chunks are handed over as objects (not encoded) and added up a binary tree, as across
+// MPI ranks. The tests run the distributed runner on it without MPI. The stack's blocks between
+// two ranks are a bounded queue (memory: a few blocks per link whatever the stack's size). A rank
+// that throws fails the network: every rank blocked in it throws too, so a failure never hangs.
 #pragma once
 
 #include <condition_variable>
