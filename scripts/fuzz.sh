@@ -37,7 +37,8 @@ cp tests/data/broken/*.trace "$c/trace/"
   build/release/cli/meshreuse trace tests/data/two_interior.node --threads 2 -o "$c/trace/seed-two_interior.trace" --quiet >/dev/null
 # Format byte (tests/fuzz/fuzz_external.cc): low four bits the format's fixed code in
 # tracer/trace_formats.cc (1 text, 2 u32, 3 u64, 4 parda, 5 oracle, 6 lackey), bit 4 (0x10)
-# instructions, bit 5 (0x20) two workers. Octal escapes below: \043 = u64 on two workers.
+# instructions, bit 5 (0x20) two workers, bit 6 (0x40) three chunks by range. Octal escapes
+# below: \043 = u64 on two workers.
 for f in tests/data/broken/*.txt; do { printf '\1'; cat "$f"; } >"$c/external/seed-$(basename "$f")"; done
 printf '\1# ids\n1\n2\n0x10\n1\n' >"$c/external/seed-text"
 { printf '\2'; /usr/bin/python3 -c 'import struct,sys; sys.stdout.buffer.write(struct.pack("<4I",1,2,1,3))'; } >"$c/external/seed-u32"
@@ -46,6 +47,11 @@ for f in tests/data/broken/*.lackey; do { printf '\6'; cat "$f"; } >"$c/external
 { printf '\026'; printf '==1== Lackey\nI  0040,2\n L 1000,8\n S 1000,8\n M 103e,4\n'; } >"$c/external/seed-lackey"
 for f in tests/data/broken/*.oracle; do { printf '\5'; cat "$f"; } >"$c/external/seed-$(basename "$f")"; done
 for f in tests/data/broken/*.zst; do { printf '\043'; cat "$f"; } >"$c/external/seed-$(basename "$f")"; done
+# Bit 6 (0x40): read again in three chunks by range, which must agree with the whole read.
+printf '\101# ids\n1\n2\n0x10\n1\n7\n8\n' >"$c/external/seed-text-chunks"
+{ printf '\103'; /usr/bin/python3 -c 'import struct,sys; sys.stdout.buffer.write(struct.pack("<7Q",1,2,1,3,2,9,1) + b"x")'; } >"$c/external/seed-u64-chunks"
+{ printf '\126'; printf '==1== Lackey\nI  0040,2\n L 1000,8\n S 1000,8\n M 103e,4\n L 2000,4\n'; } >"$c/external/seed-lackey-chunks"
+for f in tests/data/broken/*.oracle; do { printf '\105'; cat "$f"; } >"$c/external/seed-chunks-$(basename "$f")"; done
 { printf '\043'; /usr/bin/python3 -c 'import struct,sys; sys.stdout.buffer.write(b"".join(struct.pack("<Q", i % 37) for i in range(400)))' | zstd -q -c; } >"$c/external/seed-u64-zst"
 cp tests/data/broken/truncated_trace.zst "$c/trace/seed-truncated_trace.zst"
 cp tests/data/broken/*.perm "$c/permutation/"

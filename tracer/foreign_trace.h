@@ -8,6 +8,7 @@
 // (lackey run without --trace-mem=yes) is refused, naming the cause.
 #pragma once
 
+#include <algorithm>
 #include <cerrno>
 #include <charconv>
 #include <cstdio>
@@ -198,6 +199,17 @@ ForeignTraceCounts ReadForeignTrace(const std::string& path, const TraceFormat& 
   if (fmt.syntax == TraceSyntax::kFixedRecords) {
     const size_t w = fmt.record_bytes, at = fmt.value_offset;
     if (ranged) {
+      // Every chunk refuses a file that ends in part of a record, as a reader from the start
+      // does at its end (a chunk reads whole records only).
+      const int64_t size = in.size();
+      if (size >= 0 && static_cast<uint64_t>(size) % w != 0) {
+        const uint64_t whole = static_cast<uint64_t>(size) / w * w;
+        throw InputError(path, 0,
+                         "truncated: " + std::to_string(static_cast<uint64_t>(size) - whole) +
+                             " stray bytes at byte offset " + std::to_string(whole) + ", after " +
+                             std::to_string(whole / w) + " records of " + std::to_string(w) +
+                             " bytes");
+      }
       in.SeekTo(first * w);
       in.SetLimit((end - first) * w);
     }
@@ -233,9 +245,17 @@ ForeignTraceCounts ReadForeignTrace(const std::string& path, const TraceFormat& 
                                   !ranged);
   } catch (const InputError& e) {
     if (!ranged) throw;
+    if (e.line() > 0) {  // the line in the whole file, as a reader from the start says it
+      InputStream prefix(path);
+      prefix.SetLimit(chunk_start);
+      int64_t lines = 0;
+      for (size_t got; (got = prefix.Read(buf.data(), buf.size())) > 0;)
+        lines += std::count(buf.data(), buf.data() + got, '\n');
+      throw InputError(path, lines + e.line(), e.problem());
+    }
     throw InputError(path, 0,
-                     std::string(e.what()) + " (lines counted from byte offset " +
-                         std::to_string(chunk_start) + ", where this chunk begins)");
+                     e.problem() + " (in the chunk that begins at byte offset " +
+                         std::to_string(chunk_start) + ")");
   }
   return count;
 }

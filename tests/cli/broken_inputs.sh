@@ -20,8 +20,9 @@ while IFS=$'\t' read -r file line msg kind; do
   [[ $line == 0 ]] && where="$path: "
   case ${kind:-mesh} in
     mesh) cmds=("mesh info %s" "smooth %s") ;;
-    trace) cmds=("analyze %s" "simulate %s") ;;
-    text|u32|u64|lackey|oracle|parda) cmds=("analyze %s --format $kind" "simulate %s --format $kind") ;;
+    # --threads 3: a chunk per thread, each reading its part (the same message as one reader)
+    trace) cmds=("analyze %s" "analyze %s --threads 3" "simulate %s") ;;
+    text|u32|u64|lackey|oracle|parda) cmds=("analyze %s --format $kind" "analyze %s --format $kind --threads 3" "simulate %s --format $kind") ;;
     poly) command -v triangle >/dev/null || continue
       cmds=("mesh generate --poly %s --vertices 1000 -o $tmp/generated") ;;
     summary) cmds=("analyze --merge %s") ;;

@@ -138,7 +138,7 @@ check "zstd text chunk" 2 "$bin" analyze "$tmp/ids.txt.zst" --format text --chun
 contains "zstd text chunk" "decompress it first"
 printf '1\n2\nx\n3\n' >"$tmp/bad.txt"
 check "bad text chunk" 2 "$bin" analyze "$tmp/bad.txt" --format text --chunk 1/2 --summary-out "$tmp/x" --quiet
-contains "bad text chunk" "where this chunk begins"
+contains "bad text chunk" "bad.txt:3: expected a decimal"
 check "bad chunk spec" 2 "$bin" analyze "$tmp/uniform.u64" --format u64 --chunk 3/3 --summary-out "$tmp/x" --quiet
 contains "bad chunk spec" "expected 0 <= r < P"
 check "chunk without out" 2 "$bin" analyze "$tmp/uniform.u64" --format u64 --chunk 0/3 --quiet
