@@ -19,6 +19,7 @@
 #include "core/smoother.h"
 #include "reports/inputs.h"
 #include "reports/run_info.h"
+#include "tracer/foreign_trace.h"
 #include "tracer/trace_formats.h"
 #include "tracer/trace_reader.h"
 
@@ -835,13 +836,14 @@ void RunChunk(const AnalyzeConfig& cfg, const Log& log) {
   log.Say("wrote " + cfg.summary_out);
 }
 
-SummaryMerger::SummaryMerger(bool profile) : profile_(profile) {}
+SummaryMerger::SummaryMerger(bool profile, bool reread) : profile_(profile), reread_(reread) {}
 SummaryMerger::~SummaryMerger() = default;
 
 void SummaryMerger::Add(SummaryFile s, const std::string& name, size_t given) {
   if (!a_) {
     id_ = s.id;
     first_name_ = name;
+    input_ = s.input;
     granularity_ = static_cast<Granularity>(id_.granularity);
     ReuseOptions o;
     o.granularity = granularity_;
@@ -883,6 +885,7 @@ void SummaryMerger::Add(SummaryFile s, const std::string& name, size_t given) {
   next_record_ = s.end;
   for (int t = 0; t < a_->threads(); ++t) a_->AddMoves(t, s.moves[t]);
   for (StreamSummary& x : s.streams) {
+    any_access_ = any_access_ || x.accesses > 0 || x.stream_accesses > 0;
     StreamAnalysis& st = a_->MakeStream(static_cast<int>(x.thread), x.granularity);
     // The merged distances reach the stream's distinct ids: counted in pages, not in an array as
     // long as the largest (no rank of an MPI run, nor a file merge, holds one of M entries).
@@ -923,6 +926,17 @@ void SummaryMerger::Add(SummaryFile s, const std::string& name, size_t given) {
 
 AnalyzeResult SummaryMerger::Finish() {
   if (!a_) throw std::logic_error("SummaryMerger: nothing added");
+  // A whole read refuses a lackey file without records (data, or instructions counted); a chunk
+  // cannot tell, so the chunks together do (no access in any chunk is exactly that condition).
+  if (id_.format == "lackey" && !any_access_) {
+    if (reread_)
+      ReadForeignTrace(
+          input_, ParseTraceFormat("lackey"), [](uint64_t, uint32_t, bool, bool) {},
+          id_.instructions != 0);
+    throw InputError(input_, 0,
+                     "no lackey records (L, S, M or I lines) in any chunk: run valgrind "
+                     "--tool=lackey --trace-mem=yes --log-file=FILE PROGRAM and read FILE");
+  }
   // Each sampled stream's estimate, as the serial sampler would have built it (End() then applies
   // SHARDS_adj as it does serially).
   for (const auto& [key, z] : sampled_) {
@@ -1160,7 +1174,7 @@ AnalyzeResult RunDistributed(const AnalyzeConfig& cfg, ChunkTransport& tx, const
   }
   // Rank 0 holds every chunk, resolved: one summary of one chunk for the merger.
   s.chunk = 0, s.id.chunks = 1;
-  SummaryMerger m(cfg.profile);
+  SummaryMerger m(cfg.profile, true);
   m.Add(std::move(s), "rank 0", 1);
   std::vector<RankStats> all(1);
   for (int r = 1; r < ranks; ++r) {

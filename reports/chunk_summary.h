@@ -108,7 +108,9 @@ void RunChunk(const AnalyzeConfig& cfg, const Log& log);
 // out of order, foreign or missing).
 class SummaryMerger {
  public:
-  explicit SummaryMerger(bool profile);
+  // reread: the trace named in the summaries is at hand (a distributed run): a lackey trace
+  // without records is read whole again for the message a whole read gives.
+  explicit SummaryMerger(bool profile, bool reread = false);
   ~SummaryMerger();
   void Add(SummaryFile s, const std::string& name, size_t given);  // `given`: summaries in all
   AnalyzeResult Finish();
@@ -129,6 +131,8 @@ class SummaryMerger {
   std::string first_name_;
   uint32_t expect_ = 0;
   uint64_t next_record_ = 0;
+  bool reread_ = false, any_access_ = false;
+  std::string input_;
 };
 // The merge: cfg.inputs are summaries of chunks 0..P-1, in order.
 AnalyzeResult MergeSummaries(const AnalyzeConfig& cfg, const Log& log);

@@ -139,6 +139,18 @@ contains "zstd text chunk" "decompress it first"
 printf '1\n2\nx\n3\n' >"$tmp/bad.txt"
 check "bad text chunk" 2 "$bin" analyze "$tmp/bad.txt" --format text --chunk 1/2 --summary-out "$tmp/x" --quiet
 contains "bad text chunk" "bad.txt:3: expected a decimal"
+# A lackey file without records: a whole read refuses it, no chunk can tell alone, so the chunks
+# together do (threads: the whole read's own message; a merge of summary files: "in any chunk").
+printf '\xef\xbb\xbf' >"$tmp/empty.lackey"
+printf 'I  0040,2\nI  0044,2\n' >"$tmp/ifetch.lackey"
+for f in empty ifetch; do
+  "$bin" analyze "$tmp/$f.lackey" --format lackey --quiet >/dev/null 2>"$tmp/serial.err"
+  check "$f lackey threads" 2 "$bin" analyze "$tmp/$f.lackey" --format lackey --threads 3 --quiet
+  if cmp -s "$tmp/out" "$tmp/serial.err" && [[ -s $tmp/out ]]; then pass=$((pass + 1)); else fail=$((fail + 1)); echo "FAIL $f lackey threads: not the whole read's message"; cat "$tmp/out"; fi
+done
+for r in 0 1; do "$bin" analyze "$tmp/empty.lackey" --format lackey --chunk $r/2 --summary-out "$tmp/e$r" --quiet; done
+check "empty lackey merge" 2 "$bin" analyze --merge "$tmp/e0" "$tmp/e1" --quiet
+contains "empty lackey merge" "no lackey records (L, S, M or I lines) in any chunk"
 check "bad chunk spec" 2 "$bin" analyze "$tmp/uniform.u64" --format u64 --chunk 3/3 --summary-out "$tmp/x" --quiet
 contains "bad chunk spec" "expected 0 <= r < P"
 check "chunk without out" 2 "$bin" analyze "$tmp/uniform.u64" --format u64 --chunk 0/3 --quiet
