@@ -73,13 +73,15 @@ done
 # stacks streamed thread to thread (reports/chunk_threads.h); a zstd trace, standard input and a
 # pipe go through the batched analyzer (one reader, the streamed merge per batch), as do the
 # samplers chunks cannot run. The same outputs, every one.
+outputs "$tmp/serial" "$bin" analyze "$tmp/mesh.trace"
 for th in 2 3; do
-  outputs "$tmp/serial" "$bin" analyze "$tmp/mesh.trace"
   outputs "$tmp/threads" "$bin" analyze "$tmp/mesh.trace" --threads "$th"
   same "mesh.trace --threads $th" "$tmp/serial" "$tmp/threads"
-  for f in "${trace_specs[@]}"; do
-    set -- $f
-    outputs "$tmp/serial" "$bin" analyze "$tmp/$1" --format "$2" --granularity "$3"
+done
+for f in "${trace_specs[@]}"; do
+  set -- $f
+  outputs "$tmp/serial" "$bin" analyze "$tmp/$1" --format "$2" --granularity "$3"
+  for th in 2 3; do
     outputs "$tmp/threads" "$bin" analyze "$tmp/$1" --format "$2" --granularity "$3" --threads "$th"
     same "$1 --threads $th" "$tmp/serial" "$tmp/threads"
   done
