@@ -70,6 +70,16 @@ void LackeyLine(const std::string& path, int64_t line, const char* b, const char
   if (op == 'M') add(addr, size, true, false);  // a modify: the load, then the store
 }
 
+// A fixed-record file of `size` bytes that ends in part of a record (one message, whether the
+// whole file is read or a chunk of it).
+inline InputError StrayBytes(const std::string& path, uint64_t size, size_t w) {
+  const uint64_t whole = size / w * w;
+  return InputError(path, 0,
+                    "truncated: " + std::to_string(size - whole) + " stray bytes at byte offset " +
+                        std::to_string(whole) + ", after " + std::to_string(whole / w) +
+                        " records of " + std::to_string(w) + " bytes");
+}
+
 // Fixed-size little-endian records of `w` bytes, the value (VW bytes, a constant so the copy is
 // inlined) at offset `at`.
 template <size_t VW, class F>
@@ -96,11 +106,7 @@ void Fixed(const std::string& path, InputStream& in, std::vector<char>& buf, siz
     offset += whole;
     carry = n - whole;
     if (got == 0) {
-      if (carry)
-        throw InputError(path, 0,
-                         "truncated: " + std::to_string(carry) + " stray bytes at byte offset " +
-                             std::to_string(offset) + ", after " + std::to_string(offset / w) +
-                             " records of " + std::to_string(w) + " bytes");
+      if (carry) throw StrayBytes(path, offset + carry, w);
       break;
     }
     std::memmove(buf.data(), buf.data() + whole, carry);
@@ -202,14 +208,8 @@ ForeignTraceCounts ReadForeignTrace(const std::string& path, const TraceFormat& 
       // Every chunk refuses a file that ends in part of a record, as a reader from the start
       // does at its end (a chunk reads whole records only).
       const int64_t size = in.size();
-      if (size >= 0 && static_cast<uint64_t>(size) % w != 0) {
-        const uint64_t whole = static_cast<uint64_t>(size) / w * w;
-        throw InputError(path, 0,
-                         "truncated: " + std::to_string(static_cast<uint64_t>(size) - whole) +
-                             " stray bytes at byte offset " + std::to_string(whole) + ", after " +
-                             std::to_string(whole / w) + " records of " + std::to_string(w) +
-                             " bytes");
-      }
+      if (size >= 0 && static_cast<uint64_t>(size) % w != 0)
+        throw foreign_detail::StrayBytes(path, static_cast<uint64_t>(size), w);
       in.SeekTo(first * w);
       in.SetLimit((end - first) * w);
     }

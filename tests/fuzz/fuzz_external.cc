@@ -26,7 +26,12 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   o.batch_per_worker = 64;
   ReuseAnalysis a(o);
   CacheSimulation sim(ParseCacheSpec("L1=1K/2,L2=4K/4"), 64);
-  FanOut both({&a, &sim});
+  struct Count : AccessConsumer {
+    uint64_t n = 0;
+    void Begin(const StreamInfo&) override {}
+    void Consume(const Access*, size_t k) override { n += k; }
+  } whole, parts;
+  FanOut both({&a, &sim, &whole});
   bool whole_ok = true;
   try {
     StreamForeignTrace(f.path(), *fmt, instructions, both);
@@ -37,15 +42,6 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   // `--chunk r/3` read it (records, or the lines that begin in a byte range): every chunk reads
   // exactly when the whole read does, and together they hold its accesses.
   if (!(data[0] & 0x40) || InputStream(f.path()).compressed()) return 0;
-  struct Count : AccessConsumer {
-    uint64_t n = 0;
-    void Begin(const StreamInfo&) override {}
-    void Consume(const Access*, size_t k) override { n += k; }
-  } whole, parts;
-  try {
-    StreamForeignTrace(f.path(), *fmt, instructions, whole);
-  } catch (const InputError&) {
-  }
   const bool text = fmt->syntax != TraceSyntax::kFixedRecords;
   const uint64_t total = text ? size - 1 : ForeignTraceLength(f.path(), *fmt);
   bool parts_ok = true;
