@@ -18,6 +18,8 @@ void ReuseHistogram::Grow(uint64_t d) {
   counts_.resize(counts_.capacity() > d ? std::min<uint64_t>(want, counts_.capacity()) : want, 0);
 }
 
+void ReuseHistogram::Carry(uint64_t d, uint64_t wraps) { carries_[d] += wraps; }
+
 void ReuseHistogram::UsePages() {
   if (accesses() || !counts_.empty()) throw std::logic_error("ReuseHistogram: pages after adds");
   paged_ = true;
@@ -39,7 +41,9 @@ std::vector<std::pair<uint64_t, uint64_t>> ReuseHistogram::Pairs() const {
 }
 
 uint64_t ReuseHistogram::counter_bytes() const {
-  uint64_t b = counts_.capacity() * sizeof(uint64_t) + pages_.capacity() * sizeof(pages_[0]);
+  // A map node: the pair, three links and a colour, rounded to the allocator's 16 bytes.
+  uint64_t b = counts_.capacity() * sizeof(uint32_t) + pages_.capacity() * sizeof(pages_[0]) +
+               carries_.size() * 64;
   for (const auto& p : pages_)
     if (p) b += kPage * sizeof(uint64_t);
   return b;
@@ -48,7 +52,12 @@ uint64_t ReuseHistogram::counter_bytes() const {
 void ReuseHistogram::Merge(const ReuseHistogram& o) {
   if (!paged_ && !o.paged_) {
     if (o.counts_.size() > counts_.size()) counts_.resize(o.counts_.size(), 0);
-    for (size_t d = 0; d < o.counts_.size(); ++d) counts_[d] += o.counts_[d];
+    for (size_t d = 0; d < o.counts_.size(); ++d) {
+      const uint32_t n = counts_[d] + o.counts_[d];
+      if (n < counts_[d]) ++carries_[d];
+      counts_[d] = n;
+    }
+    for (const auto& [d, c] : o.carries_) carries_[d] += c;
     finite_ += o.finite_;
     sum_ += o.sum_;
   } else {

@@ -1,7 +1,8 @@
 // ReuseHistogram's two layouts give one set of answers: the paged one (UsePages) against the
 // dense one, and both against a naive std::map of counts, on random histograms of several shapes,
 // for every query the outputs use (quantiles, tails, bins, rows, curve, capacities, merges); and
-// the paged layout's memory follows the distances it holds, not the largest one.
+// the paged layout's memory follows the distances it holds, not the largest one; the dense
+// layout's 32-bit counters carry exactly past 2^32 in every query and merge.
 #include "analysis/reuse_histogram.h"
 
 #include <gtest/gtest.h>
@@ -169,7 +170,53 @@ TEST(ReuseHistogram, PagesFollowTheDistancesHeld) {
   EXPECT_EQ(h.Quantile(0.1), 3u);
   ReuseHistogram dense;
   dense.AddCount(100'000'000 - 1, 5);
-  EXPECT_GE(dense.counter_bytes(), uint64_t{800'000'000});
+  EXPECT_GE(dense.counter_bytes(), uint64_t{400'000'000});  // 32-bit counters
+}
+
+TEST(ReuseHistogram, DenseCountersCarryPast32Bits) {
+  // Counts at and beyond 2^32 at the first, a middle and the last distance, reached by Add one
+  // at a time across the wrap, by AddCount with and without a carry out of the low word, and by
+  // merging two dense histograms whose counters wrap only added together: every answer as the
+  // paged layout's (64-bit counters) and a naive map's.
+  const uint64_t w = uint64_t{1} << 32;
+  ReuseHistogram dense, paged;
+  paged.UsePages();
+  std::map<uint64_t, uint64_t> naive;
+  auto add = [&](uint64_t d, uint64_t n, bool one_by_one) {
+    if (one_by_one) {
+      for (uint64_t k = 0; k < n; ++k) dense.Add(d);
+    } else {
+      dense.AddCount(d, n);
+    }
+    paged.AddCount(d, n);
+    naive[d] += n;
+  };
+  add(0, w - 2, false);
+  add(0, 5, true);  // wraps on the second
+  add(7, 3, true);
+  add(7, 3 * w + (w - 1), false);  // a carry from n's high word and one out of the low word
+  add(9, 2 * w, false);            // a multiple of 2^32: the low counter stays 0
+  add(12, 1, true);
+  add(12, w - 1, false);  // exactly 2^32: low 0, one carry
+  ExpectSame(dense, paged, naive, 0);
+  EXPECT_EQ(dense.max(), 12u);
+  EXPECT_EQ(dense.CountAtLeast(9), 2 * w + w);
+  EXPECT_EQ(dense.Quantile(1.0), 12u);
+
+  ReuseHistogram a, b, ap, bp;
+  ap.UsePages();
+  bp.UsePages();
+  std::map<uint64_t, uint64_t> sum;
+  for (uint64_t d : {uint64_t{1}, uint64_t{4}, uint64_t{6}}) {
+    const uint64_t x = w - d, y = d + 1 + (d == 6 ? w : 0);  // x + y wraps; d = 6 also carries
+    a.AddCount(d, x), ap.AddCount(d, x);
+    b.AddCount(d, y), bp.AddCount(d, y);
+    sum[d] = x + y;
+  }
+  b.AddCount(5, 2), bp.AddCount(5, 2), sum[5] = 2;
+  a.Merge(b);
+  ap.Merge(bp);
+  ExpectSame(a, ap, sum, 0);
 }
 
 TEST(ReuseHistogram, PagesOnlyBeforeAnyAdd) {
