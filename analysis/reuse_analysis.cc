@@ -82,9 +82,11 @@ std::unique_ptr<StreamAnalysis> ReuseAnalysis::NewStream(int t, Granularity g) {
   if (any && opt_.profile) s->profile = ReuseProfile(lengths, steps);
   const std::vector<uint64_t>& offsets = element ? element_offset_ : line_offset_;
   s->chunk = opt_.chunk;
+  s->keep_positions = opt_.chunk_positions || s->profile.enabled();
   if (opt_.chunk && opt_.sample) {
     s->sampled_chunk = std::make_unique<StreamAnalysis>(0);
     s->sampled_chunk->chunk = true;
+    s->sampled_chunk->keep_positions = opt_.chunk_positions;
   }
   s->batch_limit = opt_.batch_per_worker * opt_.workers;
   s->offset = static_cast<size_t>(t) < offsets.size() ? offsets[t] : 0;

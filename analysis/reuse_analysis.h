@@ -55,7 +55,7 @@ struct StreamAnalysis {
     const uint64_t d = sd.Access(id);
     if (d == StackDistance::kCold && chunk) {  // decided later, by the merge
       first_ids.push_back(id);
-      first_positions.push_back(sd.accesses() - 1);
+      if (keep_positions) first_positions.push_back(sd.accesses() - 1);
       if (profile.enabled()) profile.Skip();
       return d;
     }
@@ -76,6 +76,7 @@ struct StreamAnalysis {
   bool chunk = false;
   uint64_t offset = 0;
   std::vector<uint64_t> first_ids, first_positions;
+  bool keep_positions = true;  // first_positions kept (ReuseOptions::chunk_positions)
   // A chunk sampled at a fixed rate: the sampled ids' exact distances among themselves, as a
   // chunk of their own (merged, they give exactly the serial SHARDS estimate:
   // Shards::FromSampled); `added` counts the stream's accesses in the chunk.
@@ -109,6 +110,10 @@ struct ReuseOptions {
   // One chunk of a trace, for a summary (reports/chunk_summary.h): first touches kept, not
   // counted (StreamAnalysis::chunk); serial; sampling at a fixed rate only.
   bool chunk = false;
+  // A chunk keeps where each first touch stands in its stream: a summary file holds them, a
+  // distributed run needs them only for its profile (kept anyway when the chunk has one). Without
+  // them a chunk of 10^6 distinct ids writes 8 MB less, most of it fresh pages.
+  bool chunk_positions = true;
   // Sampling (SHARDS) beside or instead of the exact analysis.
   bool exact = true;
   bool sample = false;

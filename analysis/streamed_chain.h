@@ -65,10 +65,16 @@ class ChunkResolver {
   // After the whole stack before the chunk went through Filter: the distance of each first touch
   // (StackDistance::kCold when its id was not in the stack), in first-touch order.
   std::vector<uint64_t> FirstTouchDistances() const;
+  // The same, as f(k, distance of first touch k) in first-touch order, with no list of them (at
+  // 10^6 first touches, 8 MB of fresh pages fewer).
+  template <class F>
+  void ForEachFirstTouchDistance(F f) const;
   uint64_t stack_seen() const { return seen_; }  // |S_<r| so far
   size_t MemoryBytes() const { return index_.MemoryBytes() + pos_.capacity() * 12; }
 
  private:
+  static constexpr uint64_t kNotFound = ~uint64_t{0};
+  static constexpr uint64_t kColdDistance = ~uint64_t{0};  // StackDistance::kCold
   const ChunkSummary& s_;
   IdIndex index_;
   std::vector<uint64_t> pos_;   // per first touch: place in the stack before, or kNotFound
@@ -76,6 +82,33 @@ class ChunkResolver {
   uint64_t seen_ = 0;
   uint32_t found_ = 0;
 };
+
+template <class F>
+void ChunkResolver::ForEachFirstTouchDistance(F f) const {
+  // Which ranks (places in the stack, in order) earlier first touches were found at: a bit per
+  // rank, and a Fenwick tree over the bit words counting the bits set in each. Ranks are distinct,
+  // so a bit is enough; the bits and the tree (1/64 as many entries as a tree over the ranks) stay
+  // in the L2 cache up to millions of first touches, where a tree per rank missed it on every
+  // level (72 ns a first touch at 10^6 uniform ids, measured).
+  std::vector<uint64_t> bits((found_ + 63) / 64, 0);
+  std::vector<uint32_t> tree(bits.size() + 1, 0);
+  uint64_t inserted = 0;
+  for (size_t k = 0; k < pos_.size(); ++k) {
+    if (pos_[k] == kNotFound) {
+      f(k, kColdDistance);
+      continue;
+    }
+    const uint32_t r = rank_[k], w = r >> 6;
+    uint64_t below =
+        static_cast<uint64_t>(__builtin_popcountll(bits[w] & ((uint64_t{1} << (r & 63)) - 1)));
+    for (uint32_t i = w; i > 0; i -= i & (0u - i)) below += tree[i];  // words 0..w-1
+    const uint64_t above = inserted - below;  // earlier first touches higher in the stack
+    f(k, (seen_ - 1 - pos_[k]) + k - above);
+    bits[w] |= uint64_t{1} << (r & 63);
+    for (uint32_t i = w + 1; i < tree.size(); i += i & (0u - i)) ++tree[i];
+    ++inserted;
+  }
+}
 
 // The whole step for one chunk, serially: `stack` (bottom-up) is the stack before the chunk and is
 // left holding the stack after it; returns the first touches' distances. For summary files merged

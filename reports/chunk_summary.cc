@@ -8,6 +8,7 @@
 #include <functional>
 #include <limits>
 #include <memory>
+#include <stdexcept>
 
 #include "analysis/streamed_chain.h"
 #include "core/access.h"
@@ -615,8 +616,11 @@ ReuseOptions ChunkOptions(const AnalyzeConfig& cfg, const SummaryFile& s) {
   ReuseOptions o;
   o.granularity = static_cast<Granularity>(s.id.granularity);
   o.line_bytes = cfg.line_bytes;
-  o.profile = true;
+  // A summary file holds a profile and the first touches' places whatever this run writes (its
+  // merge may write a profile); a distributed run computes them only for a profile it writes.
+  o.profile = cfg.profile || !cfg.transport;
   o.chunk = true;
+  o.chunk_positions = !cfg.transport;
   o.exact = s.id.exact;
   o.sample = s.id.sample;
   o.shards = cfg.shards;
@@ -649,6 +653,9 @@ void Collect(ReuseAnalysis& a, SummaryFile* out) {
         ss.chunk.first_positions = std::move(y->first_positions);
         ss.chunk.stack = y->sd.StackBottomUp();
         y->sd = StackDistance();  // its memory, free for what follows
+        size_t pairs = 0;  // counted first: 16 MB of pairs at 10^6 distances, grown, touched 32
+        y->hist.ForEach([&pairs](uint64_t, uint64_t) { ++pairs; });
+        ss.hist.reserve(pairs);
         y->hist.ForEach([&](uint64_t d, uint64_t n) { ss.hist.emplace_back(d, n); });
         const auto& steps = y->profile.steps();
         for (size_t i = 0; i < steps.size(); ++i)
@@ -1105,7 +1112,6 @@ AnalyzeResult RunDistributed(const AnalyzeConfig& cfg, ChunkTransport& tx, const
     if (!x) continue;
     const double resolve0 = ThreadCpuSeconds();
     // Off the critical path: this chunk's first touches, folded into its histogram and profile.
-    const std::vector<uint64_t> d = res.FirstTouchDistances();
     StreamAnalysis& st = places.MakeStream(static_cast<int>(x->thread), x->granularity);
     const bool prof = !x->sampled && st.profile.enabled();
     if (prof && x->offset != offsets[k])
@@ -1119,14 +1125,20 @@ AnalyzeResult RunDistributed(const AnalyzeConfig& cfg, ChunkTransport& tx, const
     ReuseHistogram h;
     h.UsePages();
     for (const auto& [dist, n] : x->hist) h.AddCount(dist, n);
-    for (size_t i = 0; i < d.size(); ++i) {
-      h.Add(d[i]);
-      if (prof) st.profile.AddAt(offsets[k] + x->chunk.first_positions[i], d[i]);
-    }
+    const std::vector<uint64_t>& places_in_chunk = x->chunk.first_positions;
+    if (prof && places_in_chunk.size() != x->chunk.first_ids.size())
+      throw std::logic_error("RunDistributed: a chunk with a profile kept no first-touch places");
+    res.ForEachFirstTouchDistance([&](size_t i, uint64_t d) {
+      h.Add(d);
+      if (prof) st.profile.AddAt(offsets[k] + places_in_chunk[i], d);
+    });
     stats.histogram_bytes = std::max(stats.histogram_bytes, h.counter_bytes());
     stats.dense_histogram_bytes =
         std::max(stats.dense_histogram_bytes, h.finite() ? 8 * (h.max() + 1) : 0);
+    size_t pairs = 1;  // and the cold count's
+    h.ForEach([&pairs](uint64_t, uint64_t) { ++pairs; });
     x->hist.clear();
+    x->hist.reserve(pairs);
     h.ForEach([&](uint64_t dist, uint64_t n) { x->hist.emplace_back(dist, n); });
     if (h.cold()) x->hist.emplace_back(StackDistance::kCold, h.cold());
     if (prof) {
