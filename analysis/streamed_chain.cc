@@ -58,10 +58,16 @@ uint32_t IdIndex::FindHashed(uint64_t id) const {
   }
 }
 
-ChunkResolver::ChunkResolver(const ChunkSummary& s)
-    : s_(s), index_(s.first_ids), pos_(s.first_ids.size(), kNotFound), rank_(s.first_ids.size()) {}
+ChunkResolver::ChunkResolver(const ChunkSummary& s) : s_(s) {}
 
 void ChunkResolver::Filter(const uint64_t* ids, size_t n, std::vector<uint64_t>* out) {
+  if (n == 0) return;
+  if (!indexed_) {  // the first chunk, before which the stack is empty, never gets here
+    index_ = IdIndex(s_.first_ids);
+    pos_.assign(s_.first_ids.size(), kNotFound);
+    rank_.assign(s_.first_ids.size(), 0);
+    indexed_ = true;
+  }
   for (size_t i = 0; i < n; ++i) {
     const uint32_t k = index_.Find(ids[i]);
     if (k == IdIndex::kAbsent) {
@@ -77,7 +83,7 @@ void ChunkResolver::Filter(const uint64_t* ids, size_t n, std::vector<uint64_t>*
 static_assert(StackDistance::kCold == ~uint64_t{0}, "ChunkResolver's cold distance");
 
 std::vector<uint64_t> ChunkResolver::FirstTouchDistances() const {
-  std::vector<uint64_t> d(pos_.size());
+  std::vector<uint64_t> d(s_.first_ids.size());
   ForEachFirstTouchDistance([&d](size_t k, uint64_t dist) { d[k] = dist; });
   return d;
 }

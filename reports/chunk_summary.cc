@@ -628,8 +628,9 @@ ReuseOptions ChunkOptions(const AnalyzeConfig& cfg, const SummaryFile& s) {
 }
 
 // The chunk's summary entries from its analysis (the exact chunk and the sampled ids' chunk of
-// each stream); the first touches are moved out of the analysis, not copied.
-void Collect(ReuseAnalysis& a, SummaryFile* out) {
+// each stream); the first touches are moved out of the analysis, not copied. The last chunk of a
+// distributed run passes its stack to no one: `stack` false leaves it out.
+void Collect(ReuseAnalysis& a, SummaryFile* out, bool stack) {
   SummaryFile& s = *out;
   s.info = a.info();
   s.info.input.clear();
@@ -651,7 +652,7 @@ void Collect(ReuseAnalysis& a, SummaryFile* out) {
         ss.offset = ss.sampled ? 0 : x->offset;
         ss.chunk.first_ids = std::move(y->first_ids);
         ss.chunk.first_positions = std::move(y->first_positions);
-        ss.chunk.stack = y->sd.StackBottomUp();
+        if (stack) ss.chunk.stack = y->sd.StackBottomUp();
         y->sd = StackDistance();  // its memory, free for what follows
         size_t pairs = 0;  // counted first: 16 MB of pairs at 10^6 distances, grown, touched 32
         y->hist.ForEach([&pairs](uint64_t, uint64_t) { ++pairs; });
@@ -760,7 +761,7 @@ SummaryFile SummarizeMeshChunk(const AnalyzeConfig& cfg, uint32_t r, uint32_t p,
   part.max_iters = run.to - run.from + 1;
   StreamMesh(m, part, in, whole.ordering, gate);
   a.End();
-  Collect(a, &s);
+  Collect(a, &s, !(cfg.transport && r + 1 == p));
   return s;
 }
 
@@ -833,7 +834,7 @@ SummaryFile SummarizeChunk(const AnalyzeConfig& cfg, uint32_t r, uint32_t p, con
     StreamForeignTrace(in, *fmt, cfg.instructions, a, FileProgress(log), &range);
   else
     StreamTraceFile(in, a, FileProgress(log), &range);
-  Collect(a, &s);
+  Collect(a, &s, !(cfg.transport && r + 1 == p));
   return s;
 }
 

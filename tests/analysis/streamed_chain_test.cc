@@ -54,7 +54,8 @@ TEST(IdIndex, FindsExactlyItsIds) {
       EXPECT_EQ(x.Find(18), IdIndex::kAbsent);
     }
   }
-  EXPECT_EQ(IdIndex({}).Find(0), IdIndex::kAbsent);
+  EXPECT_EQ(IdIndex(std::vector<uint64_t>{}).Find(0), IdIndex::kAbsent);
+  EXPECT_EQ(IdIndex().Find(0), IdIndex::kAbsent);
   // Addresses on a power-of-two stride far from 0: direct (an array, not a table), and ids off
   // the stride, before the first or after the last absent.
   for (uint64_t stride : {uint64_t{64}, uint64_t{4096}}) {
