@@ -8,7 +8,12 @@
 # oracleGeneral-like), uniform ids as a text trace (cut at line boundaries), and a mesh trace
 # (plate41 refined 4 times, RDR, 4 sweeps, both granularities; --no-mesh skips it). Then the model
 # of scripts/project_mpi.py from the threads' own per-chunk phases (--rank-stats), for 32 and 64
-# threads. Writes OUT/threads.csv (every run), OUT/threads.md (the table) and OUT/model/.
+# threads. Beside them, what this machine lets any division of the work gain: the trace cut into T
+# part files exactly where the threads cut it (records; whole lines for text), each analysed by a
+# serial process of its own, all T at once, nothing merged ("parts at once"; not for the mesh
+# trace, whose format has no such parts): first touches repeated in each part, shared caches and
+# memory, cores that do not run alike all weigh on it as on the threads, the merge does not.
+# Writes OUT/threads.csv (every run), OUT/threads.md (the table) and OUT/model/.
 #
 # Usage: scripts/scale_threads.sh [--threads 2,4,...] [--repeat R] [--accesses N --ids M]
 #          [--no-mesh] [--out DIR]
@@ -72,7 +77,36 @@ if ((mesh)); then
   fi
   traces+=("mesh.trace - -")
 fi
-echo "trace,threads,run,wall_s,cpu_s,peak_kb,serial_wall_s,serial_cpu_s,serial_peak_kb,speedup" >"$out/threads.csv"
+echo "trace,threads,run,wall_s,cpu_s,peak_kb,serial_wall_s,serial_cpu_s,serial_peak_kb,speedup,parts_wall_s,parts_speedup" >"$out/threads.csv"
+parts() {  # parts NAME FORMAT T: OUT/parts/NAME.T.r for r < T, cut where T chunks are
+  local d=$out/parts
+  [[ -e $d/$1.$3.0 ]] && return
+  mkdir -p "$d"
+  /usr/bin/python3 - "$out/$1" "$2" "$3" "$d/$1.$3" <<'PY'
+import sys
+src, fmt, t, dst = sys.argv[1], sys.argv[2], int(sys.argv[3]), sys.argv[4]
+data = open(src, "rb").read()
+if fmt == "text":  # the whole lines that begin in bytes [B r/T, B (r+1)/T)
+    b = len(data)
+    start = lambda r: 0 if r == 0 else (b if r == t else data.find(b"\n", b * r // t - 1) + 1 or b)
+else:  # records [N r/T, N (r+1)/T)
+    n = len(data) // 8
+    start = lambda r: n * r // t * 8
+for r in range(t):
+    open(f"{dst}.{r}", "wb").write(data[start(r):start(r + 1)])
+PY
+}
+at_once() {  # at_once NAME FORMAT GRANULARITY T: wall seconds of the T parts' runs together
+  local t0 t1 r pids=()
+  t0=$(date +%s%N)
+  for ((r = 0; r < $4; r++)); do
+    "$bin" analyze "$out/parts/$1.$4.$r" --format "$2" --granularity "$3" --csv --quiet >/dev/null &
+    pids+=($!)
+  done
+  for r in "${pids[@]}"; do wait "$r" || die "$1: a part's analysis failed"; done
+  t1=$(date +%s%N)
+  t_parts=$(awk -v a="$t0" -v b="$t1" 'BEGIN { printf "%.3f", (b - a) / 1e9 }')
+}
 timed() {  # timed RESULT_PREFIX ARGS... : wall, cpu, peak KB in $t_wall $t_cpu $t_peak
   local p=$1
   shift
@@ -91,13 +125,19 @@ for spec in "${traces[@]}"; do
   [[ $2 != - ]] && args+=(--format "$2" --granularity "$3")
   IFS=, read -ra ts <<<"$threads"
   for t in "${ts[@]}"; do
+    [[ $2 != - ]] && parts "$1" "$2" "$t"
     for ((k = 1; k <= repeat; k++)); do
       echo "scale_threads.sh: $name, --threads $t against 1, run $k of $repeat" >&2
       timed "$out/run" "${args[@]}" --threads "$t" --rank-stats "$out/model/$name-t$t-$k.json"
       w=$t_wall c=$t_cpu m=$t_peak
+      t_parts="" ps=""
+      if [[ $2 != - ]]; then
+        at_once "$1" "$2" "$3" "$t"
+      fi
       timed "$out/serial" "${args[@]}"
       cmp -s "$out/run.csv" "$out/serial.csv" || die "$name: --threads $t's table differs from the serial one"
-      echo "$name,$t,$k,$w,$c,$m,$t_wall,$t_cpu,$t_peak,$(awk -v a="$t_wall" -v b="$w" 'BEGIN { printf "%.3f", a / b }')" >>"$out/threads.csv"
+      [[ -n $t_parts ]] && ps=$(awk -v a="$t_wall" -v b="$t_parts" 'BEGIN { printf "%.3f", a / b }')
+      echo "$name,$t,$k,$w,$c,$m,$t_wall,$t_cpu,$t_peak,$(awk -v a="$t_wall" -v b="$w" 'BEGIN { printf "%.3f", a / b }'),$t_parts,$ps" >>"$out/threads.csv"
       [[ $name = uniform.u64 ]] && model_runs+=("$t:$w:$out/model/$name-t$t-$k.json")
     done
   done
@@ -106,8 +146,8 @@ done
 import csv, statistics, sys
 rows = list(csv.DictReader(open(sys.argv[1])))
 md = lambda v: statistics.median(v)
-out = ["| trace | threads | 1 thread: wall s (min-max) | T threads: wall s (min-max) | speed-up, pair by pair: median (min-max) | CPU s, 1 / T | peak MB, 1 / T |",
-       "|---|---|---|---|---|---|---|"]
+out = ["| trace | threads | 1 thread: wall s (min-max) | T threads: wall s (min-max) | speed-up, pair by pair: median (min-max) | T parts at once: speed-up, median (min-max) | CPU s, 1 / T | peak MB, 1 / T |",
+       "|---|---|---|---|---|---|---|---|"]
 keys = []
 for r in rows:
     if (r["trace"], r["threads"]) not in keys:
@@ -118,6 +158,8 @@ for tr, t in keys:
     out.append(f"| {tr} | {t} | {md(f('serial_wall_s')):.3f} ({min(f('serial_wall_s')):.3f}-{max(f('serial_wall_s')):.3f}) "
                f"| {md(f('wall_s')):.3f} ({min(f('wall_s')):.3f}-{max(f('wall_s')):.3f}) "
                f"| **{md(f('speedup')):.2f}x** ({min(f('speedup')):.2f}-{max(f('speedup')):.2f}) "
+               + (f"| {md(f('parts_speedup')):.2f}x ({min(f('parts_speedup')):.2f}-{max(f('parts_speedup')):.2f}) "
+                  if g[0]["parts_speedup"] else "| - ") +
                f"| {md(f('serial_cpu_s')):.2f} / {md(f('cpu_s')):.2f} "
                f"| {md(f('serial_peak_kb')) / 1024:.0f} / {md(f('peak_kb')) / 1024:.0f} |")
 open(sys.argv[2], "w").write("\n".join(out) + "\n")

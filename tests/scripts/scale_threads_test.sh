@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # scripts/scale_threads.sh end to end on small traces (50,000 accesses over 2,000 ids, no mesh
 # trace): every trace gets its rows (the script itself fails if a threaded table differs from the
-# serial one), the table and the model come out with finite numbers for 2..64 threads, and bad
-# options exit 2.
+# serial one), its parts are the trace cut where the chunks begin, the table and the model come
+# out with finite numbers for 2..64 threads, and bad options exit 2.
 # Usage: scale_threads_test.sh MESHREUSE
 set -u
 bin=$1
@@ -22,6 +22,24 @@ for t in uniform.u64 scan.u64 scan_heap.u64 random64.u64 uniform.txt; do
     grep -q "^| $t | $th |" "$tmp/out/threads.md" || { echo "FAIL no table row for $t at $th threads"; fail=1; }
   done
 done
+# The parts analysed at once: each trace's T parts are the trace, cut where T chunks begin (records
+# of 8 bytes; text at line starts), and every row has their time and ratio.
+/usr/bin/python3 - "$tmp/out" <<'PY' || { echo "FAIL parts"; fail=1; }
+import csv, sys
+out = sys.argv[1]
+for name in ["uniform.u64", "scan.u64", "scan_heap.u64", "random64.u64", "uniform.txt"]:
+    data = open(f"{out}/{name}", "rb").read()
+    for t in (2, 3):
+        p = [open(f"{out}/parts/{name}.{t}.{r}", "rb").read() for r in range(t)]
+        assert b"".join(p) == data, (name, t)
+        if name.endswith(".txt"):
+            assert all(x.endswith(b"\n") for x in p[:-1]), name
+            assert all(abs(len(x) - len(data) / t) < 16 for x in p), (name, [len(x) for x in p])
+        else:
+            assert [len(x) // 8 for x in p] == [len(data) // 8 * (r + 1) // t - len(data) // 8 * r // t for r in range(t)]
+for r in csv.DictReader(open(f"{out}/threads.csv")):
+    assert float(r["parts_wall_s"]) > 0 and float(r["parts_speedup"]) > 0, r
+PY
 rows=$(sed -n '/^Model for/,$p' "$tmp/out/model/projection.md" | grep -cE '^\| (2|4|8|16|32|64) \|')
 [[ $rows -eq 6 ]] || { echo "FAIL projection rows: $rows"; fail=1; }
 grep -qiE 'nan|inf' "$tmp/out/model/projection.md" && { echo "FAIL a number is not finite"; fail=1; }
