@@ -146,8 +146,8 @@ done
 import csv, statistics, sys
 rows = list(csv.DictReader(open(sys.argv[1])))
 md = lambda v: statistics.median(v)
-out = ["| trace | threads | 1 thread: wall s (min-max) | T threads: wall s (min-max) | speed-up, pair by pair: median (min-max) | T parts at once: speed-up, median (min-max) | CPU s, 1 / T | peak MB, 1 / T |",
-       "|---|---|---|---|---|---|---|---|"]
+out = ["| trace | threads | 1 thread: wall s (min-max) | T threads: wall s (min-max) | speed-up, pair by pair: median (min-max) | T parts at once: speed-up, median (min-max) | threads' speed-up over the parts': median | CPU s, 1 / T | peak MB, 1 / T |",
+       "|---|---|---|---|---|---|---|---|---|"]
 keys = []
 for r in rows:
     if (r["trace"], r["threads"]) not in keys:
@@ -159,7 +159,8 @@ for tr, t in keys:
                f"| {md(f('wall_s')):.3f} ({min(f('wall_s')):.3f}-{max(f('wall_s')):.3f}) "
                f"| **{md(f('speedup')):.2f}x** ({min(f('speedup')):.2f}-{max(f('speedup')):.2f}) "
                + (f"| {md(f('parts_speedup')):.2f}x ({min(f('parts_speedup')):.2f}-{max(f('parts_speedup')):.2f}) "
-                  if g[0]["parts_speedup"] else "| - ") +
+                  f"| {md([float(r['parts_wall_s']) / float(r['wall_s']) for r in g]):.2f} "
+                  if g[0]["parts_speedup"] else "| - | - ") +
                f"| {md(f('serial_cpu_s')):.2f} / {md(f('cpu_s')):.2f} "
                f"| {md(f('serial_peak_kb')) / 1024:.0f} / {md(f('peak_kb')) / 1024:.0f} |")
 open(sys.argv[2], "w").write("\n".join(out) + "\n")
