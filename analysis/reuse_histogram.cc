@@ -42,7 +42,7 @@ std::vector<std::pair<uint64_t, uint64_t>> ReuseHistogram::Pairs() const {
 
 uint64_t ReuseHistogram::counter_bytes() const {
   // A map node: the pair, three links and a colour, rounded to the allocator's 16 bytes.
-  uint64_t b = counts_.capacity() * sizeof(uint32_t) + pages_.capacity() * sizeof(pages_[0]) +
+  uint64_t b = counts_.capacity() * kDenseCounterBytes + pages_.capacity() * sizeof(pages_[0]) +
                carries_.size() * 64;
   for (const auto& p : pages_)
     if (p) b += kPage * sizeof(uint64_t);

@@ -109,6 +109,7 @@ class ReuseHistogram {
   std::vector<std::pair<uint64_t, uint64_t>> Pairs() const;  // ForEach's (d, count), collected
   // Bytes its counters hold (the dense array, or the allocated pages and their index).
   uint64_t counter_bytes() const;
+  static constexpr uint64_t kDenseCounterBytes = sizeof(uint32_t);  // counts_'s, a distance
 
   struct Bin {
     uint64_t lo, hi, count;  // distances lo..hi inclusive

@@ -1135,7 +1135,8 @@ AnalyzeResult RunDistributed(const AnalyzeConfig& cfg, ChunkTransport& tx, const
     });
     stats.histogram_bytes = std::max(stats.histogram_bytes, h.counter_bytes());
     stats.dense_histogram_bytes =
-        std::max(stats.dense_histogram_bytes, h.finite() ? 8 * (h.max() + 1) : 0);
+        std::max(stats.dense_histogram_bytes,
+                 h.finite() ? ReuseHistogram::kDenseCounterBytes * (h.max() + 1) : 0);
     size_t pairs = 1;  // and the cold count's
     h.ForEach([&pairs](uint64_t, uint64_t) { ++pairs; });
     x->hist.clear();
@@ -1204,7 +1205,8 @@ AnalyzeResult RunDistributed(const AnalyzeConfig& cfg, ChunkTransport& tx, const
       for (Granularity g : {Granularity::kElement, Granularity::kLine})
         if (const StreamAnalysis* x = run->stream(t, g)) {
           merged += x->hist.counter_bytes();
-          merged_dense += x->hist.finite() ? 8 * (x->hist.max() + 1) : 0;
+          merged_dense +=
+              x->hist.finite() ? ReuseHistogram::kDenseCounterBytes * (x->hist.max() + 1) : 0;
         }
   stats.histogram_bytes = std::max(stats.histogram_bytes, merged);
   stats.dense_histogram_bytes = std::max(stats.dense_histogram_bytes, merged_dense);

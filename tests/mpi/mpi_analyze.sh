@@ -55,7 +55,7 @@ import json, sys
 r = json.load(open(sys.argv[1]))
 held = [k for k in r if k['dense_histogram_bytes']]
 assert len(r) == 3 and held, r
-assert all(k['dense_histogram_bytes'] == 8 * 2**18 for k in held), r
+assert all(k['dense_histogram_bytes'] == 4 * 2**18 for k in held), r
 assert all(0 < k['histogram_bytes'] * 16 < k['dense_histogram_bytes'] for k in held), r
 " "$tmp/rs.json"; then pass=$((pass + 1)); else fail=$((fail + 1)); echo "FAIL paged histograms: rank stats"; fi
 
