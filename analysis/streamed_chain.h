@@ -90,15 +90,15 @@ class ChunkResolver {
 
 template <class F>
 void ChunkResolver::ForEachFirstTouchDistance(F f) const {
+  if (!indexed_) {  // nothing came before the chunk
+    for (size_t k = 0; k < s_.first_ids.size(); ++k) f(k, kColdDistance);
+    return;
+  }
   // Which ranks (places in the stack, in order) earlier first touches were found at: a bit per
   // rank, and a Fenwick tree over the bit words counting the bits set in each. Ranks are distinct,
   // so a bit is enough; the bits and the tree (1/64 as many entries as a tree over the ranks) stay
   // in the L2 cache up to millions of first touches, where a tree per rank missed it on every
   // level (72 ns a first touch at 10^6 uniform ids, measured).
-  if (!indexed_) {
-    for (size_t k = 0; k < s_.first_ids.size(); ++k) f(k, kColdDistance);
-    return;
-  }
   std::vector<uint64_t> bits((found_ + 63) / 64, 0);
   std::vector<uint32_t> tree(bits.size() + 1, 0);
   uint64_t inserted = 0;
