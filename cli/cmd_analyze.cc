@@ -24,7 +24,7 @@ int AnalyzeCommand(const Args& args, ChunkTransport* transport) {
   std::string orderings = "ori", granularity, quantiles = "50,75,90,100", cache = "westmere-ex",
               mode = "gauss-seidel", hist_csv, prof_csv, mrc_csv, out_dir, measured, triangle_order,
               seed = "1", sample_size, sample_exact_below, element_bytes = "66", line_bytes = "64",
-              chunk, rank_stats;
+              chunk, rank_stats, scatter_from = "16";
   RankOptionText rank_text;
   double sample_rate = 0;
   desc.add_options()(
@@ -89,6 +89,11 @@ int AnalyzeCommand(const Args& args, ChunkTransport* transport) {
       "merge",
       "the inputs are the summaries of chunks 0..P-1, in order: merge them into exactly the "
       "serial analysis (every table and output below)")(
+      "scatter-from", po::value(&scatter_from),
+      "meshreuse-mpi, or --threads over a plain trace file: from N ranks (threads) on, add the "
+      "histograms up by distance, each rank one slice of every rank's (a reduce-scatter; below, "
+      "up a tree of ranks: fewer steps, but log2 P merges of whole lists on the way to rank 0); "
+      "default 16")(
       "rank-stats", po::value(&rank_stats),
       "meshreuse-mpi, or --threads over a plain trace file (a chunk per thread): write each "
       "rank's (thread's) CPU seconds per phase, wall seconds, records, distinct ids, stack ids "
@@ -137,6 +142,8 @@ int AnalyzeCommand(const Args& args, ChunkTransport* transport) {
   cfg.shards.rate = cfg.sample && !cfg.shards.s_max ? sample_rate : 1;
   cfg.shards.seed = cfg.seed;
   cfg.sample_error = vm.count("sample-error") > 0;
+  cfg.scatter_from_ranks =
+      static_cast<int32_t>(ParseCount(scatter_from, "--scatter-from", 1, uint64_t{1} << 20));
   if (!sample_exact_below.empty()) {
     if (!cfg.sample) throw UsageError("--sample-exact-below needs --sample-rate or --sample-size");
     cfg.shards.exact_below = static_cast<uint32_t>(

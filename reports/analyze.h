@@ -65,6 +65,9 @@ struct AnalyzeConfig {
   // A distributed run (one trace, chunk = rank of size ranks; reports/chunk_summary.h): the
   // message layer, or nullptr.
   ChunkTransport* transport = nullptr;
+  // From this many ranks on, a distributed run adds its histograms up by distance (a
+  // reduce-scatter, each rank one slice), below up a tree of ranks (RunDistributed).
+  int32_t scatter_from_ranks = 16;
 };
 
 // What one rank of a distributed run spent (reports/chunk_summary.h, RunDistributed): thread CPU

@@ -52,6 +52,9 @@ struct StreamSummary {
   // distances are in hist (cold ones as StackDistance::kCold) and profile; no first touches or
   // stack.
   bool resolved = false;
+  // Resolved, its histogram travelling apart (RunDistributed's reduce-scatter by distance): hist
+  // is empty here, and does not add up to the accesses.
+  bool hist_apart = false;
   // The stream's sampled ids (SHARDS at a fixed rate) as a chunk of their own: accesses and
   // first touches are the sampled ones; stream_accesses counts all of the stream's in the chunk.
   bool sampled = false;
@@ -147,9 +150,24 @@ class ChunkTransport {
   virtual void SendIds(const uint64_t* ids, size_t n) = 0;  // to rank + 1; n = 0: end of a stream
   virtual size_t RecvIds(std::vector<uint64_t>* ids) = 0;   // from rank - 1; 0: end of a stream
   virtual void SendBytes(int to, const std::string& bytes) = 0;
+  // The same, for bytes the caller gives up: a transport within one process keeps them as they
+  // are (no copy of a histogram slice's megabytes); by default sent as SendBytes sends.
+  virtual void PostBytes(int to, std::string&& bytes) { SendBytes(to, bytes); }
   virtual std::string RecvBytes(int from) = 0;
   virtual std::vector<uint64_t> AllReduceMax(const std::vector<uint64_t>& v) = 0;
   virtual std::vector<uint64_t> ExclusiveScanSum(const std::vector<uint64_t>& v) = 0;
+  // out[j] to rank j, for every j but this rank; returns in[j], from rank j (in[rank()] empty).
+  // By default every message is sent, then every one received: right where a send does not wait
+  // for its receive (the threads' mailboxes); MPI overrides it.
+  virtual std::vector<std::string> AllToAll(std::vector<std::string>&& out) {
+    const int p = size(), r = rank();
+    for (int k = 1; k < p; ++k)
+      PostBytes((r + k) % p, std::move(out[static_cast<size_t>((r + k) % p)]));
+    std::vector<std::string> in(static_cast<size_t>(p));
+    for (int k = 1; k < p; ++k)
+      in[static_cast<size_t>((r - k + p) % p)] = RecvBytes((r - k + p) % p);
+    return in;
+  }
   // A rank's resolved chunks to rank `to` (returns the bytes sent) and from rank `from` (`name`
   // names it in errors): as bytes by default; ranks within one process hand the object over.
   virtual uint64_t SendSummary(int to, SummaryFile&& s) {

@@ -38,10 +38,10 @@ class ChunkThreads::Endpoint : public ChunkTransport {
     net_.cv_.notify_all();
     return ids->size();
   }
-  void SendBytes(int to, const std::string& bytes) override {
-    std::string copy = bytes;
+  void SendBytes(int to, const std::string& bytes) override { PostBytes(to, std::string(bytes)); }
+  void PostBytes(int to, std::string&& bytes) override {
     std::lock_guard<std::mutex> lock(net_.mu_);
-    net_.bytes_[{rank_, to}].push_back(std::move(copy));
+    net_.bytes_[{rank_, to}].push_back(std::move(bytes));
     net_.cv_.notify_all();
   }
   std::string RecvBytes(int from) override {

@@ -78,6 +78,8 @@ for th in 2 3; do
   outputs "$tmp/threads" "$bin" analyze "$tmp/mesh.trace" --threads "$th"
   same "mesh.trace --threads $th" "$tmp/serial" "$tmp/threads"
 done
+outputs "$tmp/threads" "$bin" analyze "$tmp/mesh.trace" --threads 3 --scatter-from 2
+same "mesh.trace --threads 3 --scatter-from 2" "$tmp/serial" "$tmp/threads"
 for f in "${trace_specs[@]}"; do
   set -- $f
   outputs "$tmp/serial" "$bin" analyze "$tmp/$1" --format "$2" --granularity "$3"
@@ -85,6 +87,9 @@ for f in "${trace_specs[@]}"; do
     outputs "$tmp/threads" "$bin" analyze "$tmp/$1" --format "$2" --granularity "$3" --threads "$th"
     same "$1 --threads $th" "$tmp/serial" "$tmp/threads"
   done
+  # The histograms added up by distance (a slice per rank), not up the tree.
+  outputs "$tmp/threads" "$bin" analyze "$tmp/$1" --format "$2" --granularity "$3" --threads 3 --scatter-from 2
+  same "$1 --threads 3 --scatter-from 2" "$tmp/serial" "$tmp/threads"
 done
 # Without a profile to write, a chunk does not read back to its sweep's start: the table alone.
 "$bin" analyze "$tmp/mesh.trace" --csv --quiet >"$tmp/serial.csv"
@@ -101,6 +106,10 @@ if cmp -s <(cut -d, -f2- "$tmp/stdin.csv") <(cut -d, -f2- "$tmp/serial.csv") && 
 # rank 0, rank 2 to rank 0 a level later); not where no chunk runs.
 check "threads rank stats" 0 "$bin" analyze "$tmp/uniform.u64" --format u64 --threads 3 --rank-stats "$tmp/rs.json" --quiet
 check "threads rank stats: three chunks" 0 /usr/bin/python3 -c "import json,sys; d=json.load(open(sys.argv[1])); assert [r['rank'] for r in d] == [0,1,2] and sum(r['records'] for r in d) > 0; assert d[1]['pairs_added'] == 0 < d[0]['pairs_added'] and d[2]['pairs_added'] == 0, d" "$tmp/rs.json"
+# By distance (--scatter-from 2): every rank adds a slice, each resolved pair added exactly once.
+check "threads rank stats by distance" 0 "$bin" analyze "$tmp/uniform.u64" --format u64 --threads 3 --scatter-from 2 --rank-stats "$tmp/rs-slices.json" --csv --quiet
+check "threads rank stats by distance: every pair once" 0 /usr/bin/python3 -c "import json,sys; d=json.load(open(sys.argv[1])); assert sum(r['pairs_added'] for r in d) == sum(r['pairs'] for r in d) > 0 and all(r['pairs_added'] > 0 for r in d), d" "$tmp/rs-slices.json"
+check "--scatter-from 0 refused" 2 "$bin" analyze "$tmp/uniform.u64" --format u64 --threads 3 --scatter-from 0 --quiet
 check "zstd rank stats" 2 "$bin" analyze "$tmp/mesh.trace.zst" --threads 2 --rank-stats "$tmp/rs2.json" --quiet
 contains "zstd rank stats" "--threads over plain trace files"
 [[ ! -e $tmp/rs2.json ]] && pass=$((pass + 1)) || { fail=$((fail + 1)); echo "FAIL zstd rank stats written"; }

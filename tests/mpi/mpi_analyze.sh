@@ -28,6 +28,12 @@ for np in 1 2 3 4; do
     outputs "$tmp/serial" "$bin" analyze "$tmp/$1" --format "$2" --granularity "$3"
     outputs "$tmp/mpi" run "$np" "$mpi" analyze "$tmp/$1" --format "$2" --granularity "$3"
     same "$1 -np $np" "$tmp/serial" "$tmp/mpi"
+    # The histograms added up by distance, a slice per rank (MPI's pairwise exchange).
+    if ((np > 1)); then
+      outputs "$tmp/mpi" run "$np" "$mpi" analyze "$tmp/$1" --format "$2" --granularity "$3" \
+        --scatter-from 2
+      same "$1 -np $np --scatter-from 2" "$tmp/serial" "$tmp/mpi"
+    fi
   done
 done
 
@@ -40,6 +46,8 @@ for np in 2 3; do
     outputs "$tmp/serial" "$bin" analyze $run_args
     outputs "$tmp/mpi" run "$np" "$mpi" analyze $run_args
     same "-np $np $run_args" "$tmp/serial" "$tmp/mpi"
+    outputs "$tmp/mpi" run "$np" "$mpi" analyze $run_args --scatter-from 2
+    same "-np $np $run_args --scatter-from 2" "$tmp/serial" "$tmp/mpi"
   done
 done
 
@@ -50,6 +58,9 @@ outputs "$tmp/serial" "$bin" analyze "$tmp/bigscan.u64" --format u64 --granulari
 outputs "$tmp/mpi" run 3 "$mpi" analyze "$tmp/bigscan.u64" --format u64 --granularity element \
   --rank-stats "$tmp/rs.json"
 same "paged histograms -np 3" "$tmp/serial" "$tmp/mpi"
+outputs "$tmp/mpi" run 3 "$mpi" analyze "$tmp/bigscan.u64" --format u64 --granularity element \
+  --rank-stats "$tmp/rs-slices.json" --scatter-from 2
+same "paged histograms -np 3 --scatter-from 2" "$tmp/serial" "$tmp/mpi"
 if /usr/bin/python3 -c "
 import json, sys
 r = json.load(open(sys.argv[1]))
@@ -58,6 +69,14 @@ assert len(r) == 3 and held, r
 assert all(k['dense_histogram_bytes'] == 4 * 2**18 for k in held), r
 assert all(0 < k['histogram_bytes'] * 16 < k['dense_histogram_bytes'] for k in held), r
 " "$tmp/rs.json"; then pass=$((pass + 1)); else fail=$((fail + 1)); echo "FAIL paged histograms: rank stats"; fi
+# By distance: each rank's slice in pages too (the scan's every reuse in the last slice), every
+# resolved pair added exactly once.
+if /usr/bin/python3 -c "
+import json, sys
+r = json.load(open(sys.argv[1]))
+assert len(r) == 3 and sum(k['pairs_added'] for k in r) == sum(k['pairs'] for k in r) > 0, r
+assert all(0 < k['histogram_bytes'] * 16 < 4 * 2**18 for k in r), r
+" "$tmp/rs-slices.json"; then pass=$((pass + 1)); else fail=$((fail + 1)); echo "FAIL paged slices: rank stats"; fi
 
 # A rank killed after its chunk: the job ends, non-zero, naming the rank.
 MESHREUSE_MPI_KILL_RANK=1 run 3 "$mpi" analyze "$tmp/uniform.u64" --format u64 --quiet >"$tmp/out" 2>&1

@@ -226,6 +226,33 @@ TEST(ChunkSummary, DistancesBoundedByTheFileAndResolvedOnlyFromRanks) {
   EXPECT_EQ(DecodeSummary("rank 1", bytes, true).streams[0].hist, s.streams[0].hist);
 }
 
+// A rank's resolved stream whose histogram travels apart (the reduce-scatter by distance): no
+// pairs, and its accesses not counted by them; refused with pairs, and from a file.
+TEST(ChunkSummary, AHistogramSentApartIsEmptyAndOnlyFromRanks) {
+  SummaryFile s = Sample();
+  s.streams[0].resolved = true;
+  s.streams[0].hist_apart = true;
+  s.streams[0].chunk = ChunkSummary();
+  s.streams[0].hist.clear();
+  const std::string bytes = EncodeSummary(s);
+  const SummaryFile got = DecodeSummary("rank 1", bytes, true);
+  EXPECT_TRUE(got.streams[0].resolved && got.streams[0].hist_apart);
+  EXPECT_TRUE(got.streams[0].hist.empty());
+  EXPECT_EQ(got.streams[0].accesses, s.streams[0].accesses);
+  EXPECT_THROW(DecodeSummary("f", bytes), InputError);
+  s.streams[0].hist = {{StackDistance::kCold, s.streams[0].accesses}};  // would add up, but apart
+  try {
+    DecodeSummary("rank 1", EncodeSummary(s), true);
+    ADD_FAILURE() << "accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("sent apart"), std::string::npos) << e.what();
+  }
+  s.streams[0].hist_apart = false;  // the same stream, its histogram here: it must add up
+  EXPECT_EQ(DecodeSummary("rank 1", EncodeSummary(s), true).streams[0].hist, s.streams[0].hist);
+  s.streams[0].hist.clear();
+  EXPECT_THROW(DecodeSummary("rank 1", EncodeSummary(s), true), InputError);
+}
+
 // The summaries in tests/data/broken (made by make_summaries.py, rows of kind "summary" in
 // EXPECTED): each refused with the file, place and problem EXPECTED names.
 TEST(ChunkSummary, BrokenFilesAreRefusedByName) {

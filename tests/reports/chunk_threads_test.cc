@@ -2,14 +2,16 @@
 // order with each stream's end, bounded; its collectives equal naive ones; a failing rank ends
 // the run with its own error, the blocked ranks released; and a trace analysed in P chunks on P
 // threads (P = 1-5, fewer accesses than chunks, a meshreuse trace of 2 threads and 3 sweeps with
-// its profile, with and without a profile, SHARDS at a fixed rate) gives every table byte for
-// byte as the serial analyzer.
+// its profile, with and without a profile, SHARDS at a fixed rate; the histograms added up a tree
+// of ranks and by distance) gives every table byte for byte as the serial analyzer; its exchange
+// by distance delivers every message, and a damaged slice is refused by name.
 #include "reports/chunk_threads.h"
 
 #include <gtest/gtest.h>
 
 #include <atomic>
 #include <cstdint>
+#include <cstring>
 #include <fstream>
 #include <random>
 #include <stdexcept>
@@ -95,6 +97,39 @@ TEST(ChunkThreads, BytesAndCollectives) {
   }
 }
 
+TEST(ChunkThreads, AllToAllDeliversEachMessageToItsRank) {
+  // Every rank sends a different message to every other (empty ones among them), twice in a row,
+  // then a plain message after: each arrives at its rank from its sender, in order.
+  for (int p = 1; p <= 5; ++p) {
+    std::vector<std::vector<std::string>> got(static_cast<size_t>(p));
+    std::vector<std::string> after(static_cast<size_t>(p));
+    auto message = [](int from, int to, int round) {
+      return (from + to + round) % 3 == 0
+                 ? std::string()
+                 : std::to_string(from) + ">" + std::to_string(to) + "#" + std::to_string(round) +
+                       std::string(static_cast<size_t>(from * 100 + to), 'x');
+    };
+    ChunkThreads::Run(p, [&](ChunkTransport& tx) {
+      const int r = tx.rank();
+      for (int round = 0; round < 2; ++round) {
+        std::vector<std::string> out(static_cast<size_t>(p));
+        for (int j = 0; j < p; ++j)
+          if (j != r) out[static_cast<size_t>(j)] = message(r, j, round);
+        const std::vector<std::string> in = tx.AllToAll(std::move(out));
+        ASSERT_EQ(in.size(), static_cast<size_t>(p));
+        for (int j = 0; j < p; ++j)
+          EXPECT_EQ(in[static_cast<size_t>(j)], j == r ? std::string() : message(j, r, round))
+              << "p " << p << " rank " << r << " from " << j << " round " << round;
+      }
+      if (r != 0) tx.SendBytes(0, "after " + std::to_string(r));
+      if (r == 0)
+        for (int j = 1; j < p; ++j) after[static_cast<size_t>(j)] = tx.RecvBytes(j);
+    });
+    for (int j = 1; j < p; ++j)
+      EXPECT_EQ(after[static_cast<size_t>(j)], "after " + std::to_string(j));
+  }
+}
+
 TEST(ChunkThreads, AFailingRankEndsTheRunWithItsOwnError) {
   // Rank 2 fails while the others wait on it: in a collective, for ids, for bytes. Run returns
   // (no hang) and rethrows rank 2's error, not another rank's "another rank failed".
@@ -144,6 +179,9 @@ void ExpectChunksOnThreadsEqualSerial(const AnalyzeConfig& cfg, const std::strin
     AnalyzeConfig t = cfg;  // and through the runner's --threads
     t.threads = p;
     EXPECT_EQ(Tables(RunAnalyze(t, Log()), cfg), serial) << what << " threads " << p;
+    AnalyzeConfig d = cfg;  // the histograms added up by distance at every P, not up the tree
+    d.scatter_from_ranks = 2;
+    EXPECT_EQ(Tables(AnalyzeChunksOnThreads(d, p, Log()), cfg), serial) << what << " scattered " << p;
   }
 }
 
@@ -183,6 +221,77 @@ TEST(AnalyzeChunksOnThreads, EqualsTheSerialAnalyzer) {
   ExpectChunksOnThreadsEqualSerial(cfg, "mesh trace sampled");
   cfg.shards.s_max = 100;  // a fixed-size sample depends on every id before: not in chunks
   EXPECT_FALSE(CanAnalyzeInChunks(cfg, tc.output));
+}
+
+// A transport that damages what one rank receives in the histograms' exchange by distance.
+class DamagedSlices : public ChunkTransport {
+ public:
+  DamagedSlices(ChunkTransport& tx, int how) : tx_(tx), how_(how) {}
+  int rank() const override { return tx_.rank(); }
+  int size() const override { return tx_.size(); }
+  void SendIds(const uint64_t* ids, size_t n) override { tx_.SendIds(ids, n); }
+  size_t RecvIds(std::vector<uint64_t>* ids) override { return tx_.RecvIds(ids); }
+  void SendBytes(int to, const std::string& b) override { tx_.SendBytes(to, b); }
+  std::string RecvBytes(int from) override { return tx_.RecvBytes(from); }
+  std::vector<uint64_t> AllReduceMax(const std::vector<uint64_t>& v) override {
+    return tx_.AllReduceMax(v);
+  }
+  std::vector<uint64_t> ExclusiveScanSum(const std::vector<uint64_t>& v) override {
+    return tx_.ExclusiveScanSum(v);
+  }
+  std::vector<std::string> AllToAll(std::vector<std::string>&& out) override {
+    std::vector<std::string> in = tx_.AllToAll(std::move(out));
+    if (rank() != 1) return in;
+    std::string& b = in[0];  // rank 0's slice for rank 1: key, n, then (distance, count) pairs
+    EXPECT_GE(b.size(), 32u);
+    if (how_ == 0) {  // the first pair's count one more: still well formed
+      uint64_t c;
+      std::memcpy(&c, &b[24], 8);
+      ++c;
+      std::memcpy(&b[24], &c, 8);
+    }
+    const uint64_t far = ~uint64_t{0} - 1;
+    if (how_ == 1) std::memcpy(&b[b.size() - 16], &far, 8);  // the last pair's distance
+    if (how_ == 2) b.resize(b.size() - 5);                   // cut
+    if (how_ == 3) std::memset(&b[24], 0, 8);                // a count of 0
+    return in;
+  }
+
+ private:
+  ChunkTransport& tx_;
+  int how_;
+};
+
+TEST(AnalyzeChunksOnThreads, ADamagedSliceIsRefusedByName) {
+  // Rank 1 receives rank 0's slice damaged: a distance outside its range, a cut message and a
+  // count of 0 are refused naming rank 0; a count one more (still well formed) is caught by rank
+  // 0, where the slices of a stream no longer add up to its accesses.
+  testing::TempDir dir;
+  std::vector<uint64_t> uniform(20000);
+  std::mt19937_64 rng(5);
+  for (uint64_t& x : uniform) x = rng() % 3000;
+  AnalyzeConfig cfg;
+  cfg.inputs = {dir / "u.u64"};
+  WriteU64(cfg.inputs[0], uniform);
+  cfg.format = "u64";
+  cfg.granularity = Granularity::kElement;
+  cfg.scatter_from_ranks = 2;
+  const char* want[] = {"slices do not add up", "outside the slice", "length", "pairs"};
+  for (int how = 0; how < 4; ++how) {
+    try {
+      ChunkThreads::Run(2, [&](ChunkTransport& tx) {
+        DamagedSlices d(tx, how);
+        AnalyzeConfig mine = cfg;
+        mine.transport = &d;
+        RunDistributed(mine, d, Log());
+      });
+      ADD_FAILURE() << "accepted, how " << how;
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(want[how]), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find(how == 0 ? "the ranks" : "rank 0"), std::string::npos)
+          << e.what();
+    }
+  }
 }
 
 TEST(AnalyzeChunksOnThreads, OnlyPlainRegularFiles) {
