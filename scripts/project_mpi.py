@@ -7,12 +7,18 @@ seconds per stack id received, t_ft = resolve CPU seconds per first touch, memor
 distinct id of a rank's chunk. Model for N accesses over M ids on P ranks (blocks of B = 65,536
 ids of s = 8 bytes; latency alpha, bandwidth beta):
   T(P) = t_a N / P + (M / B + P) (B (t_f + s / beta) + alpha) + t_ft min(M, N / P)
-         + sum over the log2(P) levels k of the reduction tree of
-           H_k (t_r + 16 / beta) + alpha,   H_k = min(M, 2^k H),  H = min(M, N / P, h M / m)
-the chunk, the stack's pipelined pass through every rank, the rank's first touches, and the
-resolved histograms added up a binary tree of ranks: t_r = CPU seconds per (distance, count)
-pair received and added into a sorted list (merge_cpu: neither waiting nor decoding, which the
-16 / beta stands for), and rank 0 adding the merged lists, min(M, P H) t_r. A chunk's
+         + the reduction + min(M, P H) t_r,   H = min(M, N / P, h M / m)
+the chunk, the stack's pipelined pass through every rank, the rank's first touches, the resolved
+histograms added up, and rank 0 adding the merged lists into its histograms. Below
+--scatter-from ranks (the analyzer's default, 16) the reduction is a binary tree of ranks:
+  sum over its log2(P) levels k of H_k (t_r + 16 / beta) + alpha,   H_k = min(M, 2^k H);
+from there on it is by distance (a reduce-scatter: each rank adds one slice of distances from
+every rank, rank 0 gathers the slices):
+  H (2 t_r + 16 / beta) + min(M, P H) (t_r + 16 / beta) + 2 (P - 1) alpha,
+each rank sending and adding about H pairs (the slices' adds, into pages, counted at 2 t_r: 17 ns
+a pair measured at 2 threads against the tree's 10.5) and rank 0 receiving at most M. t_r = CPU
+seconds per (distance, count) pair received and added into a sorted list (merge_cpu: neither
+waiting nor decoding, which the 16 / beta stands for). A chunk's
 (distance, count) pairs H, its distinct distances, scale with the ids from those measured: h
 pairs per chunk of m distinct ids (uniform ids: h = m, so H = M, the worst case; a mesh trace's
 first touches spread too: h = 0.54 m for the RDR plate measured); the pairs of 2^k chunks at most
@@ -35,6 +41,7 @@ def main():
     ap.add_argument("--alpha", type=float, default=2e-6)
     ap.add_argument("--beta", type=float, default=1e10)
     ap.add_argument("--ranks", default="64,128,256,512,1024")
+    ap.add_argument("--scatter-from", type=int, default=16)
     # Ranks as threads of one process (scripts/scale_threads.sh): each reports the process's peak,
     # so a rank's share is that over the ranks.
     ap.add_argument("--threads-of-one-process", action="store_true")
@@ -93,7 +100,12 @@ def main():
         levels = math.ceil(math.log2(P)) if P > 1 else 0
         h = c["pairs_per_rank"] * M / c["distinct_per_rank"] if c["distinct_per_rank"] else M
         H = min(M, N / P, h)
-        reduce = sum(min(M, 2 ** k * H) * (t_r + 16 / a.beta) + a.alpha for k in range(levels))
+        if P >= max(a.scatter_from, 2):
+            reduce = (H * (2 * t_r + 16 / a.beta) + min(M, P * H) * (t_r + 16 / a.beta)
+                      + 2 * (P - 1) * a.alpha)
+        else:
+            reduce = sum(min(M, 2 ** k * H) * (t_r + 16 / a.beta) + a.alpha
+                         for k in range(levels))
         reduce += min(M, P * H) * t_r  # rank 0 adds the merged lists into its histograms
         total = analyse + stream + first + reduce
         rows.append((P, analyse, stream, first, reduce, total, serial / total,
@@ -105,7 +117,7 @@ def main():
         json.dump(c, f, indent=1)
     md = [f"Measured here: t_a = {c['t_a_ns']:.1f} ns per access (reading included), "
           f"t_f = {c['t_f_ns']:.2f} ns per streamed id, t_ft = {c['t_ft_ns']:.1f} ns per first "
-          f"touch, t_r = {c['t_r_ns']:.1f} ns per histogram pair merged in the reduction tree "
+          f"touch, t_r = {c['t_r_ns']:.1f} ns per histogram pair merged in the reduction "
           f"({c['pairs_per_rank']:.0f} pairs per rank's chunk of {c['distinct_per_rank']:.0f} "
           f"distinct ids here), "
           f"{c['bytes_per_distinct_id']:.0f} bytes of peak memory per distinct id of a "
@@ -120,7 +132,8 @@ def main():
                   (f"{r['speedup_wall']:.2f}x |" if r['speedup_wall'] else "- |"))
     md += ["", f"Model for N = {N:.3g} accesses over M = {M:.3g} ids (serial: {serial:.0f} s), "
            f"alpha = {a.alpha:g} s, beta = {a.beta:.3g} bytes/s (stated, not measured):", "",
-           "| P | analyse s | stream s | first touches s | reduction tree s (at most) | total s | "
+           f"| P | analyse s | stream s | first touches s | adding up s (a tree below {a.scatter_from} "
+           "ranks, by distance from there) | total s | "
            "speed-up | efficiency | memory per rank GB | bytes sent per rank GB |",
            "|---|---|---|---|---|---|---|---|---|---|"]
     for P, an, st, ft, rd, tot, sp, eff, memg, sentg in rows:
