@@ -38,8 +38,9 @@ int AnalyzeCommand(const Args& args, ChunkTransport* transport) {
       "for meshes: sweeps to analyse")(
       "threads,t", po::value(&cfg.threads)->default_value(1),
       "for meshes: the smoother's threads (one stream each); for trace files: the analyzer's "
-      "threads (exact): a plain file is cut into one chunk per thread, each read by its own "
-      "thread; a zstd trace or standard input is read by one thread in batches")(
+      "threads (exact): a file is cut into one chunk per thread, each read by its own thread "
+      "(zstd: when in as many frames, as `trace --compress` writes them); standard input or a "
+      "zstd trace in fewer frames is read by one thread in batches")(
       "mode", po::value(&mode)->default_value("gauss-seidel"),
       "for meshes: gauss-seidel or jacobi")(
       "format", po::value(&cfg.format),
@@ -176,7 +177,8 @@ int AnalyzeCommand(const Args& args, ChunkTransport* transport) {
     if (!chunked)
       throw UsageError(
           "--rank-stats is for a distributed run (mpirun ... meshreuse-mpi analyze), or "
-          "--threads over plain trace files (a chunk per thread)");
+          "--threads over trace files that can be cut (plain, or zstd in frames: a chunk per "
+          "thread)");
   }
   if (writer) {
     if (!rank_stats.empty()) CheckOutputPath(rank_stats, "--rank-stats", InputFiles(cfg.inputs));

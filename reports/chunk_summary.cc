@@ -806,12 +806,14 @@ SummaryFile SummarizeChunk(const AnalyzeConfig& cfg, uint32_t r, uint32_t p, con
   uint64_t total;
   std::vector<uint64_t> eoff, loff;
   const bool text = fmt && fmt->syntax != TraceSyntax::kFixedRecords;
-  if (text) {
-    total = s.id.input_bytes;  // a text trace is cut by bytes, at line boundaries
-  } else if (fmt) {
-    total = ForeignTraceLength(in, *fmt);
-    if (total == 0 && s.id.input_bytes != 0)
-      throw InputError(in, 0, "a compressed trace cannot be cut into chunks: decompress it first");
+  if (fmt) {
+    // A text trace is cut by bytes of its content (decompressed), at line boundaries.
+    const int64_t content = InputStream(in).size();
+    if (content < 0)
+      throw InputError(in, 0,
+                       "a zstd-compressed trace whose frames do not all record their sizes cannot "
+                       "be cut into chunks: decompress it first (zstd -d)");
+    total = text ? static_cast<uint64_t>(content) : ForeignTraceLength(in, *fmt);
   } else {
     TraceReader tr(in);
     total = tr.header().records;

@@ -134,7 +134,9 @@ bool CanAnalyzeInChunks(const AnalyzeConfig& cfg, const std::string& in) {
   struct stat st;
   if (::stat(in.c_str(), &st) != 0 || !S_ISREG(st.st_mode)) return false;
   try {
-    return !InputStream(in).compressed();
+    const InputStream s(in);
+    return !s.compressed() ||
+           (s.seekable() && s.entry_points() >= static_cast<uint64_t>(std::max(cfg.threads, 1)));
   } catch (const std::exception&) {
     return false;  // the batched analyzer reports it
   }

@@ -23,8 +23,10 @@
 
 namespace meshreuse {
 
-// Whether `in` can be analysed in chunks read by range: a plain regular file (not standard input,
-// a pipe or a zstd stream: those go through the batched analyzer, ReuseOptions::workers), with an
+// Whether `in` can be analysed in chunks read by range: a regular file, plain or zstd in at least
+// as many frames as threads, each recording its size (`trace --compress`'s 4 MiB frames; not
+// standard input, a pipe, or a zstd file in fewer frames, whose later chunks would decompress most
+// of it to find their start: those go through the batched analyzer, ReuseOptions::workers), with an
 // analysis that chunks support (no fixed-size sample, no exact counting below K).
 bool CanAnalyzeInChunks(const AnalyzeConfig& cfg, const std::string& in);
 // cfg's one trace analysed as p chunks on p threads (RunDistributed over ChunkThreads): exactly the

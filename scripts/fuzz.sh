@@ -64,7 +64,15 @@ if command -v pzstd >/dev/null; then
   pzstd -q -c -p 2 "$u64seed" >"$u64seed.pz" && { printf '\043'; cat "$u64seed.pz"; } >"$c/external/seed-pzstd"
   [[ -s $c/trace/seed-two_interior.trace ]] && pzstd -q -c "$c/trace/seed-two_interior.trace" >"$c/trace/seed-pzstd.trace.zst"
 fi
-rm -f "$u64seed" "$u64seed.pz"
+# Bit 6 on zstd in frames, cut inside records and lines: chunks enter at frame starts (\103 = u64
+# in three chunks, \101 = text in three chunks).
+frames=$(mktemp -d)
+split -b 4801 "$u64seed" "$frames/u."
+/usr/bin/python3 -c 'print("\n".join(str(i * 7 % 61) for i in range(300)))' >"$frames/ids"
+split -b 301 "$frames/ids" "$frames/t."
+{ printf '\103'; for x in "$frames"/u.*; do zstd -q -c "$x"; done; } >"$c/external/seed-u64-frames-chunks"
+{ printf '\101'; for x in "$frames"/t.*; do zstd -q -c "$x"; done; } >"$c/external/seed-text-frames-chunks"
+rm -rf "$frames" "$u64seed" "$u64seed.pz"
 /usr/bin/python3 -c 'print("\n".join(str(i) for i in range(336)))' >"$c/permutation/seed-identity"
 # Visit orders: the 21 x 16 grid's inner points row by row (the synthetic mesh's interior if its
 # ids are row-major; a near miss otherwise, which the fuzzer mends), with a comment.

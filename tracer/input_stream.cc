@@ -33,19 +33,39 @@ bool IsZstd(const std::vector<char>& b) {  // a zstd frame or a skippable one (p
          static_cast<unsigned char>(b[3]) == 0x18;
 }
 
+// A place a compressed file can be entered at: a frame's start, in the content and in the file.
+struct ZstdEntry {
+  uint64_t content;
+  uint64_t file;
+};
+constexpr size_t kMaxEntries = size_t{1} << 16;  // 1 MiB of places, whatever the frame count
+
+struct ZstdWalk {
+  int64_t size = -1;  // the content's size, or -1 (see below)
+  std::vector<ZstdEntry> entries;
+};
+
 // The content size of a compressed regular file: every frame walked by its headers alone (RFC
 // 8878: frame header, 3-byte block headers, optional checksum; skippable frames skipped), without
-// decompressing. -1 when a frame does not record its size. A walk that does not end at the file's
-// end (a file cut short, damage) gives the first frame's size, so that the decompressor, not a
-// missing size, reports what is wrong.
-int64_t ZstdContentSize(std::FILE* f, int64_t file_bytes) {
+// decompressing, noting where each frame begins (beyond kMaxEntries frames every other place is
+// dropped, and then every other frame noted, so the places stay evenly spread). Size -1 when a
+// frame does not record its size: such a file cannot be entered in the middle. A walk that does
+// not end at the file's end (a file cut short, damage) gives the first frame's size and no places,
+// so that the decompressor, not a missing size, reports what is wrong.
+ZstdWalk WalkZstdFrames(std::FILE* f, int64_t file_bytes) {
   const int fd = fileno(f);
   auto at = [&](int64_t off, void* buf, size_t n) {
     return off >= 0 && off + static_cast<int64_t>(n) <= file_bytes &&
            pread(fd, buf, n, off) == static_cast<ssize_t>(n);
   };
+  ZstdWalk w;
   int64_t off = 0, total = 0, first = -1;
-  auto broken = [&] { return first; };
+  uint64_t frames = 0, stride = 1;
+  auto broken = [&] {
+    w.size = first;
+    w.entries.clear();
+    return std::move(w);
+  };
   while (off < file_bytes) {
     unsigned char h[18] = {};  // the largest frame header
     const size_t n = static_cast<size_t>(std::min<int64_t>(sizeof h, file_bytes - off));
@@ -62,12 +82,23 @@ int64_t ZstdContentSize(std::FILE* f, int64_t file_bytes) {
     const size_t fcs = std::array<size_t, 4>{single ? 1u : 0u, 2, 4, 8}[d >> 6];
     const size_t header = 5 + (single ? 0 : 1) + did + fcs;
     if (header > n) return broken();
-    if (fcs == 0) return -1;  // this frame does not record its size
+    if (fcs == 0) {  // this frame does not record its size
+      w.entries.clear();
+      return w;
+    }
     uint64_t content = 0;
     for (size_t i = 0; i < fcs; ++i) content |= uint64_t{h[header - fcs + i]} << (8 * i);
     if (fcs == 2) content += 256;
     if (content > static_cast<uint64_t>(INT64_MAX - total)) return broken();
     if (first < 0) first = static_cast<int64_t>(content);
+    if (frames++ % stride == 0) {
+      w.entries.push_back({static_cast<uint64_t>(total), static_cast<uint64_t>(off)});
+      if (w.entries.size() == kMaxEntries) {
+        for (size_t i = 0; i < kMaxEntries / 2; ++i) w.entries[i] = w.entries[2 * i];
+        w.entries.resize(kMaxEntries / 2);
+        stride *= 2;
+      }
+    }
     total += static_cast<int64_t>(content);
     off += static_cast<int64_t>(header);
     for (bool last = false; !last;) {
@@ -81,7 +112,9 @@ int64_t ZstdContentSize(std::FILE* f, int64_t file_bytes) {
     }
     if (checksum) off += 4;
   }
-  return off == file_bytes ? total : broken();
+  if (off != file_bytes) return broken();
+  w.size = total;
+  return w;
 }
 }  // namespace
 
@@ -89,9 +122,14 @@ struct InputStream::Zstd {
   ZSTD_DStream* ds = nullptr;
   std::vector<char> in = std::vector<char>(1 << 20);
   ZSTD_inBuffer ib{nullptr, 0, 0};
-  uint64_t consumed = 0;  // compressed bytes handed to zstd before the current block
+  uint64_t consumed = 0;  // the file offset of the current block (compressed bytes before it)
   bool eof = false;
   size_t last_ret = 0;  // 0 when the last frame ended cleanly
+  bool seekable = false;
+  std::vector<ZstdEntry> entries;
+  uint64_t pos = 0;     // content bytes before the next one Read returns
+  bool ranged = false;  // entered by SeekTo: Read drains at the limit (Drain)
+  bool drained = false;
   ~Zstd() { ZSTD_freeDStream(ds); }
 };
 
@@ -109,7 +147,14 @@ InputStream::InputStream(const std::string& path) : file_(path) {
     zstd_->ds = ZSTD_createDStream();
     if (!zstd_->ds) throw InputError(path, 0, "cannot create a zstd decompression stream");
     ZSTD_DCtx_setParameter(zstd_->ds, ZSTD_d_windowLogMax, kWindowLogMax);
-    if (file_.size() >= 0) size_ = ZstdContentSize(file_.get(), file_.size());
+    if (file_.size() >= 0) {
+      ZstdWalk w = WalkZstdFrames(file_.get(), file_.size());
+      size_ = w.size;
+      // A damaged file (the walk stopped short) is entered only at its start: the decompressor,
+      // reading on from there, reports the damage as a whole read does.
+      zstd_->seekable = w.size >= 0;
+      zstd_->entries = std::move(w.entries);
+    }
   } else {
     size_ = file_.size();
   }
@@ -128,25 +173,58 @@ size_t InputStream::ReadRaw(void* buf, size_t n) {
   return got;
 }
 
+bool InputStream::seekable() const { return file_.size() >= 0 && (!zstd_ || zstd_->seekable); }
+
+uint64_t InputStream::entry_points() const {
+  if (!seekable()) return 0;
+  return zstd_ ? zstd_->entries.size() : static_cast<uint64_t>(file_.size());
+}
+
+void InputStream::SeekRaw(uint64_t offset) {
+  if (offset < peek_.size()) {
+    peek_at_ = offset;
+    offset = peek_.size();
+  } else {
+    peek_at_ = peek_.size();
+  }
+  if (fseeko(file_.get(), static_cast<off_t>(offset), SEEK_SET) != 0)
+    throw InputError(path(), 0, std::string("cannot seek: ") + std::strerror(errno));
+}
+
 void InputStream::SeekTo(uint64_t offset) {
-  if (zstd_)
-    throw InputError(path(), 0,
-                     "a zstd-compressed trace cannot be read from the middle (a chunk): "
-                     "decompress it first (zstd -d)");
   if (file_.size() < 0)
     throw InputError(path(), 0,
                      "a chunk needs a regular file: a pipe or standard input cannot seek");
-  if (offset > static_cast<uint64_t>(file_.size()))
+  if (zstd_ && !zstd_->seekable)
+    throw InputError(path(), 0,
+                     "a zstd-compressed trace whose frames do not all record their sizes cannot "
+                     "be read from the middle (a chunk): decompress it first (zstd -d)");
+  if (offset > static_cast<uint64_t>(size_))
     throw InputError(path(), 0, "byte offset " + std::to_string(offset) + " is past the end");
-  if (offset < peek_.size()) {
-    peek_at_ = offset;
-    if (fseeko(file_.get(), static_cast<off_t>(peek_.size()), SEEK_SET) != 0)
-      throw InputError(path(), 0, std::string("cannot seek: ") + std::strerror(errno));
-    return;
+  if (!zstd_) return SeekRaw(offset);
+  Zstd& z = *zstd_;
+  // The last frame that begins at or before `offset` (the file's start when it has no frame).
+  auto e = std::upper_bound(z.entries.begin(), z.entries.end(), offset,
+                            [](uint64_t o, const ZstdEntry& x) { return o < x.content; });
+  const ZstdEntry from = e == z.entries.begin() ? ZstdEntry{0, 0} : *(e - 1);
+  SeekRaw(from.file);
+  ZSTD_DCtx_reset(z.ds, ZSTD_reset_session_only);
+  z.ib = ZSTD_inBuffer{nullptr, 0, 0};
+  z.consumed = from.file;
+  z.eof = false;
+  z.last_ret = 0;
+  z.pos = from.content;
+  z.ranged = true;
+  z.drained = false;
+  std::vector<char> skip(1 << 16);
+  while (z.pos < offset) {
+    const size_t want = static_cast<size_t>(std::min<uint64_t>(skip.size(), offset - z.pos));
+    if (ReadAll(skip.data(), want) < want)
+      throw InputError(path(), 0,
+                       "the zstd frames hold fewer bytes than their headers record (compressed "
+                       "byte " +
+                           std::to_string(z.consumed + z.ib.pos) + ")");
   }
-  peek_at_ = peek_.size();
-  if (fseeko(file_.get(), static_cast<off_t>(offset), SEEK_SET) != 0)
-    throw InputError(path(), 0, std::string("cannot seek: ") + std::strerror(errno));
 }
 
 uint64_t InputStream::NextLineStart(uint64_t offset, size_t max_line) {
@@ -166,45 +244,74 @@ size_t InputStream::Read(void* buf, size_t n) {
   n = static_cast<size_t>(std::min<uint64_t>(n, limit_));
   const size_t got = ReadAll(buf, n);
   limit_ -= got;
+  if (limit_ == 0 && zstd_ && zstd_->ranged && !zstd_->drained) {
+    zstd_->drained = true;
+    Drain(*zstd_);
+  }
   return got;
+}
+
+bool InputStream::Step(Zstd& z, void* buf, size_t n, size_t* pos) {
+  if (z.ib.pos == z.ib.size) {
+    if (z.eof) return false;
+    z.consumed += z.ib.size;
+    const size_t got = ReadRaw(z.in.data(), z.in.size());
+    if (got == 0) {
+      z.eof = true;
+      if (z.last_ret != 0)
+        throw InputError(path(), 0,
+                         "truncated zstd stream: it ends inside a frame at compressed byte " +
+                             std::to_string(z.consumed));
+      return false;
+    }
+    z.ib = ZSTD_inBuffer{z.in.data(), got, 0};
+  }
+  ZSTD_outBuffer ob{buf, n, *pos};
+  const size_t ret = ZSTD_decompressStream(z.ds, &ob, &z.ib);
+  if (ZSTD_isError(ret) && ZSTD_getErrorCode(ret) == ZSTD_error_frameParameter_windowTooLarge)
+    throw InputError(path(), 0,
+                     "the zstd frame near compressed byte " +
+                         std::to_string(z.consumed + z.ib.pos) +
+                         " needs a window above 32 MiB (zstd --long or --ultra -22): "
+                         "decompress it first");
+  if (ZSTD_isError(ret))
+    throw InputError(path(), 0,
+                     std::string("corrupt zstd stream near compressed byte ") +
+                         std::to_string(z.consumed + z.ib.pos) + ": " + ZSTD_getErrorName(ret));
+  z.last_ret = ret;
+  z.pos += ob.pos - *pos;
+  *pos = ob.pos;
+  return true;
 }
 
 size_t InputStream::ReadAll(void* buf, size_t n) {
   if (!zstd_) return ReadRaw(buf, n);
-  Zstd& z = *zstd_;
-  ZSTD_outBuffer ob{buf, n, 0};
-  while (ob.pos < ob.size) {
-    if (z.ib.pos == z.ib.size) {
-      if (z.eof) break;
-      z.consumed += z.ib.size;
-      const size_t got = ReadRaw(z.in.data(), z.in.size());
-      if (got == 0) {
-        z.eof = true;
-        if (z.last_ret != 0)
-          throw InputError(path(), 0,
-                           "truncated zstd stream: it ends inside a frame at compressed byte " +
-                               std::to_string(z.consumed));
-        break;
-      }
-      z.ib = ZSTD_inBuffer{z.in.data(), got, 0};
-    }
-    const size_t ret = ZSTD_decompressStream(z.ds, &ob, &z.ib);
-    if (ZSTD_isError(ret) && ZSTD_getErrorCode(ret) == ZSTD_error_frameParameter_windowTooLarge)
-      throw InputError(path(), 0,
-                       "the zstd frame near compressed byte " +
-                           std::to_string(z.consumed + z.ib.pos) +
-                           " needs a window above 32 MiB (zstd --long or --ultra -22): "
-                           "decompress it first");
-    if (ZSTD_isError(ret))
-      throw InputError(path(), 0,
-                       std::string("corrupt zstd stream near compressed byte ") +
-                           std::to_string(z.consumed + z.ib.pos) + ": " + ZSTD_getErrorName(ret));
-    z.last_ret = ret;
+  size_t pos = 0;
+  while (pos < n && Step(*zstd_, buf, n, &pos)) {
   }
-  return ob.pos;
+  return pos;
 }
 
-void CompressFile(const std::string& src, const std::string& dst, int level) {
+// The frames a range's reader left unread up to where the next range begins decompressing (the
+// last frame starting at or before the range's end; the file's end after the last range), so that
+// each frame's remaining blocks and checksum, and any frame lying between two entry points, are
+// checked by some range as the whole read checks them. At most a frame's worth beyond the range.
+void InputStream::Drain(Zstd& z) {
+  uint64_t target = ~uint64_t{0};  // the file's end
+  if (z.pos < static_cast<uint64_t>(size_)) {
+    auto e = std::upper_bound(z.entries.begin(), z.entries.end(), z.pos,
+                              [](uint64_t o, const ZstdEntry& x) { return o < x.content; });
+    target = e == z.entries.begin() ? 0 : (e - 1)->file;
+  }
+  std::vector<char> sink(1 << 16);
+  while (z.last_ret != 0 || z.consumed + z.ib.pos < target) {
+    size_t pos = 0;
+    if (!Step(z, sink.data(), sink.size(), &pos)) break;
+  }
+}
+
+void CompressFile(const std::string& src, const std::string& dst, int level, uint64_t frame_bytes) {
+  if (frame_bytes == 0) throw std::invalid_argument("CompressFile: frames of 0 bytes");
   InputFile in(src);
   AtomicOutput out(dst);
   struct Ctx {
@@ -214,24 +321,32 @@ void CompressFile(const std::string& src, const std::string& dst, int level) {
   if (!ctx.cc) throw std::runtime_error("cannot create a zstd compression context");
   ZSTD_CCtx_setParameter(ctx.cc, ZSTD_c_compressionLevel, level);
   ZSTD_CCtx_setParameter(ctx.cc, ZSTD_c_checksumFlag, 1);
-  if (in.size() >= 0)
-    ZSTD_CCtx_setPledgedSrcSize(ctx.cc, static_cast<unsigned long long>(in.size()));
+  const bool sized = in.size() >= 0;
+  uint64_t left = sized ? static_cast<uint64_t>(in.size()) : 0;
   std::vector<char> ibuf(1 << 20), obuf(ZSTD_CStreamOutSize());
-  while (true) {
-    const size_t got = in.Read(ibuf.data(), ibuf.size());
-    const ZSTD_EndDirective mode = got < ibuf.size() ? ZSTD_e_end : ZSTD_e_continue;
-    ZSTD_inBuffer ib{ibuf.data(), got, 0};
-    bool done = false;
-    while (!done) {
-      ZSTD_outBuffer ob{obuf.data(), obuf.size(), 0};
-      const size_t left = ZSTD_compressStream2(ctx.cc, &ob, &ib, mode);
-      if (ZSTD_isError(left))
-        throw std::runtime_error(std::string("zstd: ") + ZSTD_getErrorName(left));
-      if (std::fwrite(obuf.data(), 1, ob.pos, out.file()) != ob.pos)
-        throw EnvironmentError(dst, std::string("write failed: ") + std::strerror(errno));
-      done = mode == ZSTD_e_end ? left == 0 : ib.pos == ib.size;
+  for (bool more = true; more;) {  // one frame per pass
+    const uint64_t frame = sized ? std::min(frame_bytes, left) : frame_bytes;
+    if (sized) ZSTD_CCtx_setPledgedSrcSize(ctx.cc, static_cast<unsigned long long>(frame));
+    for (uint64_t fed = 0;;) {
+      const size_t ask = static_cast<size_t>(std::min<uint64_t>(ibuf.size(), frame - fed));
+      const size_t got = ask ? in.Read(ibuf.data(), ask) : 0;
+      fed += got;
+      const bool end = got < ask || fed == frame;  // the frame's end (the file's, when short)
+      if (got < ask || (sized && fed == left)) more = false;
+      const ZSTD_EndDirective mode = end ? ZSTD_e_end : ZSTD_e_continue;
+      ZSTD_inBuffer ib{ibuf.data(), got, 0};
+      for (bool done = false; !done;) {
+        ZSTD_outBuffer ob{obuf.data(), obuf.size(), 0};
+        const size_t rest = ZSTD_compressStream2(ctx.cc, &ob, &ib, mode);
+        if (ZSTD_isError(rest))
+          throw std::runtime_error(std::string("zstd: ") + ZSTD_getErrorName(rest));
+        if (std::fwrite(obuf.data(), 1, ob.pos, out.file()) != ob.pos)
+          throw EnvironmentError(dst, std::string("write failed: ") + std::strerror(errno));
+        done = end ? rest == 0 : ib.pos == ib.size;
+      }
+      if (end) break;
     }
-    if (mode == ZSTD_e_end) break;
+    if (sized) left -= std::min(left, frame);
   }
   out.Commit();
 }

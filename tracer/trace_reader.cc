@@ -200,6 +200,7 @@ void TraceReader::Range(uint64_t first, uint64_t end) {
   if (first > end || end > header_.records)
     throw std::invalid_argument("TraceReader::Range: records out of range");
   in_->SeekTo(header_bytes_ + first * sizeof(TraceRecord));
+  in_->SetLimit((end - first) * sizeof(TraceRecord));
   left_ = header_.records - first;
   end_ = end;
 }

@@ -28,7 +28,8 @@ class TraceReader {
   const TraceHeader& header() const { return header_; }
   // Fills `out` with up to `max` next records; returns false when none are left.
   bool Next(std::vector<TraceRecord>* out, size_t max = 1 << 16);
-  // Reads records [first, end) only (a chunk): a plain regular file (InputStream::SeekTo).
+  // Reads records [first, end) only (a chunk): a regular file, plain or zstd in frames that
+  // record their sizes (InputStream::SeekTo).
   void Range(uint64_t first, uint64_t end);
 
   // True if the file starts with the trace magic (to tell traces from other inputs).

@@ -7,9 +7,12 @@
 # traces); a mesh's stream regenerated per chunk (Gauss-Seidel on 1 and 2 threads, Jacobi);
 # SHARDS at a fixed rate (with and without --sample-error) equal to the serial estimate;
 # --threads 2 and 3 equal too (a chunk per thread on every format; the batched analyzer on a zstd
-# trace, standard input and the samplers chunks cannot run); each bad merge refused by name with
+# trace in fewer frames than threads, standard input and the samplers chunks cannot run); zstd
+# traces in frames (every format, frames of a few hundred bytes) cut into chunks and threads
+# exactly as the plain file, a zstd trace in one frame too; each bad merge refused by name with
 # exit 2: reordered, repeated, missing, truncated, corrupt, foreign and non-summary files; chunks
-# of a zstd trace refused before any work; no summary left behind.
+# of a zstd trace whose frame does not record its size refused before any work; no summary left
+# behind.
 # Usage: chunks.sh MESHREUSE DATA
 set -u
 bin=$1 data=$2
@@ -98,6 +101,42 @@ if cmp -s "$tmp/threads.csv" "$tmp/serial.csv"; then pass=$((pass + 1)); else fa
 outputs "$tmp/serial" "$bin" analyze "$tmp/mesh.trace.zst"
 outputs "$tmp/threads" "$bin" analyze "$tmp/mesh.trace.zst" --threads 2
 same "mesh.trace.zst --threads 2 (batched)" "$tmp/serial" "$tmp/threads"
+# zstd in frames (tracer/input_stream.h): a chunk starts decompressing at the last frame that
+# begins at or before it. Frames cut anywhere in the content (inside records and lines), made with
+# the zstd tool as any user could; every chunk count and thread count equals the serial analysis
+# of the same file. One frame (the zstd tool's default) chunks too, decompressing up to its start.
+framed() {  # framed SRC DST BYTES : SRC in zstd frames of BYTES, each recording its size
+  rm -f "$tmp"/fr.*
+  split -b "$3" -a 4 "$1" "$tmp/fr."
+  for x in "$tmp"/fr.*; do zstd -q -c "$x"; done >"$2"
+}
+framed "$tmp/mesh.trace" "$tmp/framed.trace.zst" 3001
+[[ $(zstd -l "$tmp/framed.trace.zst" | awk 'NR == 2 {print $1}') -gt 100 ]] && pass=$((pass + 1)) || { fail=$((fail + 1)); echo "FAIL framed.trace.zst is not in frames"; }
+outputs "$tmp/serial" "$bin" analyze "$tmp/framed.trace.zst"
+for th in 2 3; do
+  outputs "$tmp/threads" "$bin" analyze "$tmp/framed.trace.zst" --threads "$th"
+  same "framed.trace.zst --threads $th" "$tmp/serial" "$tmp/threads"
+done
+for P in 3 4; do
+  chunked "$tmp/merged" "$P" "$tmp/framed.trace.zst"
+  same "framed.trace.zst P=$P" "$tmp/serial" "$tmp/merged"
+done
+check "framed rank stats" 0 "$bin" analyze "$tmp/framed.trace.zst" --threads 3 --rank-stats "$tmp/rs3.json" --quiet
+check "framed rank stats: three chunks" 0 /usr/bin/python3 -c "import json,sys; d=json.load(open(sys.argv[1])); assert [r['rank'] for r in d] == [0,1,2] and all(r['records'] > 0 for r in d), d" "$tmp/rs3.json"
+for f in "${trace_specs[@]}"; do
+  set -- $f
+  framed "$tmp/$1" "$tmp/$1.zst" 777
+  outputs "$tmp/serial" "$bin" analyze "$tmp/$1.zst" --format "$2" --granularity "$3"
+  outputs "$tmp/threads" "$bin" analyze "$tmp/$1.zst" --format "$2" --granularity "$3" --threads 3
+  same "$1.zst in frames --threads 3" "$tmp/serial" "$tmp/threads"
+  chunked "$tmp/merged" 4 "$tmp/$1.zst" --format "$2" --granularity "$3"
+  same "$1.zst in frames P=4" "$tmp/serial" "$tmp/merged"
+done
+outputs "$tmp/serial" "$bin" analyze "$tmp/mesh.trace.zst"
+for P in 2 3; do
+  chunked "$tmp/merged" "$P" "$tmp/mesh.trace.zst"
+  same "mesh.trace.zst (one frame) P=$P" "$tmp/serial" "$tmp/merged"
+done
 "$bin" analyze - --format u64 --granularity element --threads 2 --csv --quiet <"$tmp/uniform.u64" >"$tmp/stdin.csv"
 "$bin" analyze "$tmp/uniform.u64" --format u64 --granularity element --csv --quiet >"$tmp/serial.csv"
 # the input column names "-" there
@@ -111,7 +150,7 @@ check "threads rank stats by distance" 0 "$bin" analyze "$tmp/uniform.u64" --for
 check "threads rank stats by distance: every pair once" 0 /usr/bin/python3 -c "import json,sys; d=json.load(open(sys.argv[1])); assert sum(r['pairs_added'] for r in d) == sum(r['pairs'] for r in d) > 0 and all(r['pairs_added'] > 0 for r in d), d" "$tmp/rs-slices.json"
 check "--scatter-from 0 refused" 2 "$bin" analyze "$tmp/uniform.u64" --format u64 --threads 3 --scatter-from 0 --quiet
 check "zstd rank stats" 2 "$bin" analyze "$tmp/mesh.trace.zst" --threads 2 --rank-stats "$tmp/rs2.json" --quiet
-contains "zstd rank stats" "--threads over plain trace files"
+contains "zstd rank stats" "--threads over trace files that can be cut"
 [[ ! -e $tmp/rs2.json ]] && pass=$((pass + 1)) || { fail=$((fail + 1)); echo "FAIL zstd rank stats written"; }
 for extra in "--sample-rate 0.1 --sample-error" "--sample-size 100 --sample-error" \
              "--sample-rate 0.1 --sample-exact-below 16"; do
@@ -140,12 +179,14 @@ check "corrupt" 2 "$bin" analyze --merge "$tmp/u0" "$tmp/u1" "$tmp/flip" --quiet
 contains "corrupt" "$tmp/flip: corrupt summary: the checksum does not match"
 check "not a summary" 2 "$bin" analyze --merge "$tmp/u0" "$tmp/u1" "$tmp/uniform.u64" --quiet
 contains "not a summary" "not a chunk summary"
-# Chunks that cannot be: refused before any work, nothing written.
-check "zstd chunk" 2 "$bin" analyze "$tmp/mesh.trace.zst" --chunk 1/2 --summary-out "$tmp/z" --quiet
+# Chunks that cannot be: refused before any work, nothing written (the zstd tool compressing
+# standard input records no size in its frame).
+zstd -q -c <"$tmp/mesh.trace" >"$tmp/nosize.trace.zst"
+check "zstd chunk" 2 "$bin" analyze "$tmp/nosize.trace.zst" --chunk 1/2 --summary-out "$tmp/z" --quiet
 contains "zstd chunk" "decompress it first"
 [[ ! -e "$tmp/z" ]] && pass=$((pass + 1)) || { fail=$((fail + 1)); echo "FAIL zstd chunk left a summary"; }
-zstd -q -f "$tmp/ids.txt" -o "$tmp/ids.txt.zst"
-check "zstd text chunk" 2 "$bin" analyze "$tmp/ids.txt.zst" --format text --chunk 1/2 --summary-out "$tmp/x" --quiet
+zstd -q -c <"$tmp/ids.txt" >"$tmp/nosize.txt.zst"
+check "zstd text chunk" 2 "$bin" analyze "$tmp/nosize.txt.zst" --format text --chunk 1/2 --summary-out "$tmp/x" --quiet
 contains "zstd text chunk" "decompress it first"
 printf '1\n2\nx\n3\n' >"$tmp/bad.txt"
 check "bad text chunk" 2 "$bin" analyze "$tmp/bad.txt" --format text --chunk 1/2 --summary-out "$tmp/x" --quiet

@@ -1,8 +1,8 @@
 // libFuzzer harness: other tools' traces (tracer/trace_formats.h). The first byte picks the format
 // by its fixed code (low four bits: the table's `code`; a code no format has: nothing to do), bit 4
 // counts lackey's instruction fetches, bit 5 runs the analysis on two workers (chunk-and-merge),
-// bit 6 reads a plain file again in three chunks by range and traps unless they agree with the
-// whole read (the same verdict; the same accesses).
+// bit 6 reads the file (plain, or zstd in frames) again in three chunks by range and traps unless
+// they agree with the whole read (the same verdict; the same accesses).
 // Codes are fixed per format, so a new format never changes what an existing seed means. The rest
 // is the file, plain or zstd (the reader tells them apart by the magic number, so the fuzzer
 // reaches the decompressor too). Every access goes through the exact analyzer and the simulator.
@@ -38,12 +38,20 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   } catch (const InputError&) {
     whole_ok = false;
   }
-  // Bit 6: the plain file read again as three chunks by range, as `analyze --threads 3` and
-  // `--chunk r/3` read it (records, or the lines that begin in a byte range): every chunk reads
-  // exactly when the whole read does, and together they hold its accesses.
-  if (!(data[0] & 0x40) || InputStream(f.path()).compressed()) return 0;
+  // Bit 6: the file read again as three chunks by range, as `analyze --threads 3` and `--chunk
+  // r/3` read it (records, or the lines that begin in a byte range; a zstd file from the frames
+  // that begin at or before each chunk, and on to the next chunk's frame): every chunk reads
+  // exactly when the whole read does, and together they hold its accesses. Not a zstd file whose
+  // frames do not record their sizes (a chunk cannot enter it: refused up front).
+  if (!(data[0] & 0x40)) return 0;
+  int64_t content = -1;
+  try {
+    content = InputStream(f.path()).size();
+  } catch (const InputError&) {
+  }
+  if (content < 0) return 0;
   const bool text = fmt->syntax != TraceSyntax::kFixedRecords;
-  const uint64_t total = text ? size - 1 : ForeignTraceLength(f.path(), *fmt);
+  const uint64_t total = text ? static_cast<uint64_t>(content) : ForeignTraceLength(f.path(), *fmt);
   bool parts_ok = true;
   for (uint64_t r = 0; r < 3; ++r) {
     const RecordRange range{total * r / 3, total * (r + 1) / 3};

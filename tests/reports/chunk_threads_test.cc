@@ -12,6 +12,7 @@
 #include <atomic>
 #include <cstdint>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <random>
 #include <stdexcept>
@@ -22,6 +23,7 @@
 #include "reports/analyze.h"
 #include "reports/trace.h"
 #include "tests/test_util.h"
+#include "tracer/input_stream.h"
 
 namespace meshreuse {
 namespace {
@@ -181,7 +183,8 @@ void ExpectChunksOnThreadsEqualSerial(const AnalyzeConfig& cfg, const std::strin
     EXPECT_EQ(Tables(RunAnalyze(t, Log()), cfg), serial) << what << " threads " << p;
     AnalyzeConfig d = cfg;  // the histograms added up by distance at every P, not up the tree
     d.scatter_from_ranks = 2;
-    EXPECT_EQ(Tables(AnalyzeChunksOnThreads(d, p, Log()), cfg), serial) << what << " scattered " << p;
+    EXPECT_EQ(Tables(AnalyzeChunksOnThreads(d, p, Log()), cfg), serial)
+        << what << " scattered " << p;
   }
 }
 
@@ -294,7 +297,7 @@ TEST(AnalyzeChunksOnThreads, ADamagedSliceIsRefusedByName) {
   }
 }
 
-TEST(AnalyzeChunksOnThreads, OnlyPlainRegularFiles) {
+TEST(AnalyzeChunksOnThreads, OnlyRegularFilesThatCanBeEntered) {
   testing::TempDir dir;
   TraceConfig tc;
   tc.mesh = testing::DataPath("two_interior.node");
@@ -302,7 +305,9 @@ TEST(AnalyzeChunksOnThreads, OnlyPlainRegularFiles) {
   tc.compress = true;
   RunTrace(tc, Log());
   AnalyzeConfig cfg;
-  EXPECT_FALSE(CanAnalyzeInChunks(cfg, tc.output));  // zstd cannot be entered mid-stream
+  cfg.threads = 2;
+  // A small trace: one 4 MiB frame, which a second chunk could only enter at its start.
+  EXPECT_FALSE(CanAnalyzeInChunks(cfg, tc.output));
   EXPECT_FALSE(CanAnalyzeInChunks(cfg, "-"));
   EXPECT_FALSE(CanAnalyzeInChunks(cfg, dir / "missing"));
   EXPECT_FALSE(CanAnalyzeInChunks(cfg, dir.path().string()));  // a directory
@@ -310,6 +315,12 @@ TEST(AnalyzeChunksOnThreads, OnlyPlainRegularFiles) {
   tc.compress = false;
   RunTrace(tc, Log());
   EXPECT_TRUE(CanAnalyzeInChunks(cfg, tc.output));
+  // In as many frames as threads (and not fewer).
+  const uint64_t bytes = std::filesystem::file_size(tc.output);
+  CompressFile(tc.output, dir / "two.zst", 3, (bytes + 1) / 2);
+  EXPECT_TRUE(CanAnalyzeInChunks(cfg, dir / "two.zst"));
+  cfg.threads = 3;
+  EXPECT_FALSE(CanAnalyzeInChunks(cfg, dir / "two.zst"));
 }
 
 }  // namespace

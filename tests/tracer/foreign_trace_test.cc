@@ -212,6 +212,129 @@ TEST(TraceFormats, SeveralAndSkippableZstdFrames) {
   EXPECT_THROW(Read(dir / "cut.zst", "text"), InputError);
 }
 
+// Reading [a, b) of the content by range (SeekTo, SetLimit), as a chunk does, to the end.
+std::string ReadRange(const std::string& path, uint64_t a, uint64_t b) {
+  InputStream in(path);
+  in.SeekTo(a);
+  in.SetLimit(b - a);
+  std::string out(b - a + 10, '\0');
+  size_t got = 0, n;
+  while ((n = in.Read(out.data() + got, 13)) > 0) got += n;
+  out.resize(got);
+  return out;
+}
+
+std::string Slurp(const std::string& path) {
+  std::ifstream f(path, std::ios::binary);
+  return std::string((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+}
+
+// `trace --compress` writes independent frames that record their sizes; a range starts at the last
+// frame that begins at or before it (tracer/input_stream.h): every range reads the plain bytes.
+TEST(ZstdFrames, EveryRangeReadsThePlainBytes) {
+  testing::TempDir dir;
+  std::string text;
+  for (int i = 0; i < 200; ++i) text += std::to_string(i * 7919 % 1009) + "\n";
+  Write(dir / "t.txt", text);
+  CompressFile(dir / "t.txt", dir / "t.zst", 3, 37);
+  const size_t frames = (text.size() + 36) / 37;
+  InputStream in(dir / "t.zst");
+  EXPECT_TRUE(in.seekable());
+  EXPECT_EQ(in.entry_points(), frames);
+  EXPECT_EQ(in.size(), static_cast<int64_t>(text.size()));
+  for (uint64_t a = 0; a <= text.size(); ++a) {
+    EXPECT_EQ(ReadRange(dir / "t.zst", a, text.size()), text.substr(a)) << a;
+    const uint64_t b = std::min<uint64_t>(text.size(), a + a % 91);
+    EXPECT_EQ(ReadRange(dir / "t.zst", a, b), text.substr(a, b - a)) << a << " " << b;
+  }
+  // Cut into chunks at any place, in lines, every format reads what the whole read does.
+  for (uint64_t p = 1; p <= 5; ++p) {
+    std::vector<Access> parts;
+    for (uint64_t r = 0; r < p; ++r) {
+      ReadForeignTrace(
+          dir / "t.zst", ParseTraceFormat("text"),
+          [&](uint64_t v, uint32_t z, bool w, bool) { parts.emplace_back(v, z, w); }, false,
+          text.size() * r / p, text.size() * (r + 1) / p);
+    }
+    EXPECT_EQ(parts, Read(dir / "t.txt", "text")) << p;
+  }
+  // One frame: entered at its start, decompressed up to the range.
+  CompressFile(dir / "t.txt", dir / "one.zst", 3, uint64_t{1} << 40);
+  EXPECT_EQ(InputStream(dir / "one.zst").entry_points(), 1u);
+  EXPECT_EQ(ReadRange(dir / "one.zst", 500, 600), text.substr(500, 100));
+  // A frame without its size (as pzstd writes them): no range, by name.
+  Write(dir / "unsized.zst", RawFrame("4\n5\n", false));
+  EXPECT_FALSE(InputStream(dir / "unsized.zst").seekable());
+  try {
+    ReadRange(dir / "unsized.zst", 1, 3);
+    ADD_FAILURE() << "an unsized frame entered in the middle";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("decompress it first"), std::string::npos) << e.what();
+  }
+}
+
+// Damage that only decompressing finds (a checksum; an empty frame whose block holds a byte):
+// however the content is cut in two, one of the ranges fails, as the whole read does.
+TEST(ZstdFrames, DamageFailsSomeRangeWhereverTheCut) {
+  testing::TempDir dir;
+  std::string text;
+  for (int i = 0; i < 60; ++i) text += std::to_string(i) + "\n";
+  Write(dir / "t.txt", text);
+  CompressFile(dir / "t.txt", dir / "t.zst", 3, 40);
+  const std::string good = Slurp(dir / "t.zst");
+  ASSERT_GE(InputStream(dir / "t.zst").entry_points(), 4u);
+  // Where the second and third frames begin (their magic numbers); the second frame's checksum is
+  // the 4 bytes before the third.
+  std::vector<size_t> starts;
+  for (size_t at = 4; at + 4 <= good.size() && starts.size() < 2; ++at)
+    if (good.compare(at, 4, "\x28\xB5\x2F\xFD") == 0) starts.push_back(at);
+  ASSERT_EQ(starts.size(), 2u);
+  std::string bad_sum = good;
+  bad_sum[starts[1] - 1] ^= 0x5A;
+  // An empty frame (content size 0) holding one raw byte, between the first two frames.
+  std::string empty_bad = std::string("\x28\xB5\x2F\xFD\x20\x00", 6);
+  const uint32_t word = 1u | 1u << 3;  // last block, raw, 1 byte
+  empty_bad += static_cast<char>(word & 0xFF), empty_bad += '\0', empty_bad += '\0';
+  empty_bad += 'x';
+  const std::string bad_empty = good.substr(0, starts[0]) + empty_bad + good.substr(starts[0]);
+  for (const auto& [name, bytes] :
+       {std::pair{"sum.zst", bad_sum}, std::pair{"empty.zst", bad_empty}}) {
+    Write(dir / name, bytes);
+    EXPECT_THROW(Read(dir / name, "text"), InputError) << name;
+    InputStream in(dir / name);
+    ASSERT_TRUE(in.seekable()) << name;
+    for (uint64_t cut = 0; cut <= text.size(); ++cut) {
+      int failed = 0;
+      for (auto [a, b] : {std::pair{uint64_t{0}, cut}, std::pair{cut, uint64_t{text.size()}}}) {
+        try {
+          ReadRange(dir / name, a, b);
+        } catch (const InputError&) {
+          ++failed;
+        }
+      }
+      EXPECT_GE(failed, 1) << name << " cut at " << cut;
+    }
+  }
+}
+
+// Beyond 2^16 frames the places are thinned evenly (memory bounded whatever the frame count);
+// ranges still read the plain bytes.
+TEST(ZstdFrames, ManyFramesThinnedPlaces) {
+  testing::TempDir dir;
+  std::string bytes(70001, '\0');
+  for (size_t i = 0; i < bytes.size(); ++i) bytes[i] = static_cast<char>('a' + i * 31 % 26);
+  Write(dir / "b.txt", bytes);
+  CompressFile(dir / "b.txt", dir / "b.zst", 1, 1);
+  InputStream in(dir / "b.zst");
+  EXPECT_EQ(in.size(), 70001);
+  EXPECT_LE(in.entry_points(), uint64_t{1} << 16);
+  EXPECT_GE(in.entry_points(), uint64_t{1} << 15);
+  for (uint64_t a : {uint64_t{0}, uint64_t{1}, uint64_t{65535}, uint64_t{65536}, uint64_t{69999},
+                     uint64_t{70001}})
+    EXPECT_EQ(ReadRange(dir / "b.zst", a, std::min<uint64_t>(a + 7, 70001)), bytes.substr(a, 7))
+        << a;
+}
+
 TEST(TraceFormats, CompressedTraceFileReadsLikeThePlainOne) {
   testing::TempDir dir;
   Mesh m = testing::TwoInterior();
