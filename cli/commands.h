@@ -28,6 +28,7 @@ int OrderingsCommand(const Args& args);
 int ReorderCommand(const Args& args);
 int CompareCommand(const Args& args);
 int TraceCommand(const Args& args);
+int CompressCommand(const Args& args);
 int AnalyzeCommand(const Args& args);
 // With a transport: one rank of a distributed analysis (cli/mpi_main.cc); rank 0 prints and writes.
 int AnalyzeCommand(const Args& args, ChunkTransport* transport);

@@ -38,6 +38,7 @@ const Command kCommands[] = {
      DistSmoothThreads},
     {"compare", "time the smoother under several orderings and thread counts", CompareCommand},
     {"trace", "write the smoother's access trace to a binary file", TraceCommand},
+    {"compress", "any trace into zstd frames that chunks and threads can enter", CompressCommand},
     {"analyze", "reuse distances, quantiles, histograms, profiles and modelled misses",
      AnalyzeCommand},
     {"simulate", "set-associative cache simulation of every load and store", SimulateCommand},

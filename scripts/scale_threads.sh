@@ -6,12 +6,13 @@
 # once in OUT, seed 1, 20 M accesses by default over 2^20 ids): uniform ids, a stride-64 address
 # scan from 0 and from a heap-like base (every reuse across the chunks), random 64-bit ids (hashed,
 # oracleGeneral-like), uniform ids as a text trace (cut at line boundaries), and a mesh trace
-# (plate41 refined 4 times, RDR, 4 sweeps, both granularities; --no-mesh skips it). Then the model
+# (plate41 refined 4 times, RDR, 4 sweeps, both granularities; --no-mesh skips it); the uniform
+# and mesh traces also compressed in zstd frames (`meshreuse compress`). Then the model
 # of scripts/project_mpi.py from the threads' own per-chunk phases (--rank-stats), for 32 and 64
 # threads. Beside them, what this machine lets any division of the work gain: the trace cut into T
 # part files exactly where the threads cut it (records; whole lines for text), each analysed by a
 # serial process of its own, all T at once, nothing merged ("parts at once"; not for the mesh
-# trace, whose format has no such parts): first touches repeated in each part, shared caches and
+# trace, whose format has no such parts, nor the compressed ones): first touches repeated in each part, shared caches and
 # memory, cores that do not run alike all weigh on it as on the threads, the merge does not.
 # Writes OUT/threads.csv (every run), OUT/threads.md (the table) and OUT/model/.
 #
@@ -69,13 +70,26 @@ PY
 fi
 traces=("uniform.u64 u64 element" "scan.u64 u64 element" "scan_heap.u64 u64 element"
         "random64.u64 u64 element" "uniform.txt text element")
+# Compressed in zstd frames (meshreuse compress) of 4 MiB, or fewer KiB where that would make
+# fewer than two frames a thread: each thread decompresses its own chunk.
+max_t=$(tr , '\n' <<<"$threads" | sort -n | tail -n 1)
+compress() {  # compress NAME
+  [[ -e $out/$1.zst ]] && return
+  local kib=$(($(stat -c %s "$out/$1") / 1024 / (2 * max_t)))
+  ((kib > 4096)) && kib=4096
+  ((kib < 1)) && kib=1
+  "$bin" compress "$out/$1" -o "$out/$1.zst" --frame-kib "$kib" --quiet >/dev/null
+}
+compress uniform.u64
+traces+=("uniform.u64.zst u64 element")
 if ((mesh)); then
   if [[ ! -e $out/mesh.trace ]]; then
     echo "scale_threads.sh: writing the mesh trace (plate41 refined 4 times, RDR, 4 sweeps)" >&2
     "$bin" mesh refine tests/data/plate41.msh --levels 4 --jitter 0.3 -o "$out/plate4" --quiet >/dev/null
     "$bin" trace "$out/plate4.node" --ordering rdr -k 4 -o "$out/mesh.trace" --quiet >/dev/null
   fi
-  traces+=("mesh.trace - -")
+  compress mesh.trace
+  traces+=("mesh.trace - -" "mesh.trace.zst - -")
 fi
 echo "trace,threads,run,wall_s,cpu_s,peak_kb,serial_wall_s,serial_cpu_s,serial_peak_kb,speedup,parts_wall_s,parts_speedup" >"$out/threads.csv"
 parts() {  # parts NAME FORMAT T: OUT/parts/NAME.T.r for r < T, cut where T chunks are
@@ -124,14 +138,16 @@ for spec in "${traces[@]}"; do
   name=$1 args=("$out/$1")
   [[ $2 != - ]] && args+=(--format "$2" --granularity "$3")
   IFS=, read -ra ts <<<"$threads"
+  cut=1  # the parts at once: plain foreign traces only
+  [[ $2 == - || $name == *.zst ]] && cut=0
   for t in "${ts[@]}"; do
-    [[ $2 != - ]] && parts "$1" "$2" "$t"
+    ((cut)) && parts "$1" "$2" "$t"
     for ((k = 1; k <= repeat; k++)); do
       echo "scale_threads.sh: $name, --threads $t against 1, run $k of $repeat" >&2
       timed "$out/run" "${args[@]}" --threads "$t" --rank-stats "$out/model/$name-t$t-$k.json"
       w=$t_wall c=$t_cpu m=$t_peak
       t_parts="" ps=""
-      if [[ $2 != - ]]; then
+      if ((cut)); then
         at_once "$1" "$2" "$3" "$t"
       fi
       timed "$out/serial" "${args[@]}"

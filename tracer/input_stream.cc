@@ -310,9 +310,11 @@ void InputStream::Drain(Zstd& z) {
   }
 }
 
-void CompressFile(const std::string& src, const std::string& dst, int level, uint64_t frame_bytes) {
-  if (frame_bytes == 0) throw std::invalid_argument("CompressFile: frames of 0 bytes");
-  InputFile in(src);
+uint64_t CompressFile(const std::string& src, const std::string& dst, int level,
+                      uint64_t frame_bytes, const std::function<void(uint64_t)>& progress) {
+  if (frame_bytes == 0 || frame_bytes > kZstdMaxFrameBytes)
+    throw std::invalid_argument("CompressFile: frames of 1 byte to 256 MiB");
+  InputStream in(src);
   AtomicOutput out(dst);
   struct Ctx {
     ZSTD_CCtx* cc = ZSTD_createCCtx();
@@ -321,34 +323,32 @@ void CompressFile(const std::string& src, const std::string& dst, int level, uin
   if (!ctx.cc) throw std::runtime_error("cannot create a zstd compression context");
   ZSTD_CCtx_setParameter(ctx.cc, ZSTD_c_compressionLevel, level);
   ZSTD_CCtx_setParameter(ctx.cc, ZSTD_c_checksumFlag, 1);
-  const bool sized = in.size() >= 0;
-  uint64_t left = sized ? static_cast<uint64_t>(in.size()) : 0;
-  std::vector<char> ibuf(1 << 20), obuf(ZSTD_CStreamOutSize());
-  for (bool more = true; more;) {  // one frame per pass
-    const uint64_t frame = sized ? std::min(frame_bytes, left) : frame_bytes;
-    if (sized) ZSTD_CCtx_setPledgedSrcSize(ctx.cc, static_cast<unsigned long long>(frame));
-    for (uint64_t fed = 0;;) {
-      const size_t ask = static_cast<size_t>(std::min<uint64_t>(ibuf.size(), frame - fed));
-      const size_t got = ask ? in.Read(ibuf.data(), ask) : 0;
-      fed += got;
-      const bool end = got < ask || fed == frame;  // the frame's end (the file's, when short)
-      if (got < ask || (sized && fed == left)) more = false;
-      const ZSTD_EndDirective mode = end ? ZSTD_e_end : ZSTD_e_continue;
-      ZSTD_inBuffer ib{ibuf.data(), got, 0};
-      for (bool done = false; !done;) {
-        ZSTD_outBuffer ob{obuf.data(), obuf.size(), 0};
-        const size_t rest = ZSTD_compressStream2(ctx.cc, &ob, &ib, mode);
-        if (ZSTD_isError(rest))
-          throw std::runtime_error(std::string("zstd: ") + ZSTD_getErrorName(rest));
-        if (std::fwrite(obuf.data(), 1, ob.pos, out.file()) != ob.pos)
-          throw EnvironmentError(dst, std::string("write failed: ") + std::strerror(errno));
-        done = end ? rest == 0 : ib.pos == ib.size;
-      }
-      if (end) break;
+  // A whole frame is read before it is compressed, so that its header records its size whatever
+  // the input (a pipe, a zstd file being re-framed).
+  // The buffers grow with what arrives (a small input with large frames takes little).
+  std::vector<char> frame, packed;
+  const size_t most = static_cast<size_t>(frame_bytes);
+  uint64_t total = 0;
+  for (bool first = true;; first = false) {
+    size_t got = 0;
+    while (got < most) {
+      if (frame.size() == got) frame.resize(std::min(most, got + (size_t{1} << 20)));
+      const size_t n = in.Read(frame.data() + got, frame.size() - got);
+      if (n == 0) break;
+      got += n;
     }
-    if (sized) left -= std::min(left, frame);
+    if (got == 0 && !first) break;  // an empty input still gets a (empty) frame
+    packed.resize(std::max(packed.size(), ZSTD_compressBound(got)));
+    const size_t z = ZSTD_compress2(ctx.cc, packed.data(), packed.size(), frame.data(), got);
+    if (ZSTD_isError(z)) throw std::runtime_error(std::string("zstd: ") + ZSTD_getErrorName(z));
+    if (std::fwrite(packed.data(), 1, z, out.file()) != z)
+      throw EnvironmentError(dst, std::string("write failed: ") + std::strerror(errno));
+    total += got;
+    if (progress) progress(total);
+    if (got < most) break;
   }
   out.Commit();
+  return total;
 }
 
 }  // namespace meshreuse

@@ -15,6 +15,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -73,17 +74,21 @@ class InputStream {
   std::unique_ptr<Zstd> zstd_;
 };
 
-// Compresses `src` into `dst` (core/output_file.h) at zstd level `level`, in independent frames of
-// `frame_bytes` of content each (the last shorter), each recording its content size and a
-// checksum: a chunk of the trace then decompresses at most one frame it does not use. At level 3
-// (a 2 MiB window) 4 MiB frames cost nothing measurable where a sweep outgrows the window (a 1.46
-// GB mesh trace: 141.2 MB against 141.6 MB for `zstd -3` in one frame; 160 MB of uniform u64 ids:
-// 66.69 against 66.73 MB), but a trace whose sweeps fit the window, compressed from the second
-// sweep on by reference to the first, starts over in each frame (a 15.8 MB trace of 1.3 MB
-// sweeps: 0.49 MB against 0.22 MB).
-// Throws EnvironmentError when it cannot be written.
+// Compresses `src` (whatever InputStream reads: a plain file, a zstd one, which is re-framed, or
+// "-" for standard input) into `dst` (core/output_file.h) at zstd level `level`, in independent
+// frames of `frame_bytes` of content each (the last shorter; 1 byte to kZstdMaxFrameBytes), each
+// recording its content size and a checksum: a chunk of the trace then decompresses at most one
+// frame it does not use. At level 3 (a 2 MiB window) 4 MiB frames cost nothing measurable where a
+// sweep outgrows the window (a 1.46 GB mesh trace: 141.2 MB against 141.6 MB for `zstd -3` in one
+// frame; 160 MB of uniform u64 ids: 66.69 against 66.73 MB), but a trace whose sweeps fit the
+// window, compressed from the second sweep on by reference to the first, starts over in each
+// frame (a 15.8 MB trace of 1.3 MB sweeps: 0.49 MB against 0.22 MB). Memory: two frames' worth.
+// `progress` (when given) gets the content bytes written after each frame. Returns them all.
+// Throws InputError for a bad input, EnvironmentError when `dst` cannot be written.
 constexpr uint64_t kZstdFrameBytes = uint64_t{4} << 20;
-void CompressFile(const std::string& src, const std::string& dst, int level = 3,
-                  uint64_t frame_bytes = kZstdFrameBytes);
+constexpr uint64_t kZstdMaxFrameBytes = uint64_t{256} << 20;
+uint64_t CompressFile(const std::string& src, const std::string& dst, int level = 3,
+                      uint64_t frame_bytes = kZstdFrameBytes,
+                      const std::function<void(uint64_t)>& progress = {});
 
 }  // namespace meshreuse

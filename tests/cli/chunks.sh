@@ -132,6 +132,25 @@ for f in "${trace_specs[@]}"; do
   chunked "$tmp/merged" 4 "$tmp/$1.zst" --format "$2" --granularity "$3"
   same "$1.zst in frames P=4" "$tmp/serial" "$tmp/merged"
 done
+# `meshreuse compress` writes such frames from any trace: a plain one, standard input, and a
+# zstd trace in one frame, re-framed; zstd -d gives back the plain bytes.
+check "compress" 0 "$bin" compress "$tmp/uniform.u64" -o "$tmp/c1.zst" --frame-kib 16 --quiet
+check "compress stdin" 0 "$bin" compress - -o "$tmp/c2.zst" --frame-kib 16 --level 9 --quiet <"$tmp/uniform.u64"
+zstd -q -f "$tmp/uniform.u64" -o "$tmp/one.u64.zst"
+check "compress re-frames" 0 "$bin" compress "$tmp/one.u64.zst" -o "$tmp/c3.zst" --frame-kib 16 --quiet
+contains "compress re-frames" "in 10 frame(s) of 16 KiB"
+outputs "$tmp/serial" "$bin" analyze "$tmp/uniform.u64" --format u64 --granularity element
+for c in c1 c2 c3; do
+  cmp -s <(zstd -q -d -c "$tmp/$c.zst") "$tmp/uniform.u64" && pass=$((pass + 1)) || { fail=$((fail + 1)); echo "FAIL $c.zst does not decompress to the trace"; }
+  outputs "$tmp/threads" "$bin" analyze "$tmp/$c.zst" --format u64 --granularity element --threads 3
+  ok=1  # the first column names the input file
+  for x in t h m; do cmp -s <(cut -d, -f2- "$tmp/threads.$x") <(cut -d, -f2- "$tmp/serial.$x") || ok=0; done
+  ((ok)) && pass=$((pass + 1)) || { fail=$((fail + 1)); echo "FAIL $c.zst --threads 3 differs from the plain trace"; }
+done
+check "compress: the input as output" 2 "$bin" compress "$tmp/c1.zst" -o "$tmp/c1.zst" --quiet
+check "compress: no frames" 2 "$bin" compress "$tmp/uniform.u64" -o "$tmp/c4.zst" --frame-kib 0 --quiet
+check "compress: level" 2 "$bin" compress "$tmp/uniform.u64" -o "$tmp/c4.zst" --level 20 --quiet
+[[ ! -e $tmp/c4.zst ]] && pass=$((pass + 1)) || { fail=$((fail + 1)); echo "FAIL compress wrote a refused output"; }
 outputs "$tmp/serial" "$bin" analyze "$tmp/mesh.trace.zst"
 for P in 2 3; do
   chunked "$tmp/merged" "$P" "$tmp/mesh.trace.zst"

@@ -41,7 +41,7 @@ pick() { local -n a=$1; printf '%s' "${a[RANDOM % ${#a[@]}]}"; }
 
 fail=0
 for ((i = 0; i < cases; i++)); do
-  case $((RANDOM % 9)) in
+  case $((RANDOM % 10)) in
     0) cmd=(analyze "$mesh" -k "$(pick values)" -t "$(pick values)" --line-bytes "$(pick values)") ;;
     1) cmd=(analyze "$mesh" --quantiles "$(pick values)" --sample-rate "$(pick values)" --seed "$(pick values)" --orderings "$(pick orderings)") ;;
     2) cmd=(simulate "$mesh" --cache "$(pick caches)" -k "$(pick values)" --orderings "$(pick orderings)") ;;
@@ -51,6 +51,7 @@ for ((i = 0; i < cases; i++)); do
     6) cmd=(reorder "$mesh" --ordering "$(pick orderings)" -o "$(pick paths)") ;;
     7) cmd=(analyze "$mesh" --element-bytes "$(pick values)" --cache "$(pick caches)" --out "$(pick paths)") ;;
     8) cmd=(mesh convert "$mesh" -o "$(pick paths)") ;;
+    9) cmd=(compress "$mesh" --level "$(pick counts)" --frame-kib "$(pick counts)" -o "$(pick paths)") ;;
   esac
   # A FIFO output needs a reader, or the writer waits for one.
   (timeout 70 cat "$tmp/fifo" >/dev/null 2>&1 &)
