@@ -72,6 +72,10 @@ split -b 4801 "$u64seed" "$frames/u."
 split -b 301 "$frames/ids" "$frames/t."
 { printf '\103'; for x in "$frames"/u.*; do zstd -q -c "$x"; done; } >"$c/external/seed-u64-frames-chunks"
 { printf '\101'; for x in "$frames"/t.*; do zstd -q -c "$x"; done; } >"$c/external/seed-text-frames-chunks"
+# ... and with a seek table at the end (zstd's seekable format, as meshreuse compress writes it).
+[[ -x build/release/cli/meshreuse ]] &&
+  build/release/cli/meshreuse compress "$u64seed" -o "$frames/tabled.zst" --frame-kib 1 --quiet >/dev/null &&
+  { printf '\103'; cat "$frames/tabled.zst"; } >"$c/external/seed-u64-seek-table-chunks"
 rm -rf "$frames" "$u64seed" "$u64seed.pz"
 /usr/bin/python3 -c 'print("\n".join(str(i) for i in range(336)))' >"$c/permutation/seed-identity"
 # Visit orders: the 21 x 16 grid's inner points row by row (the synthetic mesh's interior if its

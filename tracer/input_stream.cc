@@ -41,14 +41,85 @@ struct ZstdEntry {
 constexpr size_t kMaxEntries = size_t{1} << 16;  // 1 MiB of places, whatever the frame count
 
 struct ZstdWalk {
-  int64_t size = -1;  // the content's size, or -1 (see below)
+  int64_t size = -1;      // the content's size, or -1 (see below)
+  bool complete = false;  // the size is every frame's (not the first's of a damaged file)
   std::vector<ZstdEntry> entries;
 };
 
+// Places at most kMaxEntries: beyond, every other one dropped and every other frame noted, so
+// they stay evenly spread whatever the frame count.
+class EntryList {
+ public:
+  explicit EntryList(std::vector<ZstdEntry>* out) : out_(out) { out->clear(); }
+  void Frame(uint64_t content, uint64_t file) {
+    if (frames_++ % stride_ != 0) return;
+    out_->push_back({content, file});
+    if (out_->size() < kMaxEntries) return;
+    for (size_t i = 0; i < kMaxEntries / 2; ++i) (*out_)[i] = (*out_)[2 * i];
+    out_->resize(kMaxEntries / 2);
+    stride_ *= 2;
+  }
+
+ private:
+  std::vector<ZstdEntry>* out_;
+  uint64_t frames_ = 0, stride_ = 1;
+};
+
+uint32_t Le32(const unsigned char* p) {
+  return p[0] | uint32_t{p[1]} << 8 | uint32_t{p[2]} << 16 | uint32_t{p[3]} << 24;
+}
+
+// zstd's seekable format (facebook/zstd contrib/seekable_format): a skippable frame at the end
+// (magic 0x184D2A5E) holding each frame's compressed and decompressed size (u32 each, a u32
+// checksum after them when the descriptor's bit 7 says so), then the frame count (u32), the
+// descriptor (u8, bits 2-6 reserved zero) and the magic 0x8F92EAB1. `meshreuse compress` writes
+// one; so do t2sz and zstd's own seekable compressor. Read in one pass of 64 KiB reads instead of
+// a read per block; a table that is not well formed (its sizes not adding up to the file) is
+// ignored, as the zstd tool ignores it (the frames are then walked). What the table says of each
+// place is checked where the decompressor passes it (InputStream::Step), so a table that lies
+// fails a whole read, and some chunk of any cut, like damage.
+constexpr uint32_t kSeekTableMagic = 0x8F92EAB1, kSeekFrameMagic = 0x184D2A5E;
+constexpr uint64_t kMaxTableFrames = uint64_t{1} << 27;  // the seekable format's own bound
+constexpr uint64_t kMaxWrittenTableFrames = uint64_t{1} << 24;
+bool ReadSeekTable(std::FILE* f, int64_t file_bytes, ZstdWalk* w) {
+  const int fd = fileno(f);
+  const uint64_t bytes = static_cast<uint64_t>(file_bytes);
+  unsigned char foot[9], head[8];
+  if (bytes < 17 || pread(fd, foot, 9, file_bytes - 9) != 9 || Le32(foot + 5) != kSeekTableMagic)
+    return false;
+  if (foot[4] & 0x7C) return false;  // reserved bits
+  const uint64_t n = Le32(foot), width = foot[4] & 0x80 ? 12 : 8;
+  if (n > kMaxTableFrames || 17 + n * width > bytes) return false;
+  const uint64_t table = 17 + n * width, data = bytes - table;
+  if (pread(fd, head, 8, static_cast<off_t>(data)) != 8 || Le32(head) != kSeekFrameMagic ||
+      Le32(head + 4) != n * width + 9)
+    return false;
+  std::vector<ZstdEntry> entries;
+  EntryList list(&entries);
+  std::vector<unsigned char> buf(8190 * 12);  // a whole number of entries of either width
+  uint64_t file = 0, content = 0;
+  for (uint64_t i = 0; i < n;) {
+    const uint64_t k = std::min<uint64_t>(n - i, buf.size() / width);
+    const off_t at = static_cast<off_t>(data + 8 + i * width);
+    if (pread(fd, buf.data(), k * width, at) != static_cast<ssize_t>(k * width)) return false;
+    for (uint64_t j = 0; j < k; ++j) {
+      list.Frame(content, file);
+      file += Le32(&buf[j * width]);
+      content += Le32(&buf[j * width + 4]);
+    }
+    i += k;
+  }
+  if (file != data || content > static_cast<uint64_t>(INT64_MAX)) return false;
+  w->size = static_cast<int64_t>(content);
+  w->complete = true;
+  w->entries = std::move(entries);
+  return true;
+}
+
 // The content size of a compressed regular file: every frame walked by its headers alone (RFC
 // 8878: frame header, 3-byte block headers, optional checksum; skippable frames skipped), without
-// decompressing, noting where each frame begins (beyond kMaxEntries frames every other place is
-// dropped, and then every other frame noted, so the places stay evenly spread). Size -1 when a
+// decompressing, noting where each frame begins (EntryList). A read per block: a file with a seek
+// table (ReadSeekTable) is not walked. Size -1 when a
 // frame does not record its size: such a file cannot be entered in the middle. A walk that does
 // not end at the file's end (a file cut short, damage) gives the first frame's size and no places,
 // so that the decompressor, not a missing size, reports what is wrong.
@@ -59,8 +130,8 @@ ZstdWalk WalkZstdFrames(std::FILE* f, int64_t file_bytes) {
            pread(fd, buf, n, off) == static_cast<ssize_t>(n);
   };
   ZstdWalk w;
+  EntryList list(&w.entries);
   int64_t off = 0, total = 0, first = -1;
-  uint64_t frames = 0, stride = 1;
   auto broken = [&] {
     w.size = first;
     w.entries.clear();
@@ -91,14 +162,7 @@ ZstdWalk WalkZstdFrames(std::FILE* f, int64_t file_bytes) {
     if (fcs == 2) content += 256;
     if (content > static_cast<uint64_t>(INT64_MAX - total)) return broken();
     if (first < 0) first = static_cast<int64_t>(content);
-    if (frames++ % stride == 0) {
-      w.entries.push_back({static_cast<uint64_t>(total), static_cast<uint64_t>(off)});
-      if (w.entries.size() == kMaxEntries) {
-        for (size_t i = 0; i < kMaxEntries / 2; ++i) w.entries[i] = w.entries[2 * i];
-        w.entries.resize(kMaxEntries / 2);
-        stride *= 2;
-      }
-    }
+    list.Frame(static_cast<uint64_t>(total), static_cast<uint64_t>(off));
     total += static_cast<int64_t>(content);
     off += static_cast<int64_t>(header);
     for (bool last = false; !last;) {
@@ -114,6 +178,7 @@ ZstdWalk WalkZstdFrames(std::FILE* f, int64_t file_bytes) {
   }
   if (off != file_bytes) return broken();
   w.size = total;
+  w.complete = true;
   return w;
 }
 }  // namespace
@@ -126,7 +191,9 @@ struct InputStream::Zstd {
   bool eof = false;
   size_t last_ret = 0;  // 0 when the last frame ended cleanly
   bool seekable = false;
+  bool complete = false;  // size is every frame's: checked at the file's end
   std::vector<ZstdEntry> entries;
+  size_t check = 1;     // the next place to check where the decompressor passes it
   uint64_t pos = 0;     // content bytes before the next one Read returns
   bool ranged = false;  // entered by SeekTo: Read drains at the limit (Drain)
   bool drained = false;
@@ -148,8 +215,11 @@ InputStream::InputStream(const std::string& path) : file_(path) {
     if (!zstd_->ds) throw InputError(path, 0, "cannot create a zstd decompression stream");
     ZSTD_DCtx_setParameter(zstd_->ds, ZSTD_d_windowLogMax, kWindowLogMax);
     if (file_.size() >= 0) {
-      ZstdWalk w = WalkZstdFrames(file_.get(), file_.size());
+      ZstdWalk w;
+      if (!ReadSeekTable(file_.get(), file_.size(), &w))
+        w = WalkZstdFrames(file_.get(), file_.size());
       size_ = w.size;
+      zstd_->complete = w.complete;
       // A damaged file (the walk stopped short) is entered only at its start: the decompressor,
       // reading on from there, reports the damage as a whole read does.
       zstd_->seekable = w.size >= 0;
@@ -207,6 +277,7 @@ void InputStream::SeekTo(uint64_t offset) {
   auto e = std::upper_bound(z.entries.begin(), z.entries.end(), offset,
                             [](uint64_t o, const ZstdEntry& x) { return o < x.content; });
   const ZstdEntry from = e == z.entries.begin() ? ZstdEntry{0, 0} : *(e - 1);
+  z.check = static_cast<size_t>(e - z.entries.begin());
   SeekRaw(from.file);
   ZSTD_DCtx_reset(z.ds, ZSTD_reset_session_only);
   z.ib = ZSTD_inBuffer{nullptr, 0, 0};
@@ -262,6 +333,11 @@ bool InputStream::Step(Zstd& z, void* buf, size_t n, size_t* pos) {
         throw InputError(path(), 0,
                          "truncated zstd stream: it ends inside a frame at compressed byte " +
                              std::to_string(z.consumed));
+      if (z.complete && z.pos != static_cast<uint64_t>(size_))
+        throw InputError(path(), 0,
+                         "the zstd frames hold " + std::to_string(z.pos) +
+                             " bytes where their seek table or headers say " +
+                             std::to_string(size_));
       return false;
     }
     z.ib = ZSTD_inBuffer{z.in.data(), got, 0};
@@ -281,6 +357,16 @@ bool InputStream::Step(Zstd& z, void* buf, size_t n, size_t* pos) {
   z.last_ret = ret;
   z.pos += ob.pos - *pos;
   *pos = ob.pos;
+  // At a frame's end: the places up to here must begin where a frame ends, at the content offset
+  // the decompressor has reached (a seek table's word checked against the frames).
+  const uint64_t at = z.consumed + z.ib.pos;
+  for (; ret == 0 && z.check < z.entries.size() && z.entries[z.check].file <= at; ++z.check)
+    if (z.entries[z.check].file != at || z.entries[z.check].content != z.pos)
+      throw InputError(path(), 0,
+                       "the zstd seek table does not match the frames: a frame said to begin at "
+                       "compressed byte " +
+                           std::to_string(z.entries[z.check].file) + " (content byte " +
+                           std::to_string(z.entries[z.check].content) + ")");
   return true;
 }
 
@@ -329,6 +415,10 @@ uint64_t CompressFile(const std::string& src, const std::string& dst, int level,
   std::vector<char> frame, packed;
   const size_t most = static_cast<size_t>(frame_bytes);
   uint64_t total = 0;
+  // Each frame's compressed and content sizes, for the seek table (8 bytes a frame, up to 2^24
+  // frames: 128 MiB for 16 GiB in frames of 1 KiB; 128 KiB for 64 GiB in the default frames).
+  std::vector<uint32_t> table;
+  bool tabled = true;
   for (bool first = true;; first = false) {
     size_t got = 0;
     while (got < most) {
@@ -344,8 +434,31 @@ uint64_t CompressFile(const std::string& src, const std::string& dst, int level,
     if (std::fwrite(packed.data(), 1, z, out.file()) != z)
       throw EnvironmentError(dst, std::string("write failed: ") + std::strerror(errno));
     total += got;
+    if (tabled && table.size() / 2 < kMaxWrittenTableFrames) {
+      table.push_back(static_cast<uint32_t>(z));
+      table.push_back(static_cast<uint32_t>(got));
+    } else if (tabled) {  // too many frames for a table in memory: readers walk the frames
+      tabled = false;
+      std::vector<uint32_t>().swap(table);
+    }
     if (progress) progress(total);
     if (got < most) break;
+  }
+  if (tabled) {  // zstd's seekable format (ReadSeekTable), little-endian words
+    const uint64_t n = table.size() / 2;
+    std::vector<uint32_t> words = {kSeekFrameMagic, static_cast<uint32_t>(n * 8 + 9)};
+    words.insert(words.end(), table.begin(), table.end());
+    words.push_back(static_cast<uint32_t>(n));
+    std::string t;
+    t.reserve(words.size() * 4 + 5);
+    auto put = [&t](uint32_t v) {
+      for (int i = 0; i < 4; ++i) t += static_cast<char>((v >> (8 * i)) & 0xFF);
+    };
+    for (uint32_t v : words) put(v);
+    t += '\0';  // the descriptor: no checksums
+    put(kSeekTableMagic);
+    if (std::fwrite(t.data(), 1, t.size(), out.file()) != t.size())
+      throw EnvironmentError(dst, std::string("write failed: ") + std::strerror(errno));
   }
   out.Commit();
   return total;

@@ -6,12 +6,14 @@
 // stream is an InputError naming the file and the compressed byte offset; decompression memory is
 // bounded (a frame needing a window above 32 MiB, zstd --long or --ultra -22, is refused by name).
 // A compressed file is entered in the middle (a chunk) at the start of a zstd frame: frames are
-// independent (RFC 8878), and their headers, walked once at opening, say where each begins in the
-// file and in the content, so files in many frames (`trace --compress` writes one per 4 MiB) need
-// no index of their own. Reading by range decompresses from the last frame that begins at or
-// before the range and, at the range's end, on to where the next range's frame begins (or the
-// file's end): together the ranges decompress every frame exactly as a whole read does, so a
-// damaged frame or checksum fails some chunk whenever it fails the whole read.
+// independent (RFC 8878). Where each begins, in the file and in the content, comes from the seek
+// table of zstd's seekable format when the file ends in one (`meshreuse compress` and `trace
+// --compress` write it, with 4 MiB frames), else from the frame headers, walked once at opening
+// (a read per 128 KiB block); what the table says is checked as the frames are decompressed.
+// Reading by range decompresses from the last frame that begins at or before the range and, at the
+// range's end, on to where the next range's frame begins (or the file's end): together the ranges
+// decompress every frame exactly as a whole read does, so a damaged frame or checksum fails some
+// chunk whenever it fails the whole read.
 #pragma once
 
 #include <cstdint>
@@ -39,8 +41,8 @@ class InputStream {
   // frame headers record (every frame must: `trace --compress` and `zstd FILE` do, pzstd does
   // not); -1 otherwise. Several frames and skippable frames (pzstd) read as `zstd -d` reads them.
   int64_t size() const { return size_; }
-  // Whether SeekTo works: a plain regular file, or a compressed regular file whose frames all
-  // record their sizes.
+  // Whether SeekTo works: a plain regular file, or a compressed regular file that ends in a seek
+  // table or whose frames all record their sizes.
   bool seekable() const;
   // The places SeekTo starts decompressing from: frame starts (at most 2^16 of them, evenly
   // thinned beyond; none in a damaged file, which is entered at its start); for a plain file,
@@ -48,8 +50,8 @@ class InputStream {
   uint64_t entry_points() const;
   // Reading by range (a chunk of a trace, reports/chunk_summary.h): continue at byte `offset` of
   // the content, and read at most `limit` bytes from there. A regular file that is seekable()
-  // only: a pipe cannot seek, a zstd stream whose frames do not record their sizes cannot be
-  // entered in the middle (InputError saying so).
+  // only: a pipe cannot seek, a zstd stream without a seek table whose frames do not record their
+  // sizes cannot be entered in the middle (InputError saying so).
   void SeekTo(uint64_t offset);
   void SetLimit(uint64_t limit) { limit_ = limit; }
   // Where the first line that begins at or after byte `offset` begins (the size at the end): a
@@ -78,11 +80,13 @@ class InputStream {
 // "-" for standard input) into `dst` (core/output_file.h) at zstd level `level`, in independent
 // frames of `frame_bytes` of content each (the last shorter; 1 byte to kZstdMaxFrameBytes), each
 // recording its content size and a checksum: a chunk of the trace then decompresses at most one
-// frame it does not use. At level 3 (a 2 MiB window) 4 MiB frames cost nothing measurable where a
-// sweep outgrows the window (a 1.46 GB mesh trace: 141.2 MB against 141.6 MB for `zstd -3` in one
-// frame; 160 MB of uniform u64 ids: 66.69 against 66.73 MB), but a trace whose sweeps fit the
-// window, compressed from the second sweep on by reference to the first, starts over in each
-// frame (a 15.8 MB trace of 1.3 MB sweeps: 0.49 MB against 0.22 MB). Memory: two frames' worth.
+// frame it does not use. The file ends in a seek table (zstd's seekable format, 8 bytes a frame;
+// up to 2^24 frames), so readers find the frames without walking their blocks; `zstd -d` skips
+// it. At level 3 (a 2 MiB window) 4 MiB frames cost little where a sweep outgrows the window (a
+// 1.46 GB mesh trace: 141.8 MB against 141.6 MB for `zstd -3` in one frame; 160 MB of uniform u64
+// ids: 66.69 against 66.73 MB), but a trace whose sweeps fit the window, compressed from the
+// second sweep on by reference to the first, starts over in each frame (a 15.8 MB trace of 1.3
+// MB sweeps: 0.49 MB against 0.22 MB). Memory: two frames' worth and the table.
 // `progress` (when given) gets the content bytes written after each frame. Returns them all.
 // Throws InputError for a bad input, EnvironmentError when `dst` cannot be written.
 constexpr uint64_t kZstdFrameBytes = uint64_t{4} << 20;

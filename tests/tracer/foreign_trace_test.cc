@@ -317,6 +317,105 @@ TEST(ZstdFrames, DamageFailsSomeRangeWhereverTheCut) {
   }
 }
 
+// zstd's seekable format: a skippable frame holding each frame's compressed and content sizes,
+// the frame count, a descriptor and the magic 0x8F92EAB1 (written by hand here, as the spec
+// lays it out).
+std::string SeekTable(const std::vector<std::pair<uint32_t, uint32_t>>& frames,
+                      unsigned char descriptor = 0) {
+  std::string t;
+  auto put = [&t](uint32_t v) {
+    for (int i = 0; i < 4; ++i) t += static_cast<char>((v >> (8 * i)) & 0xFF);
+  };
+  put(0x184D2A5E);
+  put(static_cast<uint32_t>(frames.size() * 8 + 9));
+  for (auto [c, d] : frames) put(c), put(d);
+  put(static_cast<uint32_t>(frames.size()));
+  t += static_cast<char>(descriptor);
+  put(0x8F92EAB1);
+  return t;
+}
+
+// A seek table is read instead of walking every block; it agrees with the walk, makes frames that
+// do not record their sizes enterable, and is checked against the frames as they are
+// decompressed: a table that lies fails the whole read, and one of the two ranges wherever the
+// content is cut. A table that is not well formed is ignored (the frames are walked).
+TEST(ZstdFrames, SeekTable) {
+  testing::TempDir dir;
+  std::string text;
+  for (int i = 0; i < 40; ++i) text += std::to_string(i * 37 % 101) + "\n";
+  Write(dir / "t.txt", text);
+  CompressFile(dir / "t.txt", dir / "t.zst", 3, 20);  // with its seek table
+  const std::string with = Slurp(dir / "t.zst");
+  const size_t frames = (text.size() + 19) / 20, table = 17 + 8 * frames;
+  ASSERT_EQ(with.compare(with.size() - 4, 4, "\xB1\xEA\x92\x8F"), 0);
+  const std::string without = with.substr(0, with.size() - table);
+  Write(dir / "walked.zst", without);
+  // Each frame's compressed size, from the table just written.
+  std::vector<std::pair<uint32_t, uint32_t>> sizes;
+  for (size_t f = 0; f < frames; ++f) {
+    const char* e = with.data() + with.size() - table + 8 + 8 * f;
+    uint32_t c, d;
+    std::memcpy(&c, e, 4), std::memcpy(&d, e + 4, 4);
+    sizes.emplace_back(c, d);
+  }
+  for (const char* f : {"t.zst", "walked.zst"}) {
+    InputStream in(dir / f);
+    EXPECT_EQ(in.entry_points(), frames) << f;
+    EXPECT_EQ(in.size(), static_cast<int64_t>(text.size())) << f;
+    for (uint64_t a = 0; a <= text.size(); a += 7)
+      EXPECT_EQ(ReadRange(dir / f, a, std::min<uint64_t>(text.size(), a + 30)), text.substr(a, 30))
+          << f << " " << a;
+  }
+  // Frames without their sizes (as pzstd and zstd's seekable compressor write them), with a table.
+  std::string unsized;
+  std::vector<std::pair<uint32_t, uint32_t>> raw;
+  for (size_t at = 0; at < text.size(); at += 25) {
+    const std::string frame = RawFrame(text.substr(at, 25), false);
+    unsized += frame;
+    raw.emplace_back(static_cast<uint32_t>(frame.size()),
+                     static_cast<uint32_t>(std::min<size_t>(25, text.size() - at)));
+  }
+  Write(dir / "unsized.zst", unsized);
+  EXPECT_FALSE(InputStream(dir / "unsized.zst").seekable());
+  Write(dir / "tabled.zst", unsized + SeekTable(raw));
+  EXPECT_TRUE(InputStream(dir / "tabled.zst").seekable());
+  EXPECT_EQ(InputStream(dir / "tabled.zst").size(), static_cast<int64_t>(text.size()));
+  for (uint64_t a = 0; a <= text.size(); a += 5)
+    EXPECT_EQ(ReadRange(dir / "tabled.zst", a, text.size()), text.substr(a)) << a;
+  // Not well formed (a reserved bit; sizes that do not add up to the file): ignored.
+  Write(dir / "reserved.zst", unsized + SeekTable(raw, 0x04));
+  EXPECT_FALSE(InputStream(dir / "reserved.zst").seekable());
+  auto short_by_one = raw;
+  short_by_one[0].first -= 1;
+  Write(dir / "short.zst", unsized + SeekTable(short_by_one));
+  EXPECT_FALSE(InputStream(dir / "short.zst").seekable());
+  // Tables that add up but lie: a byte of content moved between two frames (a place's content
+  // offset wrong), a compressed size moved to the next frame (a place inside a frame), the last
+  // frame's content one byte longer (the total wrong).
+  auto shifted = sizes, moved = sizes, longer = sizes;
+  shifted[1].second += 1, shifted[2].second -= 1;
+  moved[1].first -= 1, moved[2].first += 1;
+  longer.back().second += 1;
+  for (const auto& [name, lie] : {std::pair{"shifted.zst", shifted}, std::pair{"moved.zst", moved},
+                                  std::pair{"longer.zst", longer}}) {
+    Write(dir / name, without + SeekTable(lie));
+    ASSERT_TRUE(InputStream(dir / name).seekable()) << name;
+    EXPECT_THROW(Read(dir / name, "text"), InputError) << name;
+    const uint64_t size = static_cast<uint64_t>(InputStream(dir / name).size());
+    for (uint64_t cut = 0; cut <= size; ++cut) {
+      int failed = 0;
+      for (auto [a, b] : {std::pair{uint64_t{0}, cut}, std::pair{cut, size}}) {
+        try {
+          ReadRange(dir / name, a, b);
+        } catch (const InputError&) {
+          ++failed;
+        }
+      }
+      EXPECT_GE(failed, 1) << name << " cut at " << cut;
+    }
+  }
+}
+
 // Beyond 2^16 frames the places are thinned evenly (memory bounded whatever the frame count);
 // ranges still read the plain bytes.
 TEST(ZstdFrames, ManyFramesThinnedPlaces) {
