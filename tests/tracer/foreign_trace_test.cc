@@ -382,6 +382,16 @@ TEST(ZstdFrames, SeekTable) {
   EXPECT_EQ(InputStream(dir / "tabled.zst").size(), static_cast<int64_t>(text.size()));
   for (uint64_t a = 0; a <= text.size(); a += 5)
     EXPECT_EQ(ReadRange(dir / "tabled.zst", a, text.size()), text.substr(a)) << a;
+  // A skippable frame among the data (as pzstd writes one), in the table with no content.
+  const std::string f1 = RawFrame("1\n2\n", true), sk = SkippableFrame("pz"),
+                    f2 = RawFrame("3\n", true);
+  Write(dir / "skip.zst", f1 + sk + f2 +
+                              SeekTable({{static_cast<uint32_t>(f1.size()), 4},
+                                         {static_cast<uint32_t>(sk.size()), 0},
+                                         {static_cast<uint32_t>(f2.size()), 2}}));
+  EXPECT_EQ(InputStream(dir / "skip.zst").entry_points(), 3u);
+  for (uint64_t a = 0; a <= 6; ++a)
+    EXPECT_EQ(ReadRange(dir / "skip.zst", a, 6), std::string("1\n2\n3\n").substr(a)) << a;
   // Not well formed (a reserved bit; sizes that do not add up to the file): ignored.
   Write(dir / "reserved.zst", unsized + SeekTable(raw, 0x04));
   EXPECT_FALSE(InputStream(dir / "reserved.zst").seekable());
