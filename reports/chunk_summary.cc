@@ -1270,8 +1270,13 @@ AnalyzeResult RunDistributed(const AnalyzeConfig& cfg, ChunkTransport& tx, const
     // touched: memory follows the distances the slice holds (a scan's: one page), not its width.
     std::vector<ReuseHistogram> counts(keys);
     for (ReuseHistogram& h : counts) h.UsePages();
+    // This slice's bounds, once per stream (in_slice divides for each call): [from, to).
+    std::vector<uint64_t> from(keys), to(keys);
+    for (size_t k = 0; k < keys; ++k)
+      from[k] = lo(k, rank), to[k] = rank + 1 == ranks ? top[k] : lo(k, rank + 1);
+    const bool last = rank + 1 == ranks;
     auto add = [&](size_t k, uint64_t d, uint64_t n, const std::string& name) {
-      if (!in_slice(k, rank, d))
+      if (d == StackDistance::kCold ? !last : d < from[k] || d >= to[k])
         throw InputError(name, 0, "corrupt: a distance outside the slice it was sent for");
       counts[k].AddCount(d, n);
     };
