@@ -73,8 +73,9 @@ uint32_t Le32(const unsigned char* p) {
 // (magic 0x184D2A5E) holding each frame's compressed and decompressed size (u32 each, a u32
 // checksum after them when the descriptor's bit 7 says so), then the frame count (u32), the
 // descriptor (u8, bits 2-6 reserved zero) and the magic 0x8F92EAB1. `meshreuse compress` writes
-// one; so do t2sz and zstd's own seekable compressor. Read in one pass of 64 KiB reads instead of
-// a read per block; a table that is not well formed (its sizes not adding up to the file) is
+// one; so do t2sz and zstd's own seekable compressor. Read in one pass of 96 KiB reads instead of
+// a read per block (the table's own checksums are not read: the frames carry theirs); a table
+// that is not well formed (reserved bits, its sizes not adding up to the file) is
 // ignored, as the zstd tool ignores it (the frames are then walked). What the table says of each
 // place is checked where the decompressor passes it (InputStream::Step), so a table that lies
 // fails a whole read, and some chunk of any cut, like damage.
@@ -118,11 +119,11 @@ bool ReadSeekTable(std::FILE* f, int64_t file_bytes, ZstdWalk* w) {
 
 // The content size of a compressed regular file: every frame walked by its headers alone (RFC
 // 8878: frame header, 3-byte block headers, optional checksum; skippable frames skipped), without
-// decompressing, noting where each frame begins (EntryList). A read per block: a file with a seek
-// table (ReadSeekTable) is not walked. Size -1 when a
-// frame does not record its size: such a file cannot be entered in the middle. A walk that does
-// not end at the file's end (a file cut short, damage) gives the first frame's size and no places,
-// so that the decompressor, not a missing size, reports what is wrong.
+// decompressing, noting where each frame begins (EntryList). A read per block, so a file with a
+// seek table (ReadSeekTable) is not walked. Size -1 when a frame does not record its size: such a
+// file cannot be entered in the middle. A walk that does not end at the file's end (a file cut
+// short, damage) gives the first frame's size and no places, so that the decompressor, not a
+// missing size, reports what is wrong.
 ZstdWalk WalkZstdFrames(std::FILE* f, int64_t file_bytes) {
   const int fd = fileno(f);
   auto at = [&](int64_t off, void* buf, size_t n) {
@@ -292,8 +293,8 @@ void InputStream::SeekTo(uint64_t offset) {
     const size_t want = static_cast<size_t>(std::min<uint64_t>(skip.size(), offset - z.pos));
     if (ReadAll(skip.data(), want) < want)
       throw InputError(path(), 0,
-                       "the zstd frames hold fewer bytes than their headers record (compressed "
-                       "byte " +
+                       "the zstd frames hold fewer bytes than their seek table or headers "
+                       "record (compressed byte " +
                            std::to_string(z.consumed + z.ib.pos) + ")");
   }
 }
