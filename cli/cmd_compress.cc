@@ -1,7 +1,7 @@
 // meshreuse compress: any trace (ours or another tool's, plain, zstd or on standard input) into
-// zstd frames that record their sizes (tracer/input_stream.h), so that chunks, threads and MPI
-// ranks can enter it at frames; a trace in one zstd frame (as the zstd tool writes it) is re-framed
-// without a step of its own.
+// zstd frames that record their sizes, ended by a seek table (zstd's seekable format;
+// tracer/input_stream.h), so that chunks, threads and MPI ranks can enter it at frames; a trace in
+// one zstd frame (as the zstd tool writes it) is re-framed without a step of its own.
 #include <cstdio>
 #include <filesystem>
 #include <string>
@@ -29,10 +29,11 @@ int CompressCommand(const Args& args) {
   po::variables_map vm;
   if (!ParseOptions(args, "compress INPUT -o OUTPUT",
                     "Compresses a trace with zstd in independent frames that record their sizes "
-                    "(4 MiB of content each by default), as `trace --compress` writes ours: "
-                    "`analyze --threads`, `--chunk` and meshreuse-mpi then start each chunk at "
-                    "a frame. A zstd input is decompressed and re-framed. The output is a zstd "
-                    "file like any other (`zstd -d` reads it).",
+                    "(4 MiB of content each by default), ended by a seek table (zstd's seekable "
+                    "format), as `trace --compress` writes ours: `analyze --threads`, `--chunk` "
+                    "and meshreuse-mpi then start each chunk at a frame. A zstd input is "
+                    "decompressed and re-framed. The output is a zstd file like any other (`zstd "
+                    "-d` reads it).",
                     desc, pos, vm))
     return 0;
   const int level = static_cast<int>(ParseCount(level_text, "--level", 1, 19));

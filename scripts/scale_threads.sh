@@ -7,13 +7,14 @@
 # scan from 0 and from a heap-like base (every reuse across the chunks), random 64-bit ids (hashed,
 # oracleGeneral-like), uniform ids as a text trace (cut at line boundaries), and a mesh trace
 # (plate41 refined 4 times, RDR, 4 sweeps, both granularities; --no-mesh skips it); the uniform
-# and mesh traces also compressed in zstd frames (`meshreuse compress`). Then the model
-# of scripts/project_mpi.py from the threads' own per-chunk phases (--rank-stats), for 32 and 64
+# and mesh traces also compressed in zstd frames (`meshreuse compress`). Then the model of
+# scripts/project_mpi.py from the threads' own per-chunk phases (--rank-stats), for 32 and 64
 # threads. Beside them, what this machine lets any division of the work gain: the trace cut into T
 # part files exactly where the threads cut it (records; whole lines for text), each analysed by a
 # serial process of its own, all T at once, nothing merged ("parts at once"; not for the mesh
-# trace, whose format has no such parts, nor the compressed ones): first touches repeated in each part, shared caches and
-# memory, cores that do not run alike all weigh on it as on the threads, the merge does not.
+# trace, whose format has no such parts, nor the compressed ones): first touches repeated in each
+# part, shared caches and memory, cores that do not run alike all weigh on it as on the threads,
+# the merge does not.
 # Writes OUT/threads.csv (every run), OUT/threads.md (the table) and OUT/model/.
 #
 # Usage: scripts/scale_threads.sh [--threads 2,4,...] [--repeat R] [--accesses N --ids M]
@@ -23,7 +24,7 @@ set -euo pipefail
 caller=$PWD
 cd "$(dirname "$0")/.."
 threads="" repeat=5 accesses=20000000 ids=1048576 mesh=1 out="out/scale_threads"
-usage() { sed -n '2,16p' "$0" | sed 's/^# \{0,1\}//'; }
+usage() { sed -n '2,/^#   default:/p' "$0" | sed 's/^# \{0,1\}//'; }
 die() { echo "scale_threads.sh: $*" >&2; exit 2; }
 while (($#)); do
   case $1 in
