@@ -813,7 +813,7 @@ SummaryFile SummarizeChunk(const AnalyzeConfig& cfg, uint32_t r, uint32_t p, con
       throw InputError(in, 0,
                        "a zstd-compressed trace whose frames do not all record their sizes cannot "
                        "be cut into chunks: decompress it first (zstd -d)");
-    total = text ? static_cast<uint64_t>(content) : ForeignTraceLength(in, *fmt);
+    total = static_cast<uint64_t>(content) / (text ? 1 : fmt->record_bytes);
   } else {
     TraceReader tr(in);
     total = tr.header().records;

@@ -65,6 +65,14 @@ class EntryList {
   uint64_t frames_ = 0, stride_ = 1;
 };
 
+// How many places begin at or before content byte `offset`: the last of them is where a read of
+// `offset` starts decompressing (none: the file's start).
+size_t PlacesUpTo(const std::vector<ZstdEntry>& entries, uint64_t offset) {
+  auto e = std::upper_bound(entries.begin(), entries.end(), offset,
+                            [](uint64_t o, const ZstdEntry& x) { return o < x.content; });
+  return static_cast<size_t>(e - entries.begin());
+}
+
 uint32_t Le32(const unsigned char* p) {
   return p[0] | uint32_t{p[1]} << 8 | uint32_t{p[2]} << 16 | uint32_t{p[3]} << 24;
 }
@@ -274,11 +282,9 @@ void InputStream::SeekTo(uint64_t offset) {
     throw InputError(path(), 0, "byte offset " + std::to_string(offset) + " is past the end");
   if (!zstd_) return SeekRaw(offset);
   Zstd& z = *zstd_;
-  // The last frame that begins at or before `offset` (the file's start when it has no frame).
-  auto e = std::upper_bound(z.entries.begin(), z.entries.end(), offset,
-                            [](uint64_t o, const ZstdEntry& x) { return o < x.content; });
-  const ZstdEntry from = e == z.entries.begin() ? ZstdEntry{0, 0} : *(e - 1);
-  z.check = static_cast<size_t>(e - z.entries.begin());
+  const size_t after = PlacesUpTo(z.entries, offset);
+  const ZstdEntry from = after == 0 ? ZstdEntry{0, 0} : z.entries[after - 1];
+  z.check = after;
   SeekRaw(from.file);
   ZSTD_DCtx_reset(z.ds, ZSTD_reset_session_only);
   z.ib = ZSTD_inBuffer{nullptr, 0, 0};
@@ -386,9 +392,8 @@ size_t InputStream::ReadAll(void* buf, size_t n) {
 void InputStream::Drain(Zstd& z) {
   uint64_t target = ~uint64_t{0};  // the file's end
   if (z.pos < static_cast<uint64_t>(size_)) {
-    auto e = std::upper_bound(z.entries.begin(), z.entries.end(), z.pos,
-                              [](uint64_t o, const ZstdEntry& x) { return o < x.content; });
-    target = e == z.entries.begin() ? 0 : (e - 1)->file;
+    const size_t after = PlacesUpTo(z.entries, z.pos);
+    target = after == 0 ? 0 : z.entries[after - 1].file;
   }
   std::vector<char> sink(1 << 16);
   while (z.last_ret != 0 || z.consumed + z.ib.pos < target) {

@@ -105,11 +105,6 @@ same "mesh.trace.zst --threads 2 (batched)" "$tmp/serial" "$tmp/threads"
 # begins at or before it. Frames cut anywhere in the content (inside records and lines), made with
 # the zstd tool as any user could; every chunk count and thread count equals the serial analysis
 # of the same file. One frame (the zstd tool's default) chunks too, decompressing up to its start.
-framed() {  # framed SRC DST BYTES : SRC in zstd frames of BYTES, each recording its size
-  rm -f "$tmp"/fr.*
-  split -b "$3" -a 4 "$1" "$tmp/fr."
-  for x in "$tmp"/fr.*; do zstd -q -c "$x"; done >"$2"
-}
 framed "$tmp/mesh.trace" "$tmp/framed.trace.zst" 3001
 [[ $(zstd -l "$tmp/framed.trace.zst" | awk 'NR == 2 {print $1}') -gt 100 ]] && pass=$((pass + 1)) || { fail=$((fail + 1)); echo "FAIL framed.trace.zst is not in frames"; }
 outputs "$tmp/serial" "$bin" analyze "$tmp/framed.trace.zst"

@@ -59,3 +59,8 @@ PY
                "tiny.u64 u64 element" "ids.u32 u32 line" "cache.oracle oracle element"
                "ids.txt text element" "transpose.lackey lackey line")
 }
+framed() {  # framed SRC DST BYTES : SRC in zstd frames of BYTES (the zstd tool, no seek table)
+  rm -f "$tmp"/fr.*
+  split -b "$3" -a 4 "$1" "$tmp/fr."
+  for x in "$tmp"/fr.*; do zstd -q -c "$x"; done >"$2"
+}

@@ -3,9 +3,9 @@
 # (table, histogram, profile, miss-ratio curve) byte for byte equal on a meshreuse trace (2 threads,
 # 3 sweeps, element and line) and on scan, uniform, hashed 64-bit, u32, oracle, text, lackey and
 # 3-access traces (tests/cli/lib.sh; fewer accesses than ranks, sizes not divisible by P), zstd
-# traces in frames and in one, a mesh whose stream each rank regenerates, SHARDS at a fixed rate, and the scaling script end to
-# end. A rank killed mid-run ends the job
-# non-zero with the rank named, never a hang; bad input exits 2 naming the rank and the problem.
+# traces in frames and in one, a mesh whose stream each rank regenerates, SHARDS at a fixed rate,
+# and the scaling script end to end. A rank killed mid-run ends the job non-zero with the rank
+# named, never a hang; bad input exits 2 naming the rank and the problem.
 # Usage: mpi_analyze.sh MESHREUSE MESHREUSE_MPI MPIEXEC DATA
 set -u
 bin=$1 mpi=$2 mpiexec=$3 data=$4
@@ -42,9 +42,7 @@ done
 # --compress` of a small trace), every rank decompressing up to its chunk.
 for spec in "mesh.trace - -" "uniform.u64 u64 element" "ids.txt text element"; do
   set -- $spec
-  rm -f "$tmp"/fr.*
-  split -b 1001 -a 4 "$tmp/$1" "$tmp/fr."
-  for x in "$tmp"/fr.*; do zstd -q -c "$x"; done >"$tmp/$1.zst"
+  framed "$tmp/$1" "$tmp/$1.zst" 1001
   fmt=()
   [[ $2 != - ]] && fmt=(--format "$2" --granularity "$3")
   outputs "$tmp/serial" "$bin" analyze "$tmp/$1.zst" "${fmt[@]}"
