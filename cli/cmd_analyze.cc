@@ -18,7 +18,7 @@ namespace meshreuse::cli {
 
 int AnalyzeCommand(const Args& args) { return AnalyzeCommand(args, nullptr); }
 
-int AnalyzeCommand(const Args& args, ChunkTransport* transport) {
+int AnalyzeCommand(const Args& args, Communicator* transport) {
   po::options_description desc("options");
   AnalyzeConfig cfg;
   std::string orderings = "ori", granularity, quantiles = "50,75,90,100", cache = "westmere-ex",

@@ -1,25 +1,25 @@
 // `meshreuse-mpi smooth`: one rank of the distributed smoother (reports/distributed_smooth.h),
 // over whatever transport moves its bytes (MPI in cli/mpi_main.cc); `meshreuse smooth-ranks
-// --ranks P`: the same P ranks as threads of one process (core/halo_threads.h), for a machine
-// without MPI or a shared-memory scaling study. Every rank parses and checks the same options;
-// rank 0 alone prints and writes.
+// --ranks P`: the same P ranks as threads of one process (core/ranks/thread_communicator.h), for a
+// machine without MPI or a shared-memory scaling study. Every rank parses and checks the same
+// options; rank 0 alone prints and writes.
 #include <cstdio>
 #include <string>
 
 #include "cli/commands.h"
 #include "cli/common.h"
 #include "core/error.h"
-#include "core/halo_threads.h"
 #include "core/mesh_file.h"
 #include "core/mesh_io.h"
 #include "core/orderings/registry.h"
 #include "core/output_file.h"
+#include "core/ranks/thread_communicator.h"
 #include "reports/distributed_smooth.h"
 #include "reports/output.h"
 
 namespace meshreuse::cli {
 
-int DistSmoothCommand(const Args& args, HaloTransport& tx, const JobPartition& job_partition) {
+int DistSmoothCommand(const Args& args, Communicator& tx, const JobPartition& job_partition) {
   po::options_description desc("options");
   DistSmoothConfig cfg;
   cfg.job_partition = job_partition;
@@ -145,13 +145,13 @@ int DistSmoothThreads(const Args& args) {
         "threads of this process (messages through memory): the same parts, schedule, output "
         "and pi, bit for bit. In ranks.csv, peak_rss_mb is the whole process's peak (all "
         "ranks together).\n\n");
-    HaloThreads::Run(1, [&](HaloTransport& tx) { DistSmoothCommand(rest, tx); });
+    ThreadCommunicator::Run(1, [&](Communicator& tx) { DistSmoothCommand(rest, tx); });
     return 0;
   }
   if (ranks_text.empty()) throw UsageError("--ranks P is required (the number of ranks)");
   // Every rank holds a copy of the mesh; a thread per rank beyond a few thousand is a mistake.
   const auto ranks = static_cast<int32_t>(ParseCount(ranks_text, "--ranks", 1, 4096));
-  HaloThreads::Run(ranks, [&](HaloTransport& tx) { DistSmoothCommand(rest, tx); });
+  ThreadCommunicator::Run(ranks, [&](Communicator& tx) { DistSmoothCommand(rest, tx); });
   return 0;
 }
 

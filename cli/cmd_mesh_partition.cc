@@ -1,16 +1,16 @@
-// meshreuse mesh partition: a vertex partition for smoothing across ranks (core/partition.h) and
-// what it costs a distributed sweep; with --levels, the coarse mesh's partition inherited by its
-// refinement (core/refine.h: the parts of `mesh refine --levels K`'s vertices).
+// meshreuse mesh partition: a vertex partition for smoothing across ranks (core/ranks/partition.h)
+// and what it costs a distributed sweep; with --levels, the coarse mesh's partition inherited by
+// its refinement (core/refine.h: the parts of `mesh refine --levels K`'s vertices).
 #include <algorithm>
 #include <cstdio>
 #include <string>
 
 #include "cli/common.h"
 #include "core/error.h"
-#include "core/gmsh_split.h"
 #include "core/mesh_io.h"
 #include "core/output_file.h"
-#include "core/partition.h"
+#include "core/ranks/gmsh_split.h"
+#include "core/ranks/partition.h"
 #include "core/refine.h"
 #include "core/table.h"
 #include "reports/distributed_smooth.h"

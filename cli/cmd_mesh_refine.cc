@@ -13,10 +13,10 @@
 #include "cli/commands.h"
 #include "cli/common.h"
 #include "core/error.h"
-#include "core/halo_threads.h"
 #include "core/mesh_file.h"
 #include "core/mesh_io.h"
 #include "core/output_file.h"
+#include "core/ranks/thread_communicator.h"
 #include "core/refine.h"
 #include "core/table.h"
 #include "reports/distributed_refine.h"
@@ -57,7 +57,7 @@ void PrintSizes(const DistRefineResult& r, const RefineOptions& o) {
 
 }  // namespace
 
-int DistRefineCommand(const Args& args, HaloTransport& tx) {
+int DistRefineCommand(const Args& args, Communicator& tx) {
   po::options_description desc("options");
   DistRefineConfig cfg;
   std::string rank_stats;
@@ -142,7 +142,7 @@ int MeshRefine(const Args& args) {
       if (a.rfind("--layout=", 0) == 0 || a.rfind("--ranks=", 0) == 0) continue;
       rest.push_back(a);
     }
-    HaloThreads::Run(ranks, [&](HaloTransport& tx) { DistRefineCommand(rest, tx); });
+    ThreadCommunicator::Run(ranks, [&](Communicator& tx) { DistRefineCommand(rest, tx); });
     return 0;
   }
   for (const std::string& f : MeshOutputFiles(out)) CheckOutputPath(f, "-o", InputFiles({in}));

@@ -5,7 +5,7 @@
 #include "cli/common.h"
 #include "core/error.h"
 #include "core/orderings/registry.h"
-#include "core/rank_part.h"
+#include "core/ranks/rank_part.h"
 #include "core/table.h"
 #include "reports/trace.h"
 #include "tracer/trace_format.h"

@@ -9,8 +9,7 @@
 #include <vector>
 
 namespace meshreuse {
-class ChunkTransport;
-class HaloTransport;
+class Communicator;
 struct GraphRows;
 }  // namespace meshreuse
 
@@ -31,16 +30,17 @@ int TraceCommand(const Args& args);
 int CompressCommand(const Args& args);
 int AnalyzeCommand(const Args& args);
 // With a transport: one rank of a distributed analysis (cli/mpi_main.cc); rank 0 prints and writes.
-int AnalyzeCommand(const Args& args, ChunkTransport* transport);
+int AnalyzeCommand(const Args& args, Communicator* transport);
 // One rank of the distributed smoother (cli/mpi_main.cc); rank 0 prints and writes.
 // `job_partition`: what --partition ptscotch calls (DistSmoothConfig::job_partition).
 using JobPartition = std::function<std::vector<int32_t>(const GraphRows&, int32_t, uint64_t)>;
-int DistSmoothCommand(const Args& args, HaloTransport& transport,
+int DistSmoothCommand(const Args& args, Communicator& transport,
                       const JobPartition& job_partition = {});
 // One rank of the distributed refinement into a mesh file (`meshreuse-mpi refine`; `meshreuse
 // mesh refine --ranks P` runs it on threads); rank 0 prints.
-int DistRefineCommand(const Args& args, HaloTransport& transport);
-// The same ranks as threads of this process (core/halo_threads.h): `meshreuse smooth-ranks`.
+int DistRefineCommand(const Args& args, Communicator& transport);
+// The same ranks as threads of this process (core/ranks/thread_communicator.h): `meshreuse
+// smooth-ranks`.
 int DistSmoothThreads(const Args& args);
 int SimulateCommand(const Args& args);
 int ValidateCommand(const Args& args);

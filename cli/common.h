@@ -9,7 +9,7 @@
 #include "cli/options.h"
 #include "cli/progress.h"
 #include "core/permutation.h"
-#include "core/rank_part.h"
+#include "core/ranks/rank_part.h"
 #include "reports/log.h"
 #include "reports/output.h"
 #include "reports/run_info.h"

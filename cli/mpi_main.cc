@@ -5,7 +5,7 @@
 // would. `mpirun -np P meshreuse-mpi smooth MESH [smooth's options]`: the distributed Laplacian
 // smoother (reports/distributed_smooth.h), ghosts exchanged between neighbouring ranks. `mpirun -np
 // P meshreuse-mpi refine MESH --levels K -o OUT.mrm`: the refined mesh file written by every rank
-// (reports/distributed_refine.h). This file and its transports (cli/mpi_transport.h) only move
+// (reports/distributed_refine.h). This file and its communicator (cli/mpi_communicator.h) only move
 // bytes; the libraries stay MPI-free. A rank that fails prints "meshreuse-mpi: rank R:
 // error: ..." and aborts the whole job with the error's exit status (2 bad input, 3 environment, 1
 // a bug), never a hang. For tests, MESHREUSE_MPI_KILL_RANK=R makes rank R kill itself (SIGKILL)
@@ -20,7 +20,7 @@
 #include <vector>
 
 #include "cli/commands.h"
-#include "cli/mpi_transport.h"
+#include "cli/mpi_communicator.h"
 #ifdef MESHREUSE_HAVE_PTSCOTCH
 #include "cli/mpi_ptscotch.h"
 #endif
@@ -86,11 +86,12 @@ int main(int argc, char** argv) {
   const Args rest(args.begin() + 1, args.end());
   int rc;
   if (args[0] == "refine") {
-    MpiHalo halo(false);
+    MpiCommunicator comm;
     rc = RunReportingErrors(
-        "refine", [&] { return DistRefineCommand(rest, halo); }, who);
+        "refine", [&] { return DistRefineCommand(rest, comm); }, who);
   } else if (args[0] == "smooth") {
-    MpiHalo halo(kill && std::atoi(kill) == rank);
+    // The fault injection dies in the rank's second all-reduce: the first sweep's quality sum.
+    MpiCommunicator comm(kill && std::atoi(kill) == rank ? 2 : 0);
 #ifdef MESHREUSE_HAVE_PTSCOTCH
     const JobPartition ptscotch = [provided](const meshreuse::GraphRows& rows, int32_t parts,
                                              uint64_t seed) {
@@ -105,11 +106,12 @@ int main(int argc, char** argv) {
     const JobPartition ptscotch;  // --partition ptscotch refused: built without PT-Scotch
 #endif
     rc = RunReportingErrors(
-        "smooth", [&] { return DistSmoothCommand(rest, halo, ptscotch); }, who);
+        "smooth", [&] { return DistSmoothCommand(rest, comm, ptscotch); }, who);
   } else {
-    KillingTransport tx(kill && std::atoi(kill) == rank);
+    // The fault injection dies in the rank's first all-reduce, after analysing its chunk.
+    MpiCommunicator comm(kill && std::atoi(kill) == rank ? 1 : 0);
     rc = RunReportingErrors(
-        "analyze", [&] { return AnalyzeCommand(rest, &tx); }, who);
+        "analyze", [&] { return AnalyzeCommand(rest, &comm); }, who);
   }
   if (rc != 0) MPI_Abort(MPI_COMM_WORLD, rc);  // ends every rank: a failure never hangs the job
   MPI_Finalize();

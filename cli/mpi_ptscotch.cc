@@ -12,7 +12,7 @@
 #include <type_traits>
 
 #include "core/error.h"
-#include "core/rank_neighbourhood.h"
+#include "core/ranks/rank_neighbourhood.h"
 
 namespace meshreuse::cli {
 
@@ -54,8 +54,8 @@ std::vector<int32_t> PtScotchParts(const GraphRows& rows, int32_t parts, uint64_
       SCOTCH_dgraphExit(g);
     }
   } free_them{&g, &bound, &strat, &ctx, &is_bound};
-  // As the sequential scotch partition (core/partition.cc): deterministic, the seed fixed, so a
-  // job computes the same parts every time (message arrival order no longer matters).
+  // As the sequential scotch partition (core/ranks/partition.cc): deterministic, the seed fixed, so
+  // a job computes the same parts every time (message arrival order no longer matters).
   if (SCOTCH_contextOptionSetNum(&ctx, SCOTCH_OPTIONNUMDETERMINISTIC, 1) != 0 ||
       SCOTCH_contextOptionSetNum(&ctx, SCOTCH_OPTIONNUMRANDOMFIXEDSEED, 1) != 0)
     fail("SCOTCH_contextOptionSetNum");

@@ -7,15 +7,15 @@
 #include <cstdint>
 #include <vector>
 
-#include "core/rank_neighbourhood.h"
+#include "core/ranks/rank_neighbourhood.h"
 
 namespace meshreuse::cli {
 
 // Every rank of MPI_COMM_WORLD calls it at once with `parts` equal to the number of ranks: rank r
 // hands PT-Scotch its graph rows, ids [RangeFirst(r), RangeFirst(r + 1))
-// (core/rank_neighbourhood.h), PT-Scotch partitions the distributed graph (balance within 3%,
-// random state seeded by `seed`), and rank r gets the parts of its rows (core/part_directory.h then
-// says who owns what). EnvironmentError when PT-Scotch fails.
+// (core/ranks/rank_neighbourhood.h), PT-Scotch partitions the distributed graph (balance within 3%,
+// random state seeded by `seed`), and rank r gets the parts of its rows
+// (core/ranks/part_directory.h then says who owns what). EnvironmentError when PT-Scotch fails.
 std::vector<int32_t> PtScotchParts(const GraphRows& rows, int32_t parts, uint64_t seed);
 
 }  // namespace meshreuse::cli

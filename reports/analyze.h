@@ -15,7 +15,7 @@
 #include "analysis/cache_model.h"
 #include "analysis/reuse_analysis.h"
 #include "core/permutation.h"
-#include "core/rank_part.h"
+#include "core/ranks/rank_part.h"
 #include "core/smoother.h"
 #include "core/table.h"
 #include "reports/log.h"
@@ -23,7 +23,7 @@
 
 namespace meshreuse {
 
-class ChunkTransport;
+class Communicator;
 
 struct AnalyzeConfig {
   std::vector<std::string> inputs;  // meshes, meshreuse traces, or other tools' traces ("-": stdin)
@@ -64,7 +64,7 @@ struct AnalyzeConfig {
   CutPlacement cut_placement = CutPlacement::kLast;
   // A distributed run (one trace, chunk = rank of size ranks; reports/chunk_summary.h): the
   // message layer, or nullptr.
-  ChunkTransport* transport = nullptr;
+  Communicator* transport = nullptr;
   // From this many ranks on, a distributed run adds its histograms up by distance (a
   // reduce-scatter, each rank one slice), below up a tree of ranks (RunDistributed).
   int32_t scatter_from_ranks = 16;

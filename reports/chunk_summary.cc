@@ -1093,7 +1093,33 @@ void ForEachPairs(const std::string& b, const std::string& name, size_t keys, F 
 
 }  // namespace
 
-AnalyzeResult RunDistributed(const AnalyzeConfig& cfg, ChunkTransport& tx, const Log& log) {
+void SendIds(Communicator& c, const uint64_t* ids, size_t n) {
+  c.Send(c.rank() + 1, PackValues(ids, n));
+}
+
+size_t RecvIds(Communicator& c, std::vector<uint64_t>* ids) {
+  *ids = UnpackValues<uint64_t>(c.Recv(c.rank() - 1));
+  return ids->size();
+}
+
+uint64_t SendSummary(Communicator& c, int32_t to, SummaryFile&& s) {
+  if (c.SharesMemory()) {  // no bytes: the object changes hands
+    c.SendObject(to, std::make_shared<SummaryFile>(std::move(s)));
+    return 0;
+  }
+  std::string b = EncodeSummary(s);
+  const uint64_t n = b.size();
+  c.Send(to, std::move(b));
+  return n;
+}
+
+SummaryFile RecvSummary(Communicator& c, int32_t from, const std::string& name) {
+  if (c.SharesMemory())
+    return std::move(*std::static_pointer_cast<SummaryFile>(c.RecvObject(from)));
+  return DecodeSummary(name, c.Recv(from), true);
+}
+
+AnalyzeResult RunDistributed(const AnalyzeConfig& cfg, Communicator& tx, const Log& log) {
   const int rank = tx.rank(), ranks = tx.size();
   const Log quiet;
   RankStats stats;
@@ -1144,14 +1170,14 @@ AnalyzeResult RunDistributed(const AnalyzeConfig& cfg, ChunkTransport& tx, const
         return;
       }
       if (!out.empty() && (flush || out.size() >= kBlock)) {
-        tx.SendIds(out.data(), out.size());
+        SendIds(tx, out.data(), out.size());
         stats.stack_ids_sent += out.size();
         out.clear();
       }
     };
     const double stream0 = ThreadCpuSeconds();
     if (rank > 0)
-      while (tx.RecvIds(&in) > 0) {
+      while (RecvIds(tx, &in) > 0) {
         stats.stack_ids_in += in.size();
         res.Filter(in.data(), in.size(), &out);
         forward(false);
@@ -1163,7 +1189,7 @@ AnalyzeResult RunDistributed(const AnalyzeConfig& cfg, ChunkTransport& tx, const
         forward(false);
       }
     forward(true);
-    if (!last) tx.SendIds(nullptr, 0);  // end of this stream
+    if (!last) SendIds(tx, nullptr, 0);  // end of this stream
     stats.stream_cpu += ThreadCpuSeconds() - stream0;
     if (!x) continue;
     const double resolve0 = ThreadCpuSeconds();
@@ -1317,13 +1343,13 @@ AnalyzeResult RunDistributed(const AnalyzeConfig& cfg, ChunkTransport& tx, const
   // what it holds (chunks [r, r + step)) to r - step, which adds it to its own.
   for (int step = 1; step < ranks; step *= 2) {
     if (rank % (2 * step) == step) {
-      stats.bytes_sent += tx.SendSummary(rank - step, std::move(s));
+      stats.bytes_sent += SendSummary(tx, rank - step, std::move(s));
       s = SummaryFile();
       break;
     }
     if (rank + step < ranks) {
       const std::string name = "rank " + std::to_string(rank + step);
-      SummaryFile o = tx.RecvSummary(rank + step, name);
+      SummaryFile o = RecvSummary(tx, rank + step, name);
       for (const StreamSummary& x : o.streams) stats.pairs_added += x.hist.size();
       const double merge0 = ThreadCpuSeconds();
       AddResolved(&s, std::move(o), name);
@@ -1339,12 +1365,12 @@ AnalyzeResult RunDistributed(const AnalyzeConfig& cfg, ChunkTransport& tx, const
       for (size_t k = 0; k < keys; ++k)
         if (!slice[k].empty()) PutPairs(&b, k, slice[k].data(), slice[k].size());
       stats.bytes_sent += b.size();
-      tx.PostBytes(0, std::move(b));
+      tx.Send(0, std::move(b));
     }
     stats.reduce_cpu = lap();
     stats.wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
     stats.peak_rss_bytes = PeakRssBytes();
-    tx.SendBytes(0, std::string(reinterpret_cast<const char*>(&stats), sizeof stats));
+    tx.Send(0, std::string(reinterpret_cast<const char*>(&stats), sizeof stats));
     return AnalyzeResult();
   }
   // Rank 0 holds every chunk, resolved: one summary of one chunk for the merger, its histograms
@@ -1352,7 +1378,7 @@ AnalyzeResult RunDistributed(const AnalyzeConfig& cfg, ChunkTransport& tx, const
   if (scatter) {
     for (int j = 1; j < ranks; ++j) {
       const std::string name = "rank " + std::to_string(j);
-      ForEachPairs(tx.RecvBytes(j), name, keys, [&](size_t k, const char* p, size_t n) {
+      ForEachPairs(tx.Recv(j), name, keys, [&](size_t k, const char* p, size_t n) {
         for (size_t i = 0; i < n; ++i) {
           const Pair q = PairAt(p, i);
           if (!in_slice(k, j, q.first))
@@ -1382,7 +1408,7 @@ AnalyzeResult RunDistributed(const AnalyzeConfig& cfg, ChunkTransport& tx, const
   m.Add(std::move(s), "rank 0", 1);
   std::vector<RankStats> all(1);
   for (int r = 1; r < ranks; ++r) {
-    const std::string b = tx.RecvBytes(r);
+    const std::string b = tx.Recv(r);
     if (b.size() != sizeof(RankStats))
       throw InputError("rank " + std::to_string(r), 0, "corrupt statistics message");
     all.emplace_back();

@@ -28,6 +28,7 @@
 #include <vector>
 
 #include "analysis/parallel_stack_distance.h"
+#include "core/ranks/communicator.h"
 #include "reports/analyze.h"
 #include "tracer/access_stream.h"
 
@@ -140,49 +141,18 @@ class SummaryMerger {
 // The merge: cfg.inputs are summaries of chunks 0..P-1, in order.
 AnalyzeResult MergeSummaries(const AnalyzeConfig& cfg, const Log& log);
 
-// What a distributed run needs from its message layer (the MPI driver, cli/mpi_main.cc, which
-// only moves bytes): ranks 0..size-1 in a chain.
-class ChunkTransport {
- public:
-  virtual ~ChunkTransport() = default;
-  virtual int rank() const = 0;
-  virtual int size() const = 0;
-  virtual void SendIds(const uint64_t* ids, size_t n) = 0;  // to rank + 1; n = 0: end of a stream
-  virtual size_t RecvIds(std::vector<uint64_t>* ids) = 0;   // from rank - 1; 0: end of a stream
-  virtual void SendBytes(int to, const std::string& bytes) = 0;
-  // The same, for bytes the caller gives up: a transport within one process keeps them as they
-  // are (no copy of a histogram slice's megabytes); by default sent as SendBytes sends.
-  virtual void PostBytes(int to, std::string&& bytes) { SendBytes(to, bytes); }
-  virtual std::string RecvBytes(int from) = 0;
-  virtual std::vector<uint64_t> AllReduceMax(const std::vector<uint64_t>& v) = 0;
-  virtual std::vector<uint64_t> ExclusiveScanSum(const std::vector<uint64_t>& v) = 0;
-  // out[j] to rank j, for every j but this rank; returns in[j], from rank j (in[rank()] empty).
-  // By default every message is sent, then every one received: right where a send does not wait
-  // for its receive (the threads' mailboxes); MPI overrides it.
-  virtual std::vector<std::string> AllToAll(std::vector<std::string>&& out) {
-    const int p = size(), r = rank();
-    for (int k = 1; k < p; ++k)
-      PostBytes((r + k) % p, std::move(out[static_cast<size_t>((r + k) % p)]));
-    std::vector<std::string> in(static_cast<size_t>(p));
-    for (int k = 1; k < p; ++k)
-      in[static_cast<size_t>((r - k + p) % p)] = RecvBytes((r - k + p) % p);
-    return in;
-  }
-  // A rank's resolved chunks to rank `to` (returns the bytes sent) and from rank `from` (`name`
-  // names it in errors): as bytes by default; ranks within one process hand the object over.
-  virtual uint64_t SendSummary(int to, SummaryFile&& s) {
-    const std::string b = EncodeSummary(s);
-    SendBytes(to, b);
-    return b.size();
-  }
-  virtual SummaryFile RecvSummary(int from, const std::string& name) {
-    return DecodeSummary(name, RecvBytes(from), true);
-  }
-};
+// The chunk relay's messages over the one message layer (core/ranks/communicator.h): blocks of an
+// LRU stack's ids to the next rank (an empty block ends a stream), and resolved chunks handed on
+// (the object itself between ranks that share memory, its encoding elsewhere).
+void SendIds(Communicator& c, const uint64_t* ids, size_t n);  // to rank + 1
+size_t RecvIds(Communicator& c, std::vector<uint64_t>* ids);   // from rank - 1; 0: a stream's end
+uint64_t SendSummary(Communicator& c, int32_t to, SummaryFile&& s);  // returns the bytes sent
+SummaryFile RecvSummary(Communicator& c, int32_t from, const std::string& name);
+
 // Rank r analyses chunk r of P = size() (reading only its own records), the LRU stacks stream
 // rank to rank, each rank resolves its first touches, and a binary tree of ranks adds the
 // resolved chunks up to rank 0: its result equals the serial analyzer's; the other ranks return
 // an empty result.
-AnalyzeResult RunDistributed(const AnalyzeConfig& cfg, ChunkTransport& tx, const Log& log);
+AnalyzeResult RunDistributed(const AnalyzeConfig& cfg, Communicator& tx, const Log& log);
 
 }  // namespace meshreuse

@@ -59,7 +59,7 @@ T Get(const std::string& b, size_t* at) {
 
 }  // namespace
 
-DistRefineResult RunDistributedRefine(const DistRefineConfig& cfg, HaloTransport& tx,
+DistRefineResult RunDistributedRefine(const DistRefineConfig& cfg, Communicator& tx,
                                       const Log& log) {
   CheckDistRefineConfig(cfg);
   const auto t0 = std::chrono::steady_clock::now();

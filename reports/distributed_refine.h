@@ -7,14 +7,14 @@
 // and rank 0 writes the tables and renames the file into place. The file is byte for byte what
 // `meshreuse mesh refine MESH --levels K --layout pieces -o OUT.mrm` writes from one process, for
 // any number of ranks. Each rank checks its fine triangles' areas; the transport moves the bytes
-// (MPI in cli/mpi_main.cc, threads in core/halo_threads.h).
+// (MPI in cli/mpi_main.cc, threads in core/ranks/thread_communicator.h).
 #pragma once
 
 #include <cstdint>
 #include <string>
 #include <vector>
 
-#include "core/halo_smoother.h"
+#include "core/ranks/halo_smoother.h"
 #include "core/refine.h"
 #include "core/table.h"
 #include "reports/log.h"
@@ -50,7 +50,7 @@ void CheckDistRefineConfig(const DistRefineConfig& cfg);
 // Every rank calls it with the same configuration. InputError when the fine mesh would have a
 // triangle that is degenerate or turned against its coarse triangle (rounding on a coarse triangle
 // too thin for the jitter); nothing is written then.
-DistRefineResult RunDistributedRefine(const DistRefineConfig& cfg, HaloTransport& tx,
+DistRefineResult RunDistributedRefine(const DistRefineConfig& cfg, Communicator& tx,
                                       const Log& log);
 Table RefineRankTable(const std::vector<RefineRankStats>& ranks);
 

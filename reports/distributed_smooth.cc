@@ -9,16 +9,16 @@
 #include <stdexcept>
 
 #include "core/error.h"
-#include "core/gmsh_split.h"
 #include "core/mesh_file.h"
 #include "core/mesh_io.h"
 #include "core/orderings/registry.h"
 #include "core/output_file.h"
-#include "core/part_directory.h"
-#include "core/partition.h"
 #include "core/permutation.h"
-#include "core/rank_neighbourhood.h"
-#include "core/rank_part.h"
+#include "core/ranks/gmsh_split.h"
+#include "core/ranks/part_directory.h"
+#include "core/ranks/partition.h"
+#include "core/ranks/rank_neighbourhood.h"
+#include "core/ranks/rank_part.h"
 #include "reports/inputs.h"
 #include "reports/shared_mesh_file.h"
 
@@ -101,8 +101,8 @@ double Since(std::chrono::steady_clock::time_point t0) {
 // ranges, each rank's owned coordinates over it, each rank's share of the coordinate blocks
 // hashed, rank 0 renewing the tables and renaming the temporary into place. False (nothing done)
 // when the output is a device or FIFO: rank 0 then writes what it gathers.
-bool WriteInRanges(const DistSmoothConfig& cfg, const RankPart& p, HaloTransport& tx,
-                   const Log& log, DistSmoothResult* res) {
+bool WriteInRanges(const DistSmoothConfig& cfg, const RankPart& p, Communicator& tx, const Log& log,
+                   DistSmoothResult* res) {
   const int32_t P = tx.size(), r = tx.rank();
   SharedMeshFileOutput out(cfg.output, tx);
   const std::string& tmp = out.temporary();
@@ -184,8 +184,7 @@ PartitionedMesh LoadPartitioned(const std::string& path, const std::string& meth
   return pm;
 }
 
-DistSmoothResult RunDistributedSmooth(const DistSmoothConfig& cfg, HaloTransport& tx,
-                                      const Log& log,
+DistSmoothResult RunDistributedSmooth(const DistSmoothConfig& cfg, Communicator& tx, const Log& log,
                                       const std::function<void(const DistSmoothResult&)>& on_setup,
                                       const std::function<void(const HaloSweep&)>& on_sweep) {
   CheckDistSmoothConfig(cfg);
@@ -263,7 +262,7 @@ DistSmoothResult RunDistributedSmooth(const DistSmoothConfig& cfg, HaloTransport
   st.setup_seconds = Since(t0);
   // A barrier: with ranks as threads (`smooth-ranks`) stdout is shared, and a rank still inside
   // METIS has it redirected (core/stdout_guard.h); rank 0 prints only once every rank is past.
-  tx.SumAll(FixedSum());
+  tx.AllReduceSum(FixedSum());
   if (on_setup) on_setup(res);
   log.Say("smoothing (" + std::string(HaloModeName(cfg.smooth.mode)) + ")");
   res.result = SmoothRankPart(p, cfg.smooth, tx, on_sweep);

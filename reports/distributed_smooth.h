@@ -5,10 +5,11 @@
 // and learns the part graph from one all-gather; with PT-Scotch, reads its range's graph rows,
 // partitions them with the other ranks, learns its part's ids and its ghosts' owners from the
 // directory (part_directory.h) and reads only that part and its ghost ring --, keeps its part
-// (core/rank_part.h) and smooths it with the ghost exchanges of core/halo_smoother.h; rank 0
-// gathers the moved vertices, writes the smoothed mesh (equal to the serial smoother's output: bit
-// for bit at -np 1, and along the gathered order pi at any P), pi itself, and a table per rank. The
-// transport moves the bytes (MPI in cli/mpi_main.cc, threads in core/halo_threads.h).
+// (core/ranks/rank_part.h) and smooths it with the ghost exchanges of core/ranks/halo_smoother.h;
+// rank 0 gathers the moved vertices, writes the smoothed mesh (equal to the serial smoother's
+// output: bit for bit at -np 1, and along the gathered order pi at any P), pi itself, and a table
+// per rank. The transport moves the bytes (MPI in cli/mpi_main.cc, threads in
+// core/ranks/thread_communicator.h).
 #pragma once
 
 #include <cstdint>
@@ -16,9 +17,9 @@
 #include <string>
 #include <vector>
 
-#include "core/halo_smoother.h"
 #include "core/mesh.h"
-#include "core/rank_neighbourhood.h"
+#include "core/ranks/halo_smoother.h"
+#include "core/ranks/rank_neighbourhood.h"
 #include "core/table.h"
 #include "reports/log.h"
 #include "reports/run_info.h"
@@ -36,9 +37,9 @@ struct DistSmoothConfig {
   std::string pi_out;  // the serial visit order the run equals (ordered mode)
   // `--partition ptscotch`: a partition the job's ranks compute together (PT-Scotch over MPI; set
   // by cli/mpi_main.cc, which holds the communicator). Every rank calls it at once with its range
-  // of graph rows (core/rank_neighbourhood.h) and gets those rows' parts; who owns what then
-  // follows from core/part_directory.h. Empty: ptscotch is refused (threads, or a build without
-  // it).
+  // of graph rows (core/ranks/rank_neighbourhood.h) and gets those rows' parts; who owns what then
+  // follows from core/ranks/part_directory.h. Empty: ptscotch is refused (threads, or a build
+  // without it).
   std::function<std::vector<int32_t>(const GraphRows& rows, int32_t parts, uint64_t seed)>
       job_partition;
 };
@@ -64,8 +65,8 @@ struct DistSmoothResult {
 
 void CheckDistSmoothConfig(const DistSmoothConfig& cfg);  // UsageError
 // MESH and its partition as every rank computes them: LoadForRanks and PartsByMethod, or for
-// `gmsh` the Gmsh split set MESH belongs to, merged, with Gmsh's parts (core/gmsh_split.h; the
-// set's part count must be `parts`).
+// `gmsh` the Gmsh split set MESH belongs to, merged, with Gmsh's parts (core/ranks/gmsh_split.h;
+// the set's part count must be `parts`).
 struct PartitionedMesh {
   Mesh mesh;
   std::vector<int32_t> part;
@@ -73,7 +74,7 @@ struct PartitionedMesh {
 PartitionedMesh LoadPartitioned(const std::string& path, const std::string& method, int32_t parts,
                                 uint64_t seed, const Log& log);
 // Whether each rank reads only its part of MESH (a mesh file, FILE.mrm, with --partition ranges
-// or ptscotch: core/rank_neighbourhood.h) rather than the whole mesh.
+// or ptscotch: core/ranks/rank_neighbourhood.h) rather than the whole mesh.
 bool ReadsRanges(const DistSmoothConfig& cfg);
 // MESH as every rank reads it: the serial smoother's default layout (vertex ids unchanged,
 // triangles sorted by their smallest corner); UsageError when `parts` exceeds its vertices.
@@ -81,7 +82,7 @@ Mesh LoadForRanks(const std::string& path, int32_t parts, const Log& log);
 // Every rank calls it with the same configuration. `on_sweep` runs on every rank after each sweep;
 // `on_setup` once the partition is known (rank 0 prints the header from it).
 DistSmoothResult RunDistributedSmooth(
-    const DistSmoothConfig& cfg, HaloTransport& tx, const Log& log,
+    const DistSmoothConfig& cfg, Communicator& tx, const Log& log,
     const std::function<void(const DistSmoothResult&)>& on_setup = {},
     const std::function<void(const HaloSweep&)>& on_sweep = {});
 Table RankStatsTable(const std::vector<SmoothRankStats>& ranks);

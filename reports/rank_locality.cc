@@ -5,9 +5,9 @@
 #include <stdexcept>
 
 #include "core/error.h"
-#include "core/halo_smoother.h"
-#include "core/partition.h"
-#include "core/rank_part.h"
+#include "core/ranks/halo_smoother.h"
+#include "core/ranks/partition.h"
+#include "core/ranks/rank_part.h"
 #include "reports/distributed_smooth.h"
 #include "reports/inputs.h"
 
@@ -29,16 +29,21 @@ namespace {
 // current values (as if their owners had not moved them), and the sum over ranks is its own. The
 // addresses a rank touches do not depend on the values, the geometry stays a mesh's, and the
 // stream config asks for a fixed number of sweeps (the stop rule never reads the sums).
-class SoloTransport : public HaloTransport {
+class SoloTransport : public Communicator {
  public:
   explicit SoloTransport(const RankPart& p) : p_(p) {}
   int32_t rank() const override { return p_.rank; }
   int32_t size() const override { return p_.parts; }
-  void Send(int32_t, const double*, size_t) override {}
-  void Recv(int32_t from, double* data, size_t n) override {
+  void Send(int32_t, std::string&&) override {}
+  std::string Recv(int32_t) override {
+    throw std::logic_error("SoloTransport: a traced rank receives values only");
+  }
+  void SendValues(int32_t, const void*, size_t) override {}
+  void RecvValues(int32_t from, void* bytes, size_t n) override {
+    double* data = static_cast<double*>(bytes);
     for (const RankLink& l : p_.links) {
       if (l.rank != from) continue;
-      if (n != 2 * l.recv.size()) throw std::logic_error("SoloTransport: message size mismatch");
+      if (n != 16 * l.recv.size()) throw std::logic_error("SoloTransport: message size mismatch");
       for (size_t j = 0; j < l.recv.size(); ++j) {
         data[2 * j] = p_.xy[2 * int64_t{l.recv[j]}];
         data[2 * j + 1] = p_.xy[2 * int64_t{l.recv[j]} + 1];
@@ -47,11 +52,7 @@ class SoloTransport : public HaloTransport {
     }
     throw std::logic_error("SoloTransport: no link to rank " + std::to_string(from));
   }
-  void Flush() override {}
-  FixedSum SumAll(const FixedSum& mine) override { return mine; }
-  std::vector<std::string> Gather(const std::string&) override {
-    throw std::logic_error("SoloTransport: a traced rank gathers nothing");
-  }
+  FixedSum AllReduceSum(const FixedSum& mine) override { return mine; }
   std::vector<std::string> AllGather(const std::string&) override {
     throw std::logic_error("SoloTransport: a traced rank gathers nothing");
   }

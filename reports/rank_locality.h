@@ -1,10 +1,10 @@
 // Per-rank locality (issue 23): each rank's part of a distributed smoothing run
-// (reports/distributed_smooth.h) laid out as that rank lays it out (core/rank_part.h: non-cut,
-// cut, boundary, ghosts, each group in the rank's ordering) and swept by the distributed smoother
-// itself, traced (core/halo_smoother.h SmoothRankPart with a sink): the loads and stores a rank
-// makes, its ghost messages' packs and unpacks included, as one stream per rank for the
-// reuse-distance analyzer and the simulator. Ranks are traced one after another in one process (a
-// rank's part, not the whole mesh, is what is held per analysis), each alone: it receives its
+// (reports/distributed_smooth.h) laid out as that rank lays it out (core/ranks/rank_part.h:
+// non-cut, cut, boundary, ghosts, each group in the rank's ordering) and swept by the distributed
+// smoother itself, traced (core/ranks/halo_smoother.h SmoothRankPart with a sink): the loads and
+// stores a rank makes, its ghost messages' packs and unpacks included, as one stream per rank for
+// the reuse-distance analyzer and the simulator. Ranks are traced one after another in one process
+// (a rank's part, not the whole mesh, is what is held per analysis), each alone: it receives its
 // ghosts' current values (values never change an address), and makes exactly the configured
 // number of sweeps. Gauss-Seidel is the ordered mode, Jacobi the Jacobi mode.
 #pragma once
@@ -15,8 +15,8 @@
 #include <vector>
 
 #include "analysis/reuse_analysis.h"
-#include "core/halo_smoother.h"
-#include "core/rank_part.h"
+#include "core/ranks/halo_smoother.h"
+#include "core/ranks/rank_part.h"
 #include "core/smoother.h"
 #include "reports/log.h"
 #include "tracer/access_stream.h"

@@ -8,7 +8,7 @@
 
 namespace meshreuse {
 
-SharedMeshFileOutput::SharedMeshFileOutput(const std::string& path, HaloTransport& tx) : tx_(tx) {
+SharedMeshFileOutput::SharedMeshFileOutput(const std::string& path, Communicator& tx) : tx_(tx) {
   if (tx.rank() == 0) {
     out_ = std::make_unique<AtomicOutput>(path);
     tmp_ = out_->temporary();

@@ -10,8 +10,8 @@
 #include <memory>
 #include <string>
 
-#include "core/halo_smoother.h"
 #include "core/output_file.h"
+#include "core/ranks/halo_smoother.h"
 
 namespace meshreuse {
 
@@ -19,7 +19,7 @@ class SharedMeshFileOutput {
  public:
   // Collective. temporary() is empty when the output is a device or FIFO: those are written in
   // place, which ranks cannot share.
-  SharedMeshFileOutput(const std::string& path, HaloTransport& tx);
+  SharedMeshFileOutput(const std::string& path, Communicator& tx);
   const std::string& temporary() const { return tmp_; }
   // Collective, once every rank's writes are done: blocks [0, blocks) of the file hashed anew, a
   // share per rank (blocks past them keep their hashes); rank 0 finishes and renames the file and
@@ -27,7 +27,7 @@ class SharedMeshFileOutput {
   uint64_t Finish(int64_t blocks);
 
  private:
-  HaloTransport& tx_;
+  Communicator& tx_;
   std::unique_ptr<AtomicOutput> out_;  // rank 0's
   std::string tmp_;
 };

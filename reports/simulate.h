@@ -13,7 +13,7 @@
 #include "analysis/machine.h"
 #include "analysis/multicore_sim.h"
 #include "core/permutation.h"
-#include "core/rank_part.h"
+#include "core/ranks/rank_part.h"
 #include "core/smoother.h"
 #include "core/table.h"
 #include "reports/log.h"

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "core/permutation.h"
-#include "core/rank_part.h"
+#include "core/ranks/rank_part.h"
 #include "core/smoother.h"
 #include "reports/log.h"
 

@@ -124,7 +124,7 @@ StreamInfo RankStreamInfo(const RankPart& part, const HaloOptions& opt) {
   return info;
 }
 
-HaloResult StreamRankPart(RankPart& part, const HaloOptions& opt, HaloTransport& tx,
+HaloResult StreamRankPart(RankPart& part, const HaloOptions& opt, Communicator& tx,
                           const std::string& label, const std::string& ordering,
                           AccessConsumer& to) {
   StreamInfo info = RankStreamInfo(part, opt);

@@ -15,8 +15,8 @@
 #include <string>
 #include <vector>
 
-#include "core/halo_smoother.h"
 #include "core/mesh.h"
+#include "core/ranks/halo_smoother.h"
 #include "core/smoother.h"
 #include "tracer/trace_formats.h"
 
@@ -88,10 +88,10 @@ SmoothResult StreamMesh(Mesh& mesh, const SmoothOptions& sweeps, const std::stri
                         const std::string& ordering, AccessConsumer& to);
 // The info StreamMesh will announce, without running it (for memory checks before the work).
 StreamInfo MeshStreamInfo(const Mesh& mesh, const SmoothOptions& sweeps);
-// One rank's part of a distributed run (core/halo_smoother.h) smoothed by SmoothRankPart with
+// One rank's part of a distributed run (core/ranks/halo_smoother.h) smoothed by SmoothRankPart with
 // `tx` as its transport: the rank's own loads and stores, its ghost messages' packs and unpacks
 // included, as one stream (thread 0) of local ids. Returns the smoother's result.
-HaloResult StreamRankPart(RankPart& part, const HaloOptions& opt, HaloTransport& tx,
+HaloResult StreamRankPart(RankPart& part, const HaloOptions& opt, Communicator& tx,
                           const std::string& label, const std::string& ordering,
                           AccessConsumer& to);
 // What StreamRankPart announces: opt.max_iters sweeps of TracedPerSweep's counts.

@@ -12,7 +12,7 @@
 
 #include "core/orderings/common.h"
 #include "core/orderings/registry.h"
-#include "core/partition.h"
+#include "core/ranks/partition.h"
 
 namespace meshreuse {
 

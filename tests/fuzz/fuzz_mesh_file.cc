@@ -7,9 +7,9 @@
 #include <vector>
 
 #include "core/mesh_file.h"
-#include "core/partition.h"
-#include "core/rank_neighbourhood.h"
-#include "core/rank_part.h"
+#include "core/ranks/partition.h"
+#include "core/ranks/rank_neighbourhood.h"
+#include "core/ranks/rank_part.h"
 #include "tests/fuzz/fuzz_util.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {

@@ -1,6 +1,6 @@
-// The distributed analysis on threads (reports/chunk_threads.h): the transport relays ids in
-// order with each stream's end, bounded; its collectives equal naive ones; a failing rank ends
-// the run with its own error, the blocked ranks released; and a trace analysed in P chunks on P
+// The distributed analysis on threads (reports/chunk_threads.h): the chunk relay's ids arrive in
+// order with each stream's end (the communicator itself: core/ranks/thread_communicator_test.cc);
+// and a trace analysed in P chunks on P
 // threads (P = 1-5, fewer accesses than chunks, a meshreuse trace of 2 threads and 3 sweeps with
 // its profile, with and without a profile, SHARDS at a fixed rate; the histograms added up a tree
 // of ranks and by distance) gives every table byte for byte as the serial analyzer; its exchange
@@ -19,8 +19,9 @@
 #include <string>
 #include <vector>
 
-#include "core/rank_threads.h"
+#include "core/ranks/thread_communicator.h"
 #include "reports/analyze.h"
+#include "reports/chunk_summary.h"
 #include "reports/trace.h"
 #include "tests/test_util.h"
 #include "tracer/input_stream.h"
@@ -28,10 +29,10 @@
 namespace meshreuse {
 namespace {
 
-TEST(ChunkThreads, RelaysIdsInOrderWithEachStreamsEnd) {
+TEST(ChunkRelay, RelaysIdsInOrderWithEachStreamsEnd) {
   for (int p = 1; p <= 4; ++p) {
     std::vector<std::vector<uint64_t>> got(p);
-    ChunkThreads::Run(p, [&](ChunkTransport& tx) {
+    ThreadCommunicator::Run(p, [&](Communicator& tx) {
       const int r = tx.rank();
       ASSERT_EQ(tx.size(), p);
       // Two streams: rank r forwards what it received, then 10 blocks of its own (sizes 1..10),
@@ -39,18 +40,18 @@ TEST(ChunkThreads, RelaysIdsInOrderWithEachStreamsEnd) {
       for (int stream = 0; stream < 2; ++stream) {
         std::vector<uint64_t> in;
         if (r > 0)
-          while (tx.RecvIds(&in) > 0) {
+          while (RecvIds(tx, &in) > 0) {
             got[r].insert(got[r].end(), in.begin(), in.end());
-            if (r + 1 < p) tx.SendIds(in.data(), in.size());
+            if (r + 1 < p) SendIds(tx, in.data(), in.size());
           }
         got[r].push_back(~uint64_t{0});  // marks the end of this stream
         if (r + 1 == p) continue;
         for (uint64_t b = 1; b <= 10; ++b) {
           std::vector<uint64_t> block(b);
           for (uint64_t i = 0; i < b; ++i) block[i] = (stream * 100 + r) * 1000 + b * 10 + i;
-          tx.SendIds(block.data(), block.size());
+          SendIds(tx, block.data(), block.size());
         }
-        tx.SendIds(nullptr, 0);
+        SendIds(tx, nullptr, 0);
       }
     });
     for (int r = 1; r < p; ++r) {  // rank r holds, per stream, ranks 0..r-1's blocks in order
@@ -64,100 +65,6 @@ TEST(ChunkThreads, RelaysIdsInOrderWithEachStreamsEnd) {
       }
       EXPECT_EQ(got[r], want) << "p " << p << " rank " << r;
     }
-  }
-}
-
-TEST(ChunkThreads, BytesAndCollectives) {
-  const int p = 5;
-  std::vector<std::vector<uint64_t>> max(p), scan(p);
-  std::vector<std::string> at0;
-  ChunkThreads::Run(p, [&](ChunkTransport& tx) {
-    const int r = tx.rank();
-    for (int round = 0; round < 3; ++round) {  // collectives in a row reuse the slots
-      const std::vector<uint64_t> v = {uint64_t(r * (round + 1)), uint64_t(7 - r), 1};
-      max[r] = tx.AllReduceMax(v);
-      scan[r] = tx.ExclusiveScanSum(v);
-      uint64_t s0 = 0, s1 = 0;
-      for (int q = 0; q < r; ++q) s0 += uint64_t(q * (round + 1)), s1 += uint64_t(7 - q);
-      EXPECT_EQ(scan[r], (std::vector<uint64_t>{s0, s1, uint64_t(r)})) << "rank " << r;
-      EXPECT_EQ(max[r], (std::vector<uint64_t>{uint64_t((p - 1) * (round + 1)), 7, 1}));
-    }
-    if (r != 0) {
-      tx.SendBytes(0, std::string(static_cast<size_t>(r) * 1000, char('a' + r)));
-      tx.SendBytes(0, "second " + std::to_string(r));
-    } else {
-      for (int q = p - 1; q >= 1; --q) {  // any order of senders
-        at0.push_back(tx.RecvBytes(q));
-        at0.push_back(tx.RecvBytes(q));
-      }
-    }
-  });
-  ASSERT_EQ(at0.size(), 8u);
-  for (int q = p - 1, i = 0; q >= 1; --q, i += 2) {
-    EXPECT_EQ(at0[i], std::string(static_cast<size_t>(q) * 1000, char('a' + q)));
-    EXPECT_EQ(at0[i + 1], "second " + std::to_string(q));
-  }
-}
-
-TEST(ChunkThreads, AllToAllDeliversEachMessageToItsRank) {
-  // Every rank sends a different message to every other (empty ones among them), twice in a row,
-  // then a plain message after: each arrives at its rank from its sender, in order.
-  for (int p = 1; p <= 5; ++p) {
-    std::vector<std::vector<std::string>> got(static_cast<size_t>(p));
-    std::vector<std::string> after(static_cast<size_t>(p));
-    auto message = [](int from, int to, int round) {
-      return (from + to + round) % 3 == 0
-                 ? std::string()
-                 : std::to_string(from) + ">" + std::to_string(to) + "#" + std::to_string(round) +
-                       std::string(static_cast<size_t>(from * 100 + to), 'x');
-    };
-    ChunkThreads::Run(p, [&](ChunkTransport& tx) {
-      const int r = tx.rank();
-      for (int round = 0; round < 2; ++round) {
-        std::vector<std::string> out(static_cast<size_t>(p));
-        for (int j = 0; j < p; ++j)
-          if (j != r) out[static_cast<size_t>(j)] = message(r, j, round);
-        const std::vector<std::string> in = tx.AllToAll(std::move(out));
-        ASSERT_EQ(in.size(), static_cast<size_t>(p));
-        for (int j = 0; j < p; ++j)
-          EXPECT_EQ(in[static_cast<size_t>(j)], j == r ? std::string() : message(j, r, round))
-              << "p " << p << " rank " << r << " from " << j << " round " << round;
-      }
-      if (r != 0) tx.SendBytes(0, "after " + std::to_string(r));
-      if (r == 0)
-        for (int j = 1; j < p; ++j) after[static_cast<size_t>(j)] = tx.RecvBytes(j);
-    });
-    for (int j = 1; j < p; ++j)
-      EXPECT_EQ(after[static_cast<size_t>(j)], "after " + std::to_string(j));
-  }
-}
-
-TEST(ChunkThreads, AFailingRankEndsTheRunWithItsOwnError) {
-  // Rank 2 fails while the others wait on it: in a collective, for ids, for bytes. Run returns
-  // (no hang) and rethrows rank 2's error, not another rank's "another rank failed".
-  for (int where = 0; where < 3; ++where) {
-    std::atomic<int> released{0};
-    try {
-      ChunkThreads::Run(4, [&](ChunkTransport& tx) {
-        if (tx.rank() == 2) throw std::invalid_argument("rank 2 broke");
-        try {
-          if (where == 0) tx.AllReduceMax({1});
-          if (where == 1 && tx.rank() == 3) {
-            std::vector<uint64_t> in;
-            tx.RecvIds(&in);
-          }
-          if (where == 1 && tx.rank() != 3) tx.AllReduceMax({1});
-          if (where == 2) tx.RecvBytes(2);
-        } catch (const RankThreadsFailed&) {
-          ++released;
-          throw;
-        }
-      });
-      FAIL() << "no exception";
-    } catch (const std::invalid_argument& e) {
-      EXPECT_STREQ(e.what(), "rank 2 broke");
-    }
-    EXPECT_EQ(released.load(), 3) << "where " << where;
   }
 }
 
@@ -227,15 +134,19 @@ TEST(AnalyzeChunksOnThreads, EqualsTheSerialAnalyzer) {
 }
 
 // A transport that damages what one rank receives in the histograms' exchange by distance.
-class DamagedSlices : public ChunkTransport {
+class DamagedSlices : public Communicator {
  public:
-  DamagedSlices(ChunkTransport& tx, int how) : tx_(tx), how_(how) {}
-  int rank() const override { return tx_.rank(); }
-  int size() const override { return tx_.size(); }
-  void SendIds(const uint64_t* ids, size_t n) override { tx_.SendIds(ids, n); }
-  size_t RecvIds(std::vector<uint64_t>* ids) override { return tx_.RecvIds(ids); }
-  void SendBytes(int to, const std::string& b) override { tx_.SendBytes(to, b); }
-  std::string RecvBytes(int from) override { return tx_.RecvBytes(from); }
+  DamagedSlices(Communicator& tx, int how) : tx_(tx), how_(how) {}
+  int32_t rank() const override { return tx_.rank(); }
+  int32_t size() const override { return tx_.size(); }
+  void Send(int32_t to, std::string&& b) override { tx_.Send(to, std::move(b)); }
+  std::string Recv(int32_t from) override { return tx_.Recv(from); }
+  std::vector<std::string> AllGather(const std::string& mine) override {
+    return tx_.AllGather(mine);
+  }
+  bool SharesMemory() const override { return tx_.SharesMemory(); }
+  void SendObject(int32_t to, std::shared_ptr<void> o) override { tx_.SendObject(to, o); }
+  std::shared_ptr<void> RecvObject(int32_t from) override { return tx_.RecvObject(from); }
   std::vector<uint64_t> AllReduceMax(const std::vector<uint64_t>& v) override {
     return tx_.AllReduceMax(v);
   }
@@ -261,7 +172,7 @@ class DamagedSlices : public ChunkTransport {
   }
 
  private:
-  ChunkTransport& tx_;
+  Communicator& tx_;
   int how_;
 };
 
@@ -282,7 +193,7 @@ TEST(AnalyzeChunksOnThreads, ADamagedSliceIsRefusedByName) {
   const char* want[] = {"slices do not add up", "outside the slice", "length", "pairs"};
   for (int how = 0; how < 4; ++how) {
     try {
-      ChunkThreads::Run(2, [&](ChunkTransport& tx) {
+      ThreadCommunicator::Run(2, [&](Communicator& tx) {
         DamagedSlices d(tx, how);
         AnalyzeConfig mine = cfg;
         mine.transport = &d;

@@ -14,9 +14,9 @@
 #include <mutex>
 
 #include "core/error.h"
-#include "core/halo_threads.h"
 #include "core/mesh_file.h"
 #include "core/mesh_io.h"
+#include "core/ranks/thread_communicator.h"
 #include "core/synthetic.h"
 #include "tests/test_util.h"
 
@@ -32,7 +32,7 @@ int64_t Euler(const Mesh& m) {
 DistRefineResult RunOnThreads(const DistRefineConfig& cfg, int32_t ranks) {
   DistRefineResult rank0;
   std::mutex mu;
-  HaloThreads::Run(ranks, [&](HaloTransport& tx) {
+  ThreadCommunicator::Run(ranks, [&](Communicator& tx) {
     DistRefineResult r = RunDistributedRefine(cfg, tx, Log{});
     std::lock_guard<std::mutex> lock(mu);
     if (tx.rank() == 0) rank0 = std::move(r);

@@ -1,7 +1,7 @@
 // The distributed smoother (reports/distributed_smooth.h) with its ranks as threads and a job
 // partition that stands in for PT-Scotch (any function of the graph rows the ranks hand it): from
 // a mesh file each rank reads only its part and its ghost ring (its range's rows, then the
-// directory of core/part_directory.h says which ids are its own and who owns its ghosts), and
+// directory of core/ranks/part_directory.h says which ids are its own and who owns its ghosts), and
 // the run equals, bit for bit, the same partition applied to the whole mesh read by every rank:
 // the same visit order pi, the same exact quality every sweep, the same smoothed coordinates,
 // whether the output is gathered or written by every rank into a mesh file. Scattered parts
@@ -14,10 +14,10 @@
 #include <cstring>
 #include <mutex>
 
-#include "core/halo_threads.h"
 #include "core/mesh_file.h"
 #include "core/mesh_io.h"
 #include "core/mix.h"
+#include "core/ranks/thread_communicator.h"
 #include "core/synthetic.h"
 #include "tests/test_util.h"
 
@@ -51,7 +51,7 @@ Outcome RunOnThreads(DistSmoothConfig cfg, int32_t ranks, int kind) {
   Outcome out;
   out.bytes_read.resize(ranks);
   std::mutex mu;
-  HaloThreads::Run(ranks, [&](HaloTransport& tx) {
+  ThreadCommunicator::Run(ranks, [&](Communicator& tx) {
     DistSmoothResult r = RunDistributedSmooth(cfg, tx, Log{});
     std::lock_guard<std::mutex> lock(mu);
     if (tx.rank() == 0) out.rank0 = std::move(r);

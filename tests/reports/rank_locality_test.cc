@@ -12,10 +12,10 @@
 #include <mutex>
 #include <tuple>
 
-#include "core/halo_smoother.h"
-#include "core/halo_threads.h"
-#include "core/partition.h"
-#include "core/rank_part.h"
+#include "core/ranks/halo_smoother.h"
+#include "core/ranks/partition.h"
+#include "core/ranks/rank_part.h"
+#include "core/ranks/thread_communicator.h"
 #include "reports/distributed_smooth.h"
 #include "reports/inputs.h"
 #include "tests/test_util.h"
@@ -105,7 +105,7 @@ std::vector<Ref> ReferenceSweep(const RankPart& p, HaloMode mode) {
 // Runs all ranks of `parts` on threads, each traced into its own RecordingSink.
 std::vector<RecordingSink> TraceAll(std::vector<RankPart>& parts, const HaloOptions& opt) {
   std::vector<RecordingSink> sinks(parts.size());
-  HaloThreads::Run(static_cast<int32_t>(parts.size()), [&](HaloTransport& tx) {
+  ThreadCommunicator::Run(static_cast<int32_t>(parts.size()), [&](Communicator& tx) {
     SmoothRankPart(parts[tx.rank()], opt, tx, sinks[tx.rank()]);
   });
   return sinks;
@@ -183,8 +183,8 @@ TEST(TracedRankSweep, MovesAsTheUntracedRun) {
       const int32_t P = std::min<int32_t>(3, m.NumVertices());
       std::vector<RankPart> traced = PartsOf(m, P, "rdr"), plain = traced;
       TraceAll(traced, Sweeps(3, mode));
-      HaloThreads::Run(
-          P, [&](HaloTransport& tx) { SmoothRankPart(plain[tx.rank()], Sweeps(3, mode), tx); });
+      ThreadCommunicator::Run(
+          P, [&](Communicator& tx) { SmoothRankPart(plain[tx.rank()], Sweeps(3, mode), tx); });
       for (int32_t r = 0; r < P; ++r)
         for (size_t k = 0; k < plain[r].xy.size(); ++k)
           ASSERT_EQ(traced[r].xy[k], plain[r].xy[k]) << "rank " << r << ", coordinate " << k;
@@ -239,7 +239,7 @@ TEST(RankLocality, ARankTracedAloneStreamsAsInTheRealRun) {
     std::vector<RankPart> parts;
     for (int32_t r = 0; r < 3; ++r)
       parts.push_back(BuildRankPart(pm.mesh, pm.part, 3, ps.colour, r, "bfs", 1, place));
-    HaloThreads::Run(3, [&](HaloTransport& tx) {
+    ThreadCommunicator::Run(3, [&](Communicator& tx) {
       StreamRankPart(parts[tx.rank()], RankStreamOptions(cfg.sweeps), tx, "x", "bfs",
                      together[tx.rank()]);
     });

@@ -1,5 +1,5 @@
 // One rank's part: the layout and the lists of rank_part.h, computed from the whole mesh.
-#include "core/rank_part.h"
+#include "core/ranks/rank_part.h"
 
 #include <algorithm>
 #include <map>

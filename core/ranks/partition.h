@@ -28,7 +28,7 @@ std::vector<int32_t> MetisParts(const Mesh& m, int32_t parts, uint64_t seed);
 std::vector<int32_t> RangeParts(const Mesh& m, int32_t parts);
 
 // "hilbert", "metis", "scotch", "ranges" or "gmsh" (UsageError naming --partition otherwise;
-// gmsh's parts come with the mesh, core/gmsh_split.h, and PartsByMethod refuses it).
+// gmsh's parts come with the mesh, core/ranks/gmsh_split.h, and PartsByMethod refuses it).
 void CheckPartitionMethod(const std::string& method);
 std::vector<int32_t> PartsByMethod(const Mesh& m, const std::string& method, int32_t parts,
                                    uint64_t seed);

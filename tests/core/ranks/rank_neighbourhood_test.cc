@@ -1,10 +1,10 @@
-// A rank's read of a mesh file (core/rank_neighbourhood.h): the part it lays out equals, member for
-// member, the part BuildRankPart makes from the whole mesh with the range partition (every corpus
-// mesh, P = 1..4, three orderings, every cut placement); the part graph learnt from the shares is
-// MeasurePartition's (same colouring, same cut edges); a rank reads a fraction of a large file; and
-// inconsistent files (mended so the hashes pass) are refused by the rank that owns the fault, while
-// what no rank sees alone is refused by CheckRankShares on every rank.
-#include "core/rank_neighbourhood.h"
+// A rank's read of a mesh file (core/ranks/rank_neighbourhood.h): the part it lays out equals,
+// member for member, the part BuildRankPart makes from the whole mesh with the range partition
+// (every corpus mesh, P = 1..4, three orderings, every cut placement); the part graph learnt from
+// the shares is MeasurePartition's (same colouring, same cut edges); a rank reads a fraction of a
+// large file; and inconsistent files (mended so the hashes pass) are refused by the rank that owns
+// the fault, while what no rank sees alone is refused by CheckRankShares on every rank.
+#include "core/ranks/rank_neighbourhood.h"
 
 #include <gtest/gtest.h>
 
@@ -13,11 +13,11 @@
 #include <iterator>
 
 #include "core/error.h"
-#include "core/halo_threads.h"
 #include "core/mesh_file.h"
-#include "core/part_directory.h"
-#include "core/partition.h"
-#include "core/rank_part.h"
+#include "core/ranks/part_directory.h"
+#include "core/ranks/partition.h"
+#include "core/ranks/rank_part.h"
+#include "core/ranks/thread_communicator.h"
 #include "core/synthetic.h"
 #include "tests/test_util.h"
 
@@ -179,7 +179,7 @@ TEST(RankNeighbourhood, AnyPartitionsPartsEqualTheWholeMeshs) {
         EXPECT_EQ(cut, ps.cut_edges);
         // On threads: the directory from each rank's range of parts, the ghosts from the owners.
         std::vector<RankNeighbourhood> got(P);
-        HaloThreads::Run(P, [&](HaloTransport& tx) {
+        ThreadCommunicator::Run(P, [&](Communicator& tx) {
           const int64_t a = RangeFirst(tx.rank(), n, P), b = RangeFirst(tx.rank() + 1, n, P);
           const std::vector<int32_t> mine(part.begin() + a, part.begin() + b);
           got[tx.rank()] = ReadPartNeighbourhood(
@@ -236,7 +236,7 @@ TEST(RankNeighbourhood, GhostsFromTheirOwnersEqualTheFilesAndReadingIsTheRanksSh
   const double size = static_cast<double>(ReadBytes(p).size());
   for (int32_t P : {1, 2, 4, 7}) {
     std::vector<RankNeighbourhood> got(P);
-    HaloThreads::Run(P, [&](HaloTransport& tx) {
+    ThreadCommunicator::Run(P, [&](Communicator& tx) {
       got[tx.rank()] = ReadRankNeighbourhood(p, tx.rank(), P, GhostExchange(tx));
     });
     for (int32_t r = 0; r < P; ++r) {

@@ -1,7 +1,7 @@
 // One rank's part of a vertex-partitioned mesh, laid out for the distributed smoother
-// (core/halo_smoother.h; ../shared/scale-out.md 3b). The rank owns the vertices of its part and
-// keeps one ring of ghosts: every vertex of another part next to one of its own, so every triangle
-// with an owned corner is whole. Local ids come in four groups:
+// (core/ranks/halo_smoother.h; ../shared/scale-out.md 3b). The rank owns the vertices of its part
+// and keeps one ring of ghosts: every vertex of another part next to one of its own, so every
+// triangle with an owned corner is whole. Local ids come in four groups:
 //   [0, noncut)                 owned interior vertices whose neighbours are all owned;
 //   [noncut, movable)           owned interior vertices with a neighbour elsewhere (cut);
 //   [movable, owned)            owned boundary vertices (fixed);
@@ -25,7 +25,7 @@
 
 #include "core/aligned.h"
 #include "core/mesh.h"
-#include "core/rank_neighbourhood.h"
+#include "core/ranks/rank_neighbourhood.h"
 
 namespace meshreuse {
 
@@ -52,12 +52,12 @@ struct RankPart {
   // in the ordering's order. `noncut` counts the non-cut vertices in every case.
   int32_t noncut = 0, movable = 0, owned = 0, total = 0;
   CutPlacement placement = CutPlacement::kLast;
-  std::vector<int64_t> gid;     // local -> global id
-  AlignedVector<double> xy;     // local coordinates, 2 per vertex
-  Csr v2v;                      // rows [0, movable), by global id
-  AlignedVector<int32_t> tri;   // owned triangles, local corners (aligned: traced, access.h)
+  std::vector<int64_t> gid;      // local -> global id
+  AlignedVector<double> xy;      // local coordinates, 2 per vertex
+  Csr v2v;                       // rows [0, movable), by global id
+  AlignedVector<int32_t> tri;    // owned triangles, local corners (aligned: traced, access.h)
   AlignedVector<double> weight;  // their global quality weights
-  std::vector<RankLink> links;  // by rank; non-empty send or recv
+  std::vector<RankLink> links;   // by rank; non-empty send or recv
   int32_t cut() const { return movable - noncut; }
   int32_t ghosts() const { return total - owned; }
 };

@@ -1,6 +1,6 @@
 // The untraced instance of halo_smoother.h's sweep (the sweep itself is a template there, so a
 // tracing sink can see it), its message arrays, the traced sweep's counts, and the exact quality.
-#include "core/halo_smoother.h"
+#include "core/ranks/halo_smoother.h"
 
 #include <algorithm>
 #include <chrono>
@@ -104,7 +104,7 @@ Messages::Messages(const RankPart& p) {
 
 }  // namespace halo_detail
 
-HaloResult SmoothRankPart(RankPart& p, const HaloOptions& opt, HaloTransport& tx,
+HaloResult SmoothRankPart(RankPart& p, const HaloOptions& opt, Communicator& tx,
                           const std::function<void(const HaloSweep&)>& on_sweep) {
   NullSink none;
   return SmoothRankPart(p, opt, tx, none, on_sweep);

@@ -1,15 +1,15 @@
 // A rank's range of a distributed mesh file and its ghost ring; see rank_neighbourhood.h.
-#include "core/rank_neighbourhood.h"
+#include "core/ranks/rank_neighbourhood.h"
 
 #include <algorithm>
 #include <cstring>
 #include <stdexcept>
 
 #include "core/error.h"
-#include "core/halo_smoother.h"
 #include "core/mesh_file.h"
 #include "core/quality.h"
 #include "core/radix_sort.h"
+#include "core/ranks/halo_smoother.h"
 
 namespace meshreuse {
 
@@ -401,7 +401,7 @@ GraphRows ReadRangeGraphRows(const std::string& path, int32_t rank, int32_t part
   return g;
 }
 
-GhostLookup GhostExchange(HaloTransport& tx) {
+GhostLookup GhostExchange(Communicator& tx) {
   return [&tx](const GhostRequest& req, const OwnedLookup& mine) {
     const int32_t P = tx.size(), me = tx.rank();
     const std::vector<int64_t>& wanted = req.wanted;
@@ -435,21 +435,21 @@ GhostLookup GhostExchange(HaloTransport& tx) {
     for (size_t i = 0; i < wanted.size(); ++i)
       request[owner[i]].push_back(static_cast<double>(wanted[i]));
     for (int32_t q = 0; q < P; ++q)
-      if (!request[q].empty()) tx.Send(q, request[q].data(), request[q].size());
+      if (!request[q].empty()) tx.SendValues(q, request[q].data(), 8 * request[q].size());
     // Answers to whoever asked me, in rank order.
     for (int32_t p = 0; p < P; ++p) {
       const std::vector<int64_t>& pairs = asks[p];
       for (size_t k = 2; k < pairs.size(); k += 2) {
         if (pairs[k] != me) continue;
         std::vector<double> ids(static_cast<size_t>(pairs[k + 1]));
-        tx.Recv(p, ids.data(), ids.size());
+        tx.RecvValues(p, ids.data(), 8 * ids.size());
         std::vector<double>& a = answer[p];
         for (double id : ids) {
           const GhostRecord g = mine(static_cast<int64_t>(id));
           a.insert(a.end(),
                    {g.x, g.y, static_cast<double>(g.triangles), static_cast<double>(g.boundary)});
         }
-        tx.Send(p, a.data(), a.size());
+        tx.SendValues(p, a.data(), 8 * a.size());
       }
     }
     // My answers, back in the order of `wanted`.
@@ -459,7 +459,7 @@ GhostLookup GhostExchange(HaloTransport& tx) {
     for (int32_t q = 0; q < P; ++q) {
       if (request[q].empty()) continue;
       std::vector<double> a(4 * request[q].size());
-      tx.Recv(q, a.data(), a.size());
+      tx.RecvValues(q, a.data(), 8 * a.size());
       for (size_t k = 0; k < request[q].size(); ++k)
         out[where[q][k]] = {a[4 * k], a[4 * k + 1], static_cast<int64_t>(a[4 * k + 2]),
                             static_cast<uint8_t>(a[4 * k + 3])};

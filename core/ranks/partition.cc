@@ -1,5 +1,5 @@
 // Vertex partitions and their cost; see partition.h.
-#include "core/partition.h"
+#include "core/ranks/partition.h"
 
 #include <algorithm>
 #include <cstdint>
@@ -9,7 +9,7 @@
 #include "core/error.h"
 #include "core/orderings/metis_graph.h"
 #include "core/orderings/registry.h"
-#include "core/rank_neighbourhood.h"
+#include "core/ranks/rank_neighbourhood.h"
 #include "core/stdout_guard.h"
 
 extern "C" {

@@ -1,53 +1,28 @@
-// The partition directory (part_directory.h): an all-to-all of ids over a HaloTransport.
-#include "core/part_directory.h"
+// The partition directory (part_directory.h): an all-to-all of ids over a Communicator.
+#include "core/ranks/part_directory.h"
 
 #include <cstring>
 #include <stdexcept>
 #include <string>
 
-#include "core/rank_neighbourhood.h"
+#include "core/ranks/rank_neighbourhood.h"
 
 namespace meshreuse {
 
-std::vector<std::vector<int64_t>> AllToAll(HaloTransport& tx,
+std::vector<std::vector<int64_t>> AllToAll(Communicator& tx,
                                            const std::vector<std::vector<int64_t>>& out) {
   const int32_t P = tx.size(), me = tx.rank();
   if (static_cast<int32_t>(out.size()) != P) throw std::logic_error("AllToAll: one list per rank");
-  // How much each rank sends each, all-gathered (P counts a rank).
-  std::vector<int64_t> counts(static_cast<size_t>(P));
-  for (int32_t q = 0; q < P; ++q) counts[q] = static_cast<int64_t>(out[q].size());
-  const std::vector<std::string> all =
-      tx.AllGather(std::string(reinterpret_cast<const char*>(counts.data()), 8 * counts.size()));
-  if (static_cast<int32_t>(all.size()) != P) throw std::logic_error("AllToAll: a short gather");
-  std::vector<std::vector<double>> send(static_cast<size_t>(P));
-  for (int32_t q = 0; q < P; ++q) {
-    if (q == me || out[q].empty()) continue;
-    send[q].reserve(out[q].size());
-    for (int64_t v : out[q]) send[q].push_back(static_cast<double>(v));
-    tx.Send(q, send[q].data(), send[q].size());
-  }
+  std::vector<std::string> bytes(static_cast<size_t>(P));
+  for (int32_t q = 0; q < P; ++q)
+    if (q != me) bytes[q] = PackValues(out[q].data(), out[q].size());
   std::vector<std::vector<int64_t>> in(static_cast<size_t>(P));
-  std::vector<double> buf;
-  for (int32_t p = 0; p < P; ++p) {
-    if (all[p].size() != 8 * static_cast<size_t>(P))
-      throw std::logic_error("AllToAll: a malformed gather");
-    int64_t n = 0;
-    std::memcpy(&n, all[p].data() + 8 * me, 8);
-    if (p == me) {
-      in[p] = out[p];
-      continue;
-    }
-    if (n == 0) continue;
-    buf.resize(static_cast<size_t>(n));
-    tx.Recv(p, buf.data(), buf.size());
-    in[p].reserve(buf.size());
-    for (double d : buf) in[p].push_back(static_cast<int64_t>(d));
-  }
-  tx.Flush();
+  std::vector<std::string> got = tx.AllToAll(std::move(bytes));
+  for (int32_t p = 0; p < P; ++p) in[p] = p == me ? out[p] : UnpackValues<int64_t>(got[p]);
   return in;
 }
 
-std::vector<int64_t> GatherOwnedIds(HaloTransport& tx, int64_t vertices,
+std::vector<int64_t> GatherOwnedIds(Communicator& tx, int64_t vertices,
                                     const std::vector<int32_t>& part) {
   const int32_t P = tx.size();
   const int64_t first = RangeFirst(tx.rank(), vertices, P);
@@ -65,7 +40,7 @@ std::vector<int64_t> GatherOwnedIds(HaloTransport& tx, int64_t vertices,
   return mine;
 }
 
-std::vector<int32_t> LookUpParts(HaloTransport& tx, int64_t vertices,
+std::vector<int32_t> LookUpParts(Communicator& tx, int64_t vertices,
                                  const std::vector<int32_t>& part,
                                  const std::vector<int64_t>& ids) {
   const int32_t P = tx.size();
@@ -96,7 +71,7 @@ std::vector<int32_t> LookUpParts(HaloTransport& tx, int64_t vertices,
   return parts;
 }
 
-std::vector<int32_t> AllParts(HaloTransport& tx, int64_t vertices,
+std::vector<int32_t> AllParts(Communicator& tx, int64_t vertices,
                               const std::vector<int32_t>& part) {
   const int32_t P = tx.size();
   const std::vector<std::string> all =

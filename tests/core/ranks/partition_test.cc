@@ -1,10 +1,10 @@
-// Partitions (core/partition.h) and their inheritance through refinement (core/refine.h):
+// Partitions (core/ranks/partition.h) and their inheritance through refinement (core/refine.h):
 // Hilbert ranges balanced to one vertex and contiguous along the curve; METIS parts in range;
 // Scotch valid, balanced, deterministic across threads and better cut than the curve;
 // MeasurePartition against a naive count with std::set (cut edges, cut and ghost vertices) and a
 // valid colouring (adjacent parts differ); inherited parts by their rules, by hand on the unit
 // square; refusals naming the place.
-#include "core/partition.h"
+#include "core/ranks/partition.h"
 
 #include <gtest/gtest.h>
 
@@ -42,8 +42,8 @@ TEST(Partition, HilbertRangesAreBalancedAndFollowTheCurve) {
 
 // Scotch: every vertex in a part, no part empty, balanced to its 3% (plus one vertex), the same
 // parts twice and from concurrent threads (every rank computes them independently), another seed
-// other parts (at some part count), and fewer cut edges than the Hilbert ranges (a graph partitioner that saw the
-// wrong graph would not beat the curve).
+// other parts (at some part count), and fewer cut edges than the Hilbert ranges (a graph
+// partitioner that saw the wrong graph would not beat the curve).
 TEST(Partition, ScotchIsValidBalancedDeterministicAndCutsLessThanTheCurve) {
   const Mesh m = Medium();
   int seed_matters = 0;  // the seed reaches Scotch (at some part counts it changes nothing)

@@ -1,16 +1,16 @@
-// The partition directory (core/part_directory.h) on threads, against what a rank holding the whole
-// partition computes: each rank's ids, any ids' parts, every vertex's part; at P = 1..5, over
+// The partition directory (core/ranks/part_directory.h) on threads, against what a rank holding the
+// whole partition computes: each rank's ids, any ids' parts, every vertex's part; at P = 1..5, over
 // meshes of fewer ids than ranks' worth of work (ranges of one id), with parts left empty; and the
 // all-to-all under them delivers each list, empty lists included, to its rank.
-#include "core/part_directory.h"
+#include "core/ranks/part_directory.h"
 
 #include <gtest/gtest.h>
 
 #include <mutex>
 #include <random>
 
-#include "core/halo_threads.h"
-#include "core/rank_neighbourhood.h"
+#include "core/ranks/rank_neighbourhood.h"
+#include "core/ranks/thread_communicator.h"
 
 namespace meshreuse {
 namespace {
@@ -24,7 +24,7 @@ TEST(PartDirectory, AllToAllDeliversEveryList) {
         l.push_back(int64_t{from} * 1000 + to * 10 + k);
       return l;
     };
-    HaloThreads::Run(P, [&](HaloTransport& tx) {
+    ThreadCommunicator::Run(P, [&](Communicator& tx) {
       std::vector<std::vector<int64_t>> out(P);
       for (int32_t q = 0; q < P; ++q) out[q] = list(tx.rank(), q);
       got[tx.rank()] = AllToAll(tx, out);
@@ -48,7 +48,7 @@ TEST(PartDirectory, OwnedIdsAndPartsAreThoseOfTheWholePartition) {
           for (int64_t v = 0; v < n; ++v)
             if (rng() % 3 == 0) asked[r].push_back(v);
         std::mutex mu;
-        HaloThreads::Run(P, [&](HaloTransport& tx) {
+        ThreadCommunicator::Run(P, [&](Communicator& tx) {
           const int32_t r = tx.rank();
           const std::vector<int32_t> mine(part.begin() + RangeFirst(r, n, P),
                                           part.begin() + RangeFirst(r + 1, n, P));

@@ -1,8 +1,8 @@
 // One rank's share of a distributed mesh file (mesh_file.h), read without the rest of the mesh:
 // the owned vertices -- the range of ids [RangeFirst(r), RangeFirst(r + 1)) (the Hilbert-range
 // partition of partition.h when the file is in Hilbert order, HilbertRangeParts' own formula), or
-// any set of ids (a part PT-Scotch computed: core/part_directory.h says who owns what) --, their
-// v2t rows, every triangle those rows list, and the ghost ring (the other corners of those
+// any set of ids (a part PT-Scotch computed: core/ranks/part_directory.h says who owns what) --,
+// their v2t rows, every triangle those rows list, and the ghost ring (the other corners of those
 // triangles) with coordinates, boundary flags and triangle counts. About (owned + ghosts) * 100
 // bytes of reading, whatever the size of the mesh; a scattered part is read run by run of
 // consecutive ids, each block once.
@@ -77,11 +77,11 @@ struct GhostRequest {
 using GhostLookup =
     std::function<std::vector<GhostRecord>(const GhostRequest& request, const OwnedLookup& mine)>;
 
-class HaloTransport;
+class Communicator;
 // The exchange through a transport (halo_smoother.h; MPI or threads): one all-gather of who asks
 // whom for how many, then per neighbouring rank one request (the global ids) and one answer (x, y,
 // triangles, flag per ghost) -- 40 bytes a ghost. Every rank of the transport must read at once.
-GhostLookup GhostExchange(HaloTransport& tx);
+GhostLookup GhostExchange(Communicator& tx);
 
 // Throws InputError for a damaged or inconsistent file, UsageError when `parts` exceeds the
 // vertices.

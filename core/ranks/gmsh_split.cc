@@ -1,5 +1,5 @@
 // Gmsh's partitioned split files read as one mesh; see gmsh_split.h.
-#include "core/gmsh_split.h"
+#include "core/ranks/gmsh_split.h"
 
 #include <unistd.h>
 

@@ -1,10 +1,10 @@
-// Gmsh split sets (core/gmsh_split.h) against Gmsh itself: tests/data/plate_split_{1,2,3}.msh are
-// Gmsh 4.8.4's `gmsh plate.geo -2 -part 3 -part_split -format msh41 -o plate_split.msh`, and the
-// same run without -part writes tests/data/plate41.msh byte for byte. The merged set is that mesh
-// (same coordinates bit for bit, same triangles, same ids: plate41's node tags increase in file
-// order); each vertex's part is the lowest part holding one of its triangles, checked against each
-// file read on its own; broken sets are refused by name.
-#include "core/gmsh_split.h"
+// Gmsh split sets (core/ranks/gmsh_split.h) against Gmsh itself: tests/data/plate_split_{1,2,3}.msh
+// are Gmsh 4.8.4's `gmsh plate.geo -2 -part 3 -part_split -format msh41 -o plate_split.msh`, and
+// the same run without -part writes tests/data/plate41.msh byte for byte. The merged set is that
+// mesh (same coordinates bit for bit, same triangles, same ids: plate41's node tags increase in
+// file order); each vertex's part is the lowest part holding one of its triangles, checked against
+// each file read on its own; broken sets are refused by name.
+#include "core/ranks/gmsh_split.h"
 
 #include <gtest/gtest.h>
 
@@ -17,7 +17,7 @@
 
 #include "core/error.h"
 #include "core/mesh_io.h"
-#include "core/partition.h"
+#include "core/ranks/partition.h"
 #include "tests/test_util.h"
 
 namespace meshreuse {

@@ -1,6 +1,6 @@
 // Laplacian smoothing of one rank's part (rank_part.h) with the ghost exchanges of
-// ../shared/scale-out.md 3b, behind a transport that only moves bytes (MPI in cli/mpi_main.cc,
-// threads in core/halo_threads.h), so this library stays MPI-free. Three modes:
+// ../shared/scale-out.md 3b, over the one message layer (core/ranks/communicator.h: MPI or
+// threads), so this library stays MPI-free. Three modes:
 //   ordered (default): non-cut vertices in local order; then, once every neighbour of a lower
 //     colour has sent its new cut values, the cut vertices in local order; the new cut values go
 //     to every neighbour; the higher colours' values are received before the sweep ends. Same-
@@ -38,26 +38,11 @@
 
 #include "core/fixed_sum.h"
 #include "core/mesh.h"
-#include "core/rank_part.h"
+#include "core/ranks/communicator.h"
+#include "core/ranks/rank_part.h"
 #include "core/smoother.h"
 
 namespace meshreuse {
-
-// What a rank needs from the others. Messages between two ranks arrive in the order sent.
-class HaloTransport {
- public:
-  virtual ~HaloTransport() = default;
-  virtual int32_t rank() const = 0;
-  virtual int32_t size() const = 0;
-  // May return before delivery: `data` stays untouched until the next Flush().
-  virtual void Send(int32_t to, const double* data, size_t n) = 0;
-  virtual void Recv(int32_t from, double* data, size_t n) = 0;  // blocks until it arrives
-  virtual void Flush() = 0;                                     // every Send delivered
-  virtual FixedSum SumAll(const FixedSum& mine) = 0;            // the sum over all ranks
-  // Rank 0 gets every rank's bytes (by rank); the others an empty vector.
-  virtual std::vector<std::string> Gather(const std::string& mine) = 0;
-  virtual std::vector<std::string> AllGather(const std::string& mine) = 0;  // every rank, all
-};
 
 enum class HaloMode { kOrdered, kJacobi, kHybrid };
 HaloMode ParseHaloMode(const std::string& s);  // ordered | jacobi | hybrid; UsageError
@@ -146,12 +131,12 @@ FixedSum TracedPartQuality(const RankPart& p, Sink& sink) {
 
 // The messages of one rank's sweep. A pack, per vertex sent: its id (4 B), its coordinates (one
 // 16 B load, element kCoordRead), the buffer (one 16 B store); an unpack, per ghost received: its
-// id, the buffer (16 B load), its coordinates (16 B store, element kCoordWrite). The transport's
+// id, the buffer (16 B load), its coordinates (16 B store, element kCoordWrite). The communicator's
 // own copies are not the rank's sweep (MPI's, or another thread's) and are not reported.
 template <class Sink>
 class SweepRunner {
  public:
-  SweepRunner(RankPart& p, HaloTransport& tx, HaloResult* r, Sink& sink)
+  SweepRunner(RankPart& p, Communicator& tx, HaloResult* r, Sink& sink)
       : p_(p), tx_(tx), r_(r), m_(p), sink_(sink) {}
   const Messages& messages() const { return m_; }
 
@@ -168,7 +153,7 @@ class SweepRunner {
       o[2 * j] = xy[2 * v];
       o[2 * j + 1] = xy[2 * v + 1];
     }
-    tx_.Send(p_.links[i].rank, o + 2 * b, 2 * (e - b));
+    tx_.SendValues(p_.links[i].rank, o + 2 * b, 16 * (e - b));
     ++r_->messages;
     r_->values_sent += 2 * (e - b);
   }
@@ -177,7 +162,7 @@ class SweepRunner {
     if (b == e) return;
     double* in = m_.in.data();
     const auto t0 = std::chrono::steady_clock::now();
-    tx_.Recv(p_.links[i].rank, in + 2 * b, 2 * (e - b));
+    tx_.RecvValues(p_.links[i].rank, in + 2 * b, 16 * (e - b));
     wait_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     for (size_t j = b; j < e; ++j) {
       const int64_t v = smoother_detail::Load(sink_, 0, Array::kRecvIndex, m_.recv.data() + j);
@@ -192,7 +177,7 @@ class SweepRunner {
 
  private:
   RankPart& p_;
-  HaloTransport& tx_;
+  Communicator& tx_;
   HaloResult* r_;
   Messages m_;
   Sink& sink_;
@@ -201,7 +186,7 @@ class SweepRunner {
 
 }  // namespace halo_detail
 
-// Smooths the part in place; every rank of the transport calls it with the same options.
+// Smooths the part in place; every rank of the communicator calls it with the same options.
 // `on_sweep` runs after each sweep (after the reduction: the same values on every rank).
 // Tracing is the template parameter, as for the serial smoother: `sink` sees, before each sweep
 // k, BeginSweep(k), then every load and store of the rank's sweep in program order (thread 0):
@@ -210,7 +195,7 @@ class SweepRunner {
 // and the quality pass. TracedPerSweep counts them. The initial quality is not traced (the serial
 // smoother's is not either).
 template <class Sink>
-HaloResult SmoothRankPart(RankPart& p, const HaloOptions& opt, HaloTransport& tx, Sink& sink,
+HaloResult SmoothRankPart(RankPart& p, const HaloOptions& opt, Communicator& tx, Sink& sink,
                           const std::function<void(const HaloSweep&)>& on_sweep = {}) {
   using Clock = std::chrono::steady_clock;
   HaloResult r;
@@ -236,7 +221,7 @@ HaloResult SmoothRankPart(RankPart& p, const HaloOptions& opt, HaloTransport& tx
     put(Array::kRecvBuffer, m.in);
     sink.Bind(l);
   }
-  r.quality_before = tx.SumAll(PartQuality(p));
+  r.quality_before = tx.AllReduceSum(PartQuality(p));
   FixedSum q = r.quality_before;
   const size_t links = p.links.size();
   for (int it = 1; it <= opt.max_iters; ++it) {
@@ -290,7 +275,7 @@ HaloResult SmoothRankPart(RankPart& p, const HaloOptions& opt, HaloTransport& tx
     tx.Flush();
     FixedSum part;
     timed([&] { part = halo_detail::TracedPartQuality(p, sink); });
-    const FixedSum q_new = tx.SumAll(part);
+    const FixedSum q_new = tx.AllReduceSum(part);
     HaloSweep s;
     s.sweep = it;
     s.quality = q_new.ToDouble();
@@ -311,7 +296,7 @@ HaloResult SmoothRankPart(RankPart& p, const HaloOptions& opt, HaloTransport& tx
 }
 
 // The timed, untraced sweep.
-HaloResult SmoothRankPart(RankPart& p, const HaloOptions& opt, HaloTransport& tx,
+HaloResult SmoothRankPart(RankPart& p, const HaloOptions& opt, Communicator& tx,
                           const std::function<void(const HaloSweep&)>& on_sweep = {});
 
 }  // namespace meshreuse

@@ -1,5 +1,5 @@
-// The distributed smoother (core/rank_part.h, core/halo_smoother.h) run with its real schedule on
-// P threads (core/halo_threads.h), against serial references written here:
+// The distributed smoother (core/ranks/rank_part.h, core/ranks/halo_smoother.h) run with its real
+// schedule on P threads (core/ranks/thread_communicator.h), against serial references written here:
 //   ordered == a literal serial Gauss-Seidel along the gathered pi, bit for bit, sweep by sweep
 //              quality (exact fixed-point sums of the serial mesh) and stop sweep included;
 //   jacobi  == the serial smoother's Jacobi, bit for bit, and the same Q and sweep count for every
@@ -8,7 +8,7 @@
 // part, parts without interior vertices, one part. The references are shown to tell apart what
 // they must: ordered differs from the serial storage-order sweep and from hybrid when parts touch.
 // The layout is checked on its own: groups, rows by global id, links that agree end to end.
-#include "core/halo_smoother.h"
+#include "core/ranks/halo_smoother.h"
 
 #include <gtest/gtest.h>
 
@@ -19,10 +19,10 @@
 #include <random>
 #include <set>
 
-#include "core/halo_threads.h"
-#include "core/partition.h"
 #include "core/quality.h"
-#include "core/rank_part.h"
+#include "core/ranks/partition.h"
+#include "core/ranks/rank_part.h"
+#include "core/ranks/thread_communicator.h"
 #include "core/smoother.h"
 #include "core/synthetic.h"
 #include "tests/test_util.h"
@@ -46,7 +46,7 @@ DistRun RunParts(const Mesh& m, const std::vector<int32_t>& part, int32_t P, con
     d.parts.push_back(BuildRankPart(m, part, P, ps.colour, r, ordering, 7, placement));
   d.results.resize(P);
   d.seen.resize(P);
-  HaloThreads::Run(P, [&](HaloTransport& tx) {
+  ThreadCommunicator::Run(P, [&](Communicator& tx) {
     const int32_t r = tx.rank();
     d.results[r] = SmoothRankPart(d.parts[r], opt, tx,
                                   [&d, r](const HaloSweep& s) { d.seen[r].push_back(s); });
@@ -327,12 +327,13 @@ TEST(HaloSmoother, HybridConvergesToTheSameMesh) {
 }
 
 TEST(HaloSmoother, AFailingRankEndsEveryRank) {
-  EXPECT_THROW(HaloThreads::Run(3,
-                                [](HaloTransport& tx) {
-                                  if (tx.rank() == 1) throw std::invalid_argument("rank 1 fails");
-                                  double x;
-                                  tx.Recv(1, &x, 1);  // would wait forever
-                                }),
+  EXPECT_THROW(ThreadCommunicator::Run(3,
+                                       [](Communicator& tx) {
+                                         if (tx.rank() == 1)
+                                           throw std::invalid_argument("rank 1 fails");
+                                         double x;
+                                         tx.RecvValues(1, &x, sizeof x);  // would wait forever
+                                       }),
                std::invalid_argument);
 }
 

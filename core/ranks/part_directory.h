@@ -10,25 +10,24 @@
 #include <cstdint>
 #include <vector>
 
-#include "core/halo_smoother.h"
+#include "core/ranks/halo_smoother.h"
 
 namespace meshreuse {
 
 // Every rank calls each at once. `part` holds the parts of this rank's range of a mesh of
 // `vertices` vertices, ids [RangeFirst(rank), RangeFirst(rank + 1)).
 // The ids whose part is this rank, increasing.
-std::vector<int64_t> GatherOwnedIds(HaloTransport& tx, int64_t vertices,
+std::vector<int64_t> GatherOwnedIds(Communicator& tx, int64_t vertices,
                                     const std::vector<int32_t>& part);
 // The parts of `ids` (increasing; this rank's ghosts), from the ranks whose ranges hold them.
-std::vector<int32_t> LookUpParts(HaloTransport& tx, int64_t vertices,
+std::vector<int32_t> LookUpParts(Communicator& tx, int64_t vertices,
                                  const std::vector<int32_t>& part, const std::vector<int64_t>& ids);
 // Every vertex's part on every rank, by id (a mesh that fits one node, read whole by every rank).
-std::vector<int32_t> AllParts(HaloTransport& tx, int64_t vertices,
-                              const std::vector<int32_t>& part);
+std::vector<int32_t> AllParts(Communicator& tx, int64_t vertices, const std::vector<int32_t>& part);
 
-// The exchange under them: out[q] goes to rank q; returns what each rank sent this one, by rank.
-// Values must be exact in a double (|v| < 2^53: ids and parts are).
-std::vector<std::vector<int64_t>> AllToAll(HaloTransport& tx,
+// The exchange under them (Communicator::AllToAll of the values' bytes): out[q] goes to rank q;
+// returns what each rank sent this one, by rank.
+std::vector<std::vector<int64_t>> AllToAll(Communicator& tx,
                                            const std::vector<std::vector<int64_t>>& out);
 
 }  // namespace meshreuse
