@@ -14,7 +14,7 @@
 // MergeChunk realises both on one StackDistance holding the running stack, chunk after chunk: the
 // reference. The analyzers use the streamed merge of streamed_chain.h, which computes the same
 // without replaying chunks one after another. Since a summary is lists of ids, it can be written
-// to a file or sent between machines unchanged (reports/chunk_summary.h).
+// to a file or sent between machines unchanged (reports/chunks/summary_file.h).
 #pragma once
 
 #include <cstddef>

@@ -107,7 +107,7 @@ struct ReuseOptions {
   // max_batch_per_worker (memory: two batches of 8 bytes an id).
   size_t batch_per_distinct = 8;
   size_t max_batch_per_worker = size_t{1} << 26;
-  // One chunk of a trace, for a summary (reports/chunk_summary.h): first touches kept, not
+  // One chunk of a trace, for a summary (reports/chunks/summarize_chunk.h): first touches kept, not
   // counted (StreamAnalysis::chunk); serial; sampling at a fixed rate only.
   bool chunk = false;
   // A chunk keeps where each first touch stands in its stream: a summary file holds them, a

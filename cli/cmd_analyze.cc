@@ -10,8 +10,8 @@
 #include "core/mesh_io.h"
 #include "core/output_file.h"
 #include "reports/analyze.h"
-#include "reports/chunk_summary.h"
-#include "reports/chunk_threads.h"
+#include "reports/chunks/chunk_threads.h"
+#include "reports/chunks/summarize_chunk.h"
 #include "tracer/trace_formats.h"
 
 namespace meshreuse::cli {
@@ -118,7 +118,7 @@ int AnalyzeCommand(const Args& args, Communicator* transport) {
                     "Table 2. With --sample-rate or --sample-size: a SHARDS estimate instead.",
                     desc, pos, vm))
     return 0;
-  cfg.orderings = SplitList(orderings);
+  cfg.orderings = ParseOrderingSpecs(SplitList(orderings));
   const RankOptions ro = RankOptionsOf(rank_text, vm);
   cfg.ranks = ro.ranks, cfg.partition = ro.partition, cfg.cut_placement = ro.placement;
   cfg.seed = ParseCount(seed, "--seed", 0, UINT64_MAX >> 1);
@@ -165,7 +165,7 @@ int AnalyzeCommand(const Args& args, Communicator* transport) {
       throw UsageError("--chunk writes its summary only: merge the summaries for the tables");
     CheckOutputPath(cfg.summary_out, "--summary-out", InputFiles(cfg.inputs));
     const Progress progress(vm.count("quiet") > 0);
-    RunChunk(cfg, MakeLog(progress));
+    RunChunk(cfg, cfg.chunk->first, cfg.chunk->second, cfg.summary_out, MakeLog(progress));
     return 0;
   }
   if (!rank_stats.empty() && !transport) {

@@ -76,7 +76,7 @@ int SimulateCommand(const Args& args) {
                     desc, pos, vm))
     return 0;
   const OutputFormat fmt = FormatOption(vm);
-  cfg.orderings = SplitList(orderings);
+  cfg.orderings = ParseOrderingSpecs(SplitList(orderings));
   cfg.seed = ParseCount(seed, "--seed", 0, UINT64_MAX >> 1);
   cfg.line_bytes = static_cast<uint32_t>(ParseCount(line_bytes, "--line-bytes", 1, 1 << 20));
   cfg.mode = ParseUpdateMode(mode);

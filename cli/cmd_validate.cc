@@ -55,10 +55,11 @@ int ValidateCommand(const Args& args) {
   cfg.seed = ParseCount(seed, "--seed", 0, UINT64_MAX >> 1);
   cfg.cache = ParseCacheSpec(cache);
   cfg.mode = ParseUpdateMode(mode);
-  cfg.orderings = SplitList(orderings);
+  cfg.orderings = ParseOrderingSpecs(SplitList(orderings));
   cfg.triangle_order = ParseTriangleOrder(triangle_order);
   cfg.counter_events = counters == "none" ? std::vector<std::string>{} : SplitList(counters);
   cfg.exclude_cold = vm.count("exclude-cold") > 0;
+  cfg.inputs = {mesh};
   cfg.mesh_name = std::filesystem::path(mesh).filename().string();
   CheckValidationConfig(cfg);
   if (!out_dir.empty()) PrepareOutDir(out_dir);
@@ -95,7 +96,7 @@ int ValidateCommand(const Args& args) {
     for (const std::string& n : notes) md += "\n" + n + "\n";
     WriteTextFile(out_dir + "/table3.md", md);
     WriteTableFiles(out_dir, "sweeps", sw, {"csv"});
-    WriteRunJson(out_dir, "meshreuse validate", ValidationConfigJson(cfg, mesh),
+    WriteRunJson(out_dir, "meshreuse validate", ValidationConfigJson(cfg),
                  {{"counters", r.empty() ? "" : r[0].counters}});
     progress.Say("wrote " + out_dir +
                  "/{validate.csv,validate.md,validate.json,cost.csv,table3.csv,table3.md,"

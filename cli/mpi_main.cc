@@ -1,16 +1,16 @@
 // meshreuse-mpi: `mpirun -np P meshreuse-mpi analyze INPUT [analyze's options]` -- the exact reuse
-// analysis of one trace file or mesh across P ranks (reports/chunk_summary.h, RunDistributed):
-// rank r reads (or, for a mesh, regenerates) only its own records, the LRU stacks stream rank to
-// rank in blocks of 64 Ki ids, rank 0 prints and writes exactly what `meshreuse analyze INPUT`
-// would. `mpirun -np P meshreuse-mpi smooth MESH [smooth's options]`: the distributed Laplacian
-// smoother (reports/distributed_smooth.h), ghosts exchanged between neighbouring ranks. `mpirun -np
-// P meshreuse-mpi refine MESH --levels K -o OUT.mrm`: the refined mesh file written by every rank
-// (reports/distributed_refine.h). This file and its communicator (cli/mpi_communicator.h) only move
-// bytes; the libraries stay MPI-free. A rank that fails prints "meshreuse-mpi: rank R:
-// error: ..." and aborts the whole job with the error's exit status (2 bad input, 3 environment, 1
-// a bug), never a hang. For tests, MESHREUSE_MPI_KILL_RANK=R makes rank R kill itself (SIGKILL)
-// after analysing its chunk, or in smooth's first sweep: the job must end, non-zero, naming the
-// rank.
+// analysis of one trace file or mesh across P ranks (reports/chunks/distributed_analysis.h,
+// RunDistributed): rank r reads (or, for a mesh, regenerates) only its own records, the LRU stacks
+// stream rank to rank in blocks of 64 Ki ids, rank 0 prints and writes exactly what `meshreuse
+// analyze INPUT` would. `mpirun -np P meshreuse-mpi smooth MESH [smooth's options]`: the
+// distributed Laplacian smoother (reports/distributed_smooth.h), ghosts exchanged between
+// neighbouring ranks. `mpirun -np P meshreuse-mpi refine MESH --levels K -o OUT.mrm`: the refined
+// mesh file written by every rank (reports/distributed_refine.h). This file and its communicator
+// (cli/mpi_communicator.h) only move bytes; the libraries stay MPI-free. A rank that fails prints
+// "meshreuse-mpi: rank R: error: ..." and aborts the whole job with the error's exit status (2 bad
+// input, 3 environment, 1 a bug), never a hang. For tests, MESHREUSE_MPI_KILL_RANK=R makes rank R
+// kill itself (SIGKILL) after analysing its chunk, or in smooth's first sweep: the job must end,
+// non-zero, naming the rank.
 #include <mpi.h>
 
 #include <cstdio>

@@ -15,11 +15,12 @@
 #include "core/mesh_io.h"
 #include "core/orderings/registry.h"
 #include "core/schedule.h"
-#include "reports/chunk_summary.h"
-#include "reports/chunk_threads.h"
+#include "reports/chunks/chunk_threads.h"
+#include "reports/chunks/distributed_analysis.h"
+#include "reports/chunks/merge_summaries.h"
 #include "reports/inputs.h"
-#include "reports/rank_locality.h"
 #include "reports/run_info.h"
+#include "reports/stream_source.h"
 #include "tracer/access_stream.h"
 #include "tracer/trace_formats.h"
 
@@ -38,17 +39,6 @@ std::string Cap(uint64_t c) { return c == kInfiniteCapacity ? "inf" : std::to_st
 
 std::string QuantileName(double q) {
   return "q" + Fixed(100 * q, q * 100 == std::floor(q * 100) ? 0 : 1);
-}
-
-ReuseOptions Options(const AnalyzeConfig& cfg, Granularity g) {
-  ReuseOptions o;
-  o.granularity = g;
-  o.line_bytes = cfg.line_bytes;
-  o.exact = !cfg.sample || cfg.sample_error;
-  o.sample = cfg.sample;
-  o.shards = cfg.shards;
-  o.profile = cfg.profile;
-  return o;
 }
 
 // Per vertex, the reuse distances of its element touches (for --vtk).
@@ -86,29 +76,6 @@ class VertexReuse : public AccessConsumer {
 
 }  // namespace
 
-// Progress of a file as "analysing: 42% ..." at most every 2 s.
-ProgressFn FileProgress(const Log& log) {
-  auto last = std::make_shared<double>(-1);
-  auto t0 =
-      std::make_shared<std::chrono::steady_clock::time_point>(std::chrono::steady_clock::now());
-  return [&log, last, t0](double done) {
-    const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - *t0).count();
-    if (s - *last < 2.0) return;
-    *last = s;
-    char b[120];
-    if (done > 0)
-      std::snprintf(b, sizeof b, "analysing: %.0f%% (%.1f s, about %.1f s left)", 100 * done, s,
-                    s * (1 - done) / done);
-    else
-      std::snprintf(b, sizeof b, "analysing: %.1f s so far", s);
-    log.Say(b);
-  };
-}
-
-SmoothOptions AnalyzeSweeps(const AnalyzeConfig& cfg) {
-  return ExactSweeps(cfg.iterations, cfg.threads, cfg.mode);
-}
-
 std::vector<double> ParseQuantiles(const std::string& list) {
   std::vector<double> qs;
   size_t i = 0;
@@ -133,7 +100,6 @@ std::vector<double> ParseQuantiles(const std::string& list) {
 }
 
 void CheckAnalyzeConfig(const AnalyzeConfig& cfg) {
-  if (cfg.inputs.empty()) throw UsageError("no input given");
   if (cfg.chunk && cfg.merge) throw UsageError("--chunk and --merge exclude each other");
   if (cfg.transport && (cfg.chunk || cfg.merge))
     throw UsageError("a distributed run cuts the trace by rank: no --chunk or --merge");
@@ -145,26 +111,15 @@ void CheckAnalyzeConfig(const AnalyzeConfig& cfg) {
     throw UsageError(
         "--merge: the analysis was chosen by the chunk runs (no --sample-*, --vtk "
         "or --granularity here)");
-  if (!cfg.format.empty()) ParseTraceFormat(cfg.format);
   if (cfg.ranks > 0 && (cfg.chunk || cfg.merge || cfg.transport || !cfg.format.empty() ||
                         !cfg.vtk.empty() || cfg.threads != 1))
     throw UsageError(
         "--ranks analyses each rank's part of a mesh (one stream per rank): no --chunk, "
         "--merge, --format, --vtk or --threads with it");
-  CheckRankParts(cfg.ranks, cfg.partition, cfg.inputs);
-  if (cfg.orderings.empty()) throw UsageError("no ordering given");
-  for (const std::string& o : cfg.orderings) CheckOrderingSpec(o);
-  if (cfg.iterations < 1 || cfg.iterations > kMaxStreamSweeps)
-    throw UsageError("--iterations must be 1..65536");
-  if (cfg.threads < 1 || cfg.threads > kMaxThreads)
-    throw UsageError("--threads must be 1.." + std::to_string(kMaxThreads));
-  CheckStreamSweeps(cfg.iterations, cfg.threads);
+  cfg.Check();
   if (cfg.line_bytes == 0 || (cfg.line_bytes & (cfg.line_bytes - 1)))
     throw UsageError("--line-bytes must be a power of two");
   if (cfg.element_bytes == 0) throw UsageError("--element-bytes must be positive");
-  if (cfg.instructions &&
-      (cfg.format.empty() || ParseTraceFormat(cfg.format).syntax != TraceSyntax::kLackey))
-    throw UsageError("--instructions applies to --format lackey");
   for (const CacheLevel& l : cfg.cache.levels)
     if (l.name == "I1")
       throw UsageError(
@@ -172,14 +127,75 @@ void CheckAnalyzeConfig(const AnalyzeConfig& cfg) {
           "unified (with --instructions the I lines are accesses like any other)");
 }
 
+namespace {
+
+// The analyzer on every stream of the source: a ReuseAnalysis per stream (per rank's part), a
+// trace file that can be cut analysed as chunks on threads, and --vtk's per-vertex distances.
+class AnalyzeStreams : public StreamConsumer {
+ public:
+  AnalyzeStreams(const AnalyzeConfig& cfg, AnalyzeResult* r)
+      : cfg_(cfg), r_(*r), opt_(cfg.Options(r->granularity)) {}
+  std::string Verb() const override { return "analysing"; }
+  AccessConsumer& Start(const StreamJob& job) override {
+    ReuseOptions o = opt_;
+    if (job.kind != InputKind::kMesh) o.workers = cfg_.threads;  // a trace read in batches
+    r_.runs.push_back(std::make_unique<ReuseAnalysis>(o));
+    ReuseAnalysis& a = *r_.runs.back();
+    if (!job.mesh || cfg_.vtk.empty()) return a;
+    // The layout before the sweeps move it, and where each vertex came from.
+    laid_ = std::make_unique<Mesh>(job.mesh->Clone());
+    reuse_ = std::make_unique<VertexReuse>(laid_->NumVertices());
+    both_ = std::make_unique<FanOut>(std::vector<AccessConsumer*>{&a, reuse_.get()});
+    return *both_;
+  }
+  void Finish(const StreamJob& job) override {
+    if (!reuse_) return;
+    const Permutation p = ComputeOrdering(*job.ordering, LoadMesh(job.input, Log()), cfg_.seed);
+    VtkField rank{"rank", std::vector<double>(laid_->NumVertices())},
+        orig{"original_id", rank.values};
+    for (int32_t v = 0; v < laid_->NumVertices(); ++v)
+      rank.values[v] = v, orig.values[v] = p.OldOf(v);
+    std::vector<VtkField> fields = {rank, orig};
+    for (VtkField& f : reuse_->Fields()) fields.push_back(std::move(f));
+    WriteVtk(*laid_, cfg_.vtk, fields);
+    vtk_written_ = true;
+    reuse_.reset(), both_.reset(), laid_.reset();
+  }
+  bool TakeTrace(const std::string& in, const Log& log) override {
+    if (cfg_.threads <= 1 || !CanAnalyzeInChunks(cfg_, in)) return false;
+    ReuseJob one = cfg_;
+    one.inputs = {in};
+    log.Say("analysing " + in + " in " + std::to_string(cfg_.threads) + " chunks on " +
+            std::to_string(cfg_.threads) + " threads, each reading its own");
+    AnalyzeResult part = AnalyzeChunksOnThreads(one, cfg_.threads, log);
+    r_.runs.push_back(std::move(part.runs.at(0)));
+    r_.ranks.insert(r_.ranks.end(), part.ranks.begin(), part.ranks.end());
+    return true;
+  }
+  std::string Where() const override {
+    return cfg_.threads > 1 ? " (" + std::to_string(cfg_.threads) + " threads)" : "";
+  }
+  bool vtk_written() const { return vtk_written_; }
+
+ private:
+  const AnalyzeConfig& cfg_;
+  AnalyzeResult& r_;
+  const ReuseOptions opt_;
+  std::unique_ptr<Mesh> laid_;
+  std::unique_ptr<VertexReuse> reuse_;
+  std::unique_ptr<FanOut> both_;
+  bool vtk_written_ = false;
+};
+
+}  // namespace
+
 AnalyzeResult RunAnalyze(const AnalyzeConfig& cfg, const Log& log) {
   CheckAnalyzeConfig(cfg);
-  if (cfg.merge) return MergeSummaries(cfg, log);
+  if (cfg.merge) return MergeSummaries(cfg.inputs, cfg.profile, log);
   if (cfg.transport) return RunDistributed(cfg, *cfg.transport, log);
   if (cfg.chunk) throw std::logic_error("RunAnalyze: a chunk run is RunChunk");
   AnalyzeResult r;
-  const TraceFormat* fmt = cfg.format.empty() ? nullptr : &ParseTraceFormat(cfg.format);
-  if (cfg.granularity) {
+  if (const TraceFormat* fmt = cfg.Format(); cfg.granularity) {
     r.granularity = *cfg.granularity;
   } else if (fmt) {
     // An element model of 66-byte nodes over raw addresses means nothing: lines by default.
@@ -191,77 +207,9 @@ AnalyzeResult RunAnalyze(const AnalyzeConfig& cfg, const Log& log) {
                         : "values are ids; --granularity line treats them as addresses") +
         ")";
   }
-  const ReuseOptions opt = Options(cfg, r.granularity);
-  for (const std::string& in : cfg.inputs) {
-    const InputKind kind = fmt ? InputKind::kText : ClassifyInput(in);
-    if (kind == InputKind::kMesh && cfg.ranks > 0) {
-      for (const std::string& ord : cfg.orderings) {
-        RankLocalityConfig rc;
-        rc.mesh = in, rc.ranks = cfg.ranks, rc.partition = cfg.partition, rc.ordering = ord;
-        rc.placement = cfg.cut_placement;
-        rc.seed = cfg.seed, rc.sweeps = AnalyzeSweeps(cfg);
-        for (auto& a : AnalyzeRankParts(rc, opt, log)) r.runs.push_back(std::move(a));
-      }
-      continue;
-    }
-    if (kind == InputKind::kMesh) {
-      for (const std::string& ord : cfg.orderings) {
-        Mesh m = LayOut(in, ord, cfg.seed, cfg.triangle_order, log);
-        auto a = std::make_unique<ReuseAnalysis>(opt);
-        log.Say("analysing " + std::to_string(cfg.iterations) + " sweep(s) of " + in + " in " +
-                ord + " order");
-        const auto t0 = std::chrono::steady_clock::now();
-        if (!cfg.vtk.empty()) {  // the layout before the sweeps move it, and where each came from
-          const Mesh laid = m.Clone();
-          const Permutation p = ComputeOrdering(ord, LoadMesh(in, Log()), cfg.seed);
-          VertexReuse vr(m.NumVertices());
-          FanOut both({a.get(), &vr});
-          StreamMesh(m, AnalyzeSweeps(cfg), in, ParseOrderingSpec(ord).label, both);
-          VtkField rank{"rank", std::vector<double>(laid.NumVertices())},
-              orig{"original_id", rank.values};
-          for (int32_t v = 0; v < laid.NumVertices(); ++v)
-            rank.values[v] = v, orig.values[v] = p.OldOf(v);
-          std::vector<VtkField> fields = {rank, orig};
-          for (VtkField& f : vr.Fields()) fields.push_back(std::move(f));
-          WriteVtk(laid, cfg.vtk, fields);
-          log.Say("wrote " + cfg.vtk);
-        } else {
-          StreamMesh(m, AnalyzeSweeps(cfg), in, ParseOrderingSpec(ord).label, *a);
-        }
-        log.Say(
-            "done in " +
-            Fixed(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), 2) +
-            " s");
-        r.runs.push_back(std::move(a));
-      }
-      continue;
-    }
-    if (cfg.threads > 1 && CanAnalyzeInChunks(cfg, in)) {
-      AnalyzeConfig one = cfg;
-      one.inputs = {in};
-      log.Say("analysing " + in + " in " + std::to_string(cfg.threads) + " chunks on " +
-              std::to_string(cfg.threads) + " threads, each reading its own");
-      AnalyzeResult part = AnalyzeChunksOnThreads(one, cfg.threads, log);
-      r.runs.push_back(std::move(part.runs.at(0)));
-      r.ranks.insert(r.ranks.end(), part.ranks.begin(), part.ranks.end());
-      continue;
-    }
-    ReuseOptions o = opt;
-    o.workers = cfg.threads;
-    auto a = std::make_unique<ReuseAnalysis>(o);
-    if (kind == InputKind::kTrace) {
-      log.Say("analysing trace " + in +
-              (cfg.threads > 1 ? " (" + std::to_string(cfg.threads) + " threads)" : ""));
-      StreamTraceFile(in, *a, FileProgress(log));
-    } else {
-      const TraceFormat& f = fmt ? *fmt : ParseTraceFormat("text");
-      const uint64_t len = ForeignTraceLength(in, f);
-      log.Say("analysing " + in + " as " + f.name +
-              (len ? " (" + Grouped(static_cast<long long>(len)) + " accesses)" : ""));
-      StreamForeignTrace(in, f, cfg.instructions, *a, FileProgress(log));
-    }
-    r.runs.push_back(std::move(a));
-  }
+  AnalyzeStreams streams(cfg, &r);
+  ForEachStream(cfg, streams, log);
+  if (streams.vtk_written()) log.Say("wrote " + cfg.vtk);
   return r;
 }
 
@@ -396,41 +344,8 @@ std::vector<std::string> AnalyzeNotes(const AnalyzeResult& r, const AnalyzeConfi
   return n;
 }
 
-Json RankStatsJson(const std::vector<RankStats>& ranks) {
-  Json a = Json::array();
-  for (const RankStats& r : ranks)
-    a.push_back({{"rank", r.rank},
-                 {"analyse_cpu_s", r.analyse_cpu},
-                 {"stream_cpu_s", r.stream_cpu},
-                 {"resolve_cpu_s", r.resolve_cpu},
-                 {"reduce_cpu_s", r.reduce_cpu},
-                 {"wall_s", r.wall},
-                 {"records", r.records},
-                 {"accesses", r.accesses},
-                 {"distinct", r.distinct},
-                 {"stack_ids_in", r.stack_ids_in},
-                 {"stack_ids_sent", r.stack_ids_sent},
-                 {"bytes_sent", r.bytes_sent},
-                 {"peak_rss_bytes", r.peak_rss_bytes},
-                 {"histogram_bytes", r.histogram_bytes},
-                 {"dense_histogram_bytes", r.dense_histogram_bytes},
-                 {"pairs", r.pairs},
-                 {"pairs_added", r.pairs_added},
-                 {"merge_cpu_s", r.merge_cpu}});
-  return a;
-}
-
 Json AnalyzeConfigJson(const AnalyzeConfig& cfg, const AnalyzeResult& r) {
-  Json j;
-  j["inputs"] = cfg.inputs;
-  j["format"] = cfg.format;
-  j["orderings"] = cfg.orderings;
-  j["seed"] = cfg.seed;
-  j["ordering_seeds"] = OrderingSeedsJson(cfg.orderings, cfg.seed);
-  j["iterations"] = cfg.iterations;
-  j["threads"] = cfg.threads;
-  j["mode"] = UpdateModeName(cfg.mode);
-  j["triangle_order"] = TriangleOrderName(cfg.triangle_order);
+  Json j = cfg.ToJson();
   j["granularity"] = cfg.granularity ? GranularityName(*cfg.granularity) : "";
   j["granularity_used"] = GranularityName(r.granularity);
   j["quantiles"] = cfg.quantiles;

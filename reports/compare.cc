@@ -444,7 +444,7 @@ Json CompareConfigJson(const CompareConfig& cfg) {
   Json j;
   j["meshes"] = cfg.meshes;
   j["orderings"] = cfg.orderings;
-  j["ordering_seeds"] = OrderingSeedsJson(cfg.orderings, cfg.seed);
+  j["ordering_seeds"] = OrderingSeedsJson(ParseOrderingSpecs(cfg.orderings), cfg.seed);
   j["threads"] = cfg.threads;
   j["repeat"] = cfg.repeat_auto ? Json("auto") : Json(cfg.repeat);
   j["repeat_cap"] = cfg.repeat_cap;

@@ -20,11 +20,11 @@ Mesh LoadMesh(const std::string& path, const Log& log) {
   return m;
 }
 
-Mesh LayOut(const std::string& path, const std::string& ordering, uint64_t seed,
+Mesh LayOut(const std::string& path, const OrderingSpec& ordering, uint64_t seed,
             TriangleOrder triangles, const Log& log) {
   Mesh m = LoadMesh(path, log);
-  if (ParseOrderingSpec(ordering).name == "ori" && triangles == TriangleOrder::kFile) return m;
-  log.Say("laying out in " + ordering + " order, triangles " + TriangleOrderName(triangles));
+  if (ordering.name == "ori" && triangles == TriangleOrder::kFile) return m;
+  log.Say("laying out in " + ordering.text + " order, triangles " + TriangleOrderName(triangles));
   ApplyPermutationInPlace(&m, ComputeOrdering(ordering, m, seed), triangles);
   return m;
 }

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "core/mesh.h"
+#include "core/orderings/registry.h"
 #include "core/permutation.h"
 #include "reports/log.h"
 
@@ -16,7 +17,7 @@ namespace meshreuse {
 Mesh LoadMesh(const std::string& path, const Log& log);
 // The mesh at `path` laid out in `ordering` (ori included) with the triangle policy; ori with
 // TriangleOrder::kFile is the file as it is.
-Mesh LayOut(const std::string& path, const std::string& ordering, uint64_t seed,
+Mesh LayOut(const std::string& path, const OrderingSpec& ordering, uint64_t seed,
             TriangleOrder triangles, const Log& log);
 // "out/meshes/paper/carabiner.node" -> "carabiner": how tables name a mesh.
 std::string MeshShortName(const std::string& path);

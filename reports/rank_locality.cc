@@ -84,12 +84,12 @@ void StreamRankParts(const RankLocalityConfig& cfg, const Log& log,
     log.Say("rank " + std::to_string(r) + " of " + std::to_string(cfg.ranks) + ": " +
             std::to_string(p.owned) + " owned, " + std::to_string(p.ghosts()) + " ghosts, " +
             std::to_string(opt.max_iters) + " " + HaloModeName(opt.mode) + " sweep(s) in " +
-            cfg.ordering + " order");
+            cfg.ordering.text + " order");
     SoloTransport tx(p);
     StreamRankPart(
         p, opt, tx,
         cfg.mesh + " [rank " + std::to_string(r) + " of " + std::to_string(cfg.ranks) + "]",
-        cfg.ordering, to(r));
+        cfg.ordering.text, to(r));
   }
 }
 

@@ -27,7 +27,7 @@ struct RankLocalityConfig {
   std::string mesh;
   int32_t ranks = 2;
   std::string partition = "hilbert";  // hilbert or metis
-  std::string ordering = "ori";       // inside each part
+  OrderingSpec ordering = "ori";      // inside each part
   CutPlacement placement = CutPlacement::kLast;
   uint64_t seed = 1;
   SmoothOptions sweeps;  // max_iters sweeps, its mode (RankStreamOptions)

@@ -254,6 +254,7 @@ void MeasureMesh(const ReportConfig& cfg, ReportMesh& mr, ReportData* d, Steps& 
     MeasureReuse(cfg, mr, base, spec, ParseOrderingSpec(spec).label, in_tables, d, steps);
   }
   ValidationConfig vc;
+  vc.inputs = {mr.path};
   vc.mesh_name = mr.name;
   vc.seed = cfg.seed;
   vc.iterations = cfg.validate_sweeps;
@@ -289,14 +290,8 @@ void Absorb(const Noise& n, Noise* into) {
 // labelled as configured; then Figure 1's other orderings on its mesh, one thread.
 void MeasureTiming(const ReportConfig& cfg, ReportData* d, Steps& steps) {
   CompareConfig cc;
-  cc.threads = cfg.threads;
-  cc.repeat = cfg.repeat;
-  cc.repeat_auto = cfg.repeat_auto;
-  cc.repeat_cap = cfg.repeat_cap;
+  static_cast<TimingOptions&>(cc) = cfg;
   cc.seed = cfg.seed;
-  cc.clock = cfg.clock;
-  cc.smooth = cfg.smooth;
-  cc.triangle_order = cfg.triangle_order;
   double p_sum = 0;
   for (int p : cfg.threads) p_sum += 1.0 / p;
   for (size_t mi = 0; mi < d->meshes.size(); ++mi) {
@@ -386,7 +381,7 @@ Json ConfigurationJson(const ReportConfig& cfg) {
   j["label"] = cfg.label;
   j["meshes"] = cfg.meshes;
   j["orderings"] = cfg.orderings;
-  j["ordering_seeds"] = OrderingSeedsJson(cfg.orderings, cfg.seed);
+  j["ordering_seeds"] = OrderingSeedsJson(ParseOrderingSpecs(cfg.orderings), cfg.seed);
   j["threads"] = cfg.threads;
   j["repeat"] = cfg.repeat_auto ? Json("auto") : Json(cfg.repeat);
   j["repeat_cap"] = cfg.repeat_cap;

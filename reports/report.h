@@ -30,17 +30,13 @@
 
 namespace meshreuse {
 
-struct ReportConfig {
+struct ReportConfig : TimingOptions {
+  // TimingOptions: the timed runs' threads, rounds (3 by default here), clock, the smoother's
+  // options and the triangle order.
+  ReportConfig() { repeat = 3; }
   std::vector<std::string> meshes;  // mesh files (.node, .msh)
   std::vector<std::string> orderings = {"ori", "bfs", "rdr"};
-  std::vector<int> threads = {1};
-  int repeat = 3;            // timed rounds, at least 3
-  bool repeat_auto = false;  // rounds until every speedup is within +-2%, at most repeat_cap
-  int repeat_cap = 15;
   uint64_t seed = 1;
-  TimeClock clock = TimeClock::kWall;  // of the speedups and gains
-  SmoothOptions smooth;                // tol, max_iters (threads come from `threads`)
-  TriangleOrder triangle_order = TriangleOrder::kSorted;
   CacheSpec cache = ParseCacheSpec("westmere-ex");  // with ways
   uint32_t element_bytes = 66, line_bytes = 64;
   int validate_sweeps = 2;  // traced sweeps for Table 3 and the miss rates

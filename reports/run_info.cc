@@ -108,10 +108,16 @@ Json RunJson(const std::string& tool, const std::vector<std::string>& command_li
 
 std::string RunJsonText(const Json& run) { return run.dump(2) + "\n"; }
 
-Json OrderingSeedsJson(const std::vector<std::string>& specs, uint64_t seed) {
+Json OrderingSeedsJson(const std::vector<OrderingSpec>& specs, uint64_t seed) {
   Json seeds = Json::object();
   for (const auto& [label, s] : SeededOrderings(specs, seed)) seeds[label] = s;
   return seeds;
+}
+
+std::vector<std::string> OrderingTexts(const std::vector<OrderingSpec>& specs) {
+  std::vector<std::string> t;
+  for (const OrderingSpec& s : specs) t.push_back(s.text);
+  return t;
 }
 
 }  // namespace meshreuse

@@ -10,6 +10,8 @@
 #include <string>
 #include <vector>
 
+#include "core/orderings/registry.h"
+
 namespace meshreuse {
 
 using Json = nlohmann::ordered_json;
@@ -24,7 +26,9 @@ std::string VersionString();
 // {"version", "git_revision", "git_dirty", "compiler", "compiler_version", "build_type", "flags"}
 Json BuildJson();
 // {label: seed} of the seeded orderings among `specs` (run.json's "ordering_seeds").
-Json OrderingSeedsJson(const std::vector<std::string>& specs, uint64_t seed);
+Json OrderingSeedsJson(const std::vector<OrderingSpec>& specs, uint64_t seed);
+// The specs as given (run.json's "orderings").
+std::vector<std::string> OrderingTexts(const std::vector<OrderingSpec>& specs);
 // This process's peak resident memory (getrusage), bytes.
 uint64_t PeakRssBytes();
 std::string UtcTimestamp();  // 2026-11-22T10:00:00Z

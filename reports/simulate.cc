@@ -7,28 +7,20 @@
 #include "core/orderings/registry.h"
 #include "core/schedule.h"
 #include "reports/inputs.h"
-#include "reports/rank_locality.h"
 #include "reports/run_info.h"
+#include "reports/stream_source.h"
 #include "tracer/access_stream.h"
 
 namespace meshreuse {
 
 void CheckSimulateConfig(const SimulateConfig& cfg) {
-  if (cfg.inputs.empty()) throw UsageError("no input given");
-  if (!cfg.format.empty()) ParseTraceFormat(cfg.format);
-  for (const std::string& o : cfg.orderings) CheckOrderingSpec(o);
-  if (cfg.iterations < 1 || cfg.iterations > kMaxStreamSweeps)
-    throw UsageError("--iterations must be 1..65536");
-  if (cfg.threads < 1 || cfg.threads > kMaxThreads)
-    throw UsageError("--threads must be 1.." + std::to_string(kMaxThreads));
-  CheckStreamSweeps(cfg.iterations, cfg.threads);
   if (cfg.by_array && !cfg.machine.empty())
     throw UsageError("--by-array counts the private caches' misses: not with --machine");
   if (cfg.ranks > 0 && (!cfg.machine.empty() || !cfg.format.empty() || cfg.threads != 1))
     throw UsageError(
         "--ranks simulates each rank's part of a mesh (one stream per rank, private caches): "
         "no --machine, --format or --threads with it");
-  CheckRankParts(cfg.ranks, cfg.partition, cfg.inputs);
+  cfg.Check();
   for (const CacheLevel& c : cfg.cache.levels)
     if (c.ways == 0)
       throw UsageError("cache level " + c.name + " needs its associativity for simulation, e.g. " +
@@ -57,44 +49,46 @@ std::string InterleaveName(int interleave) {
                                       : std::to_string(interleave);
 }
 
+namespace {
+
+// A simulator per stream (per rank's part), made by `make`.
+template <class Sim, class Make>
+class SimulateStreams : public StreamConsumer {
+ public:
+  SimulateStreams(std::string where, Make make) : where_(std::move(where)), make_(make) {}
+  std::string Verb() const override { return "simulating"; }
+  std::string Where() const override { return where_; }
+  AccessConsumer& Start(const StreamJob&) override {
+    runs.push_back(make_());
+    return *runs.back();
+  }
+  std::vector<std::unique_ptr<Sim>> runs;
+
+ private:
+  std::string where_;
+  Make make_;
+};
+
+template <class Sim, class Make>
+std::vector<std::unique_ptr<Sim>> Simulate(const StreamSource& src, std::string where, Make make,
+                                           const Log& log) {
+  SimulateStreams<Sim, Make> c(std::move(where), make);
+  ForEachStream(src, c, log);
+  return std::move(c.runs);
+}
+
+}  // namespace
+
 std::vector<std::unique_ptr<MulticoreSimulation>> RunMachineSimulate(const SimulateConfig& cfg,
                                                                      const Log& log) {
   CheckSimulateConfig(cfg);
   Machine machine = ParseMachine(cfg.machine);
   SetPrefetch(&machine, cfg.prefetch);
-  std::vector<std::unique_ptr<MulticoreSimulation>> runs;
-  SmoothOptions sweeps;
-  sweeps.max_iters = cfg.iterations;
-  sweeps.tol = -std::numeric_limits<double>::infinity();
-  sweeps.threads = cfg.threads;
-  sweeps.mode = cfg.mode;
-  sweeps.interleave = cfg.interleave;
-  for (const std::string& in : cfg.inputs) {
-    const InputKind kind = cfg.format.empty() ? ClassifyInput(in) : InputKind::kText;
-    if (kind == InputKind::kMesh) {
-      for (const std::string& ord : cfg.orderings) {
-        Mesh m = LayOut(in, ord, cfg.seed, cfg.triangle_order, log);
-        auto sim = std::make_unique<MulticoreSimulation>(machine, cfg.placement);
-        log.Say("simulating " + std::to_string(cfg.iterations) + " sweep(s) of " + in + " in " +
-                ord + " order on " + machine.name + ", " + std::to_string(cfg.threads) +
-                " thread(s) " + PlacementName(cfg.placement));
-        StreamMesh(m, sweeps, in, ParseOrderingSpec(ord).label, *sim);
-        runs.push_back(std::move(sim));
-      }
-      continue;
-    }
-    auto sim = std::make_unique<MulticoreSimulation>(machine, cfg.placement);
-    if (kind == InputKind::kTrace) {
-      log.Say("simulating trace " + in + " on " + machine.name);
-      StreamTraceFile(in, *sim);
-    } else {
-      const TraceFormat& f = ParseTraceFormat(cfg.format.empty() ? "text" : cfg.format);
-      log.Say("simulating " + in + " as " + f.name + " on " + machine.name);
-      StreamForeignTrace(in, f, cfg.instructions, *sim);
-    }
-    runs.push_back(std::move(sim));
-  }
-  return runs;
+  return Simulate<MulticoreSimulation>(
+      cfg,
+      " on " + machine.name + ", " + std::to_string(cfg.threads) + " thread(s) " +
+          PlacementName(cfg.placement),
+      [&] { return std::make_unique<MulticoreSimulation>(machine, cfg.placement); }, log);
 }
 
 Table MachineTable(const std::vector<std::unique_ptr<MulticoreSimulation>>& runs, bool warm) {
@@ -106,55 +100,14 @@ Table MachineTable(const std::vector<std::unique_ptr<MulticoreSimulation>>& runs
 std::vector<std::unique_ptr<CacheSimulation>> RunSimulate(const SimulateConfig& cfg,
                                                           const Log& log) {
   CheckSimulateConfig(cfg);
-  std::vector<std::unique_ptr<CacheSimulation>> runs;
-  auto make = [&cfg] {
-    auto sim = std::make_unique<CacheSimulation>(cfg.cache, cfg.line_bytes);
-    if (cfg.by_array) sim->CountByArray();
-    return sim;
-  };
-  SmoothOptions sweeps;
-  sweeps.max_iters = cfg.iterations;
-  sweeps.tol = -std::numeric_limits<double>::infinity();
-  sweeps.threads = cfg.threads;
-  sweeps.mode = cfg.mode;
-  for (const std::string& in : cfg.inputs) {
-    const InputKind kind = cfg.format.empty() ? ClassifyInput(in) : InputKind::kText;
-    if (kind == InputKind::kMesh && cfg.ranks > 0) {
-      for (const std::string& ord : cfg.orderings) {
-        RankLocalityConfig rc;
-        rc.mesh = in, rc.ranks = cfg.ranks, rc.partition = cfg.partition, rc.ordering = ord;
-        rc.placement = cfg.cut_placement;
-        rc.seed = cfg.seed, rc.sweeps = sweeps;
-        StreamRankParts(rc, log, [&](int32_t) -> AccessConsumer& {
-          runs.push_back(make());
-          return *runs.back();
-        });
-      }
-      continue;
-    }
-    if (kind == InputKind::kMesh) {
-      for (const std::string& ord : cfg.orderings) {
-        Mesh m = LayOut(in, ord, cfg.seed, cfg.triangle_order, log);
-        auto sim = make();
-        log.Say("simulating " + std::to_string(cfg.iterations) + " sweep(s) of " + in + " in " +
-                ord + " order");
-        StreamMesh(m, sweeps, in, ParseOrderingSpec(ord).label, *sim);
-        runs.push_back(std::move(sim));
-      }
-      continue;
-    }
-    auto sim = make();
-    if (kind == InputKind::kTrace) {
-      log.Say("simulating trace " + in);
-      StreamTraceFile(in, *sim);
-    } else {
-      const TraceFormat& f = ParseTraceFormat(cfg.format.empty() ? "text" : cfg.format);
-      log.Say("simulating " + in + " as " + f.name);
-      StreamForeignTrace(in, f, cfg.instructions, *sim);
-    }
-    runs.push_back(std::move(sim));
-  }
-  return runs;
+  return Simulate<CacheSimulation>(
+      cfg, "",
+      [&cfg] {
+        auto sim = std::make_unique<CacheSimulation>(cfg.cache, cfg.line_bytes);
+        if (cfg.by_array) sim->CountByArray();
+        return sim;
+      },
+      log);
 }
 
 Table SimulateTable(const std::vector<std::unique_ptr<CacheSimulation>>& runs, bool per_sweep) {
@@ -170,15 +123,7 @@ Table SimulateArrayTable(const std::vector<std::unique_ptr<CacheSimulation>>& ru
 }
 
 Json SimulateConfigJson(const SimulateConfig& cfg) {
-  Json j;
-  j["inputs"] = cfg.inputs;
-  j["format"] = cfg.format;
-  j["orderings"] = cfg.orderings;
-  j["seed"] = cfg.seed;
-  j["ordering_seeds"] = OrderingSeedsJson(cfg.orderings, cfg.seed);
-  j["iterations"] = cfg.iterations;
-  j["threads"] = cfg.threads;
-  j["mode"] = UpdateModeName(cfg.mode);
+  Json j = cfg.ToJson();
   if (cfg.machine.empty()) {
     j["cache"] = cfg.cache.text;
     j["line_bytes"] = cfg.line_bytes;

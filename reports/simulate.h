@@ -13,35 +13,24 @@
 #include "analysis/machine.h"
 #include "analysis/multicore_sim.h"
 #include "core/permutation.h"
-#include "core/ranks/rank_part.h"
 #include "core/smoother.h"
 #include "core/table.h"
 #include "reports/log.h"
 #include "reports/run_info.h"
+#include "reports/stream_source.h"
 
 namespace meshreuse {
 
-struct SimulateConfig {
-  std::vector<std::string> inputs;
-  std::string format;  // "": meshes and meshreuse traces; else a TraceFormat name
-  std::vector<std::string> orderings = {"ori"};
-  uint64_t seed = 1;
-  int iterations = 1, threads = 1;  // for meshes: sweeps and streams
-  UpdateMode mode = UpdateMode::kGaussSeidel;
-  TriangleOrder triangle_order = TriangleOrder::kSorted;
+struct SimulateConfig : StreamSource {
+  // StreamSource: the inputs, orderings, sweeps, threads (for meshes: streams), and, with a
+  // machine, the streams' interleaving (`interleave`: a vertex visit of each thread per turn by
+  // default there).
   CacheSpec cache = ParseCacheSpec("westmere-ex");
   uint32_t line_bytes = 64;
-  bool instructions = false;  // lackey
   // A machine ("" : private caches per stream, `cache`): the many-core simulator.
   std::string machine;
   Placement placement = Placement::kCompact;
-  int interleave = 1;    // for meshes with a machine: SmoothOptions::interleave
-  std::string prefetch;  // levels with a next-line prefetcher ("" : the machine's; "none")
-  // Meshes, private caches: simulate each of `ranks` parts as a rank of the distributed smoother
-  // lays it out and sweeps it (reports/rank_locality.h), 0: the whole mesh.
-  int32_t ranks = 0;
-  std::string partition = "hilbert";
-  CutPlacement cut_placement = CutPlacement::kLast;
+  std::string prefetch;   // levels with a next-line prefetcher ("" : the machine's; "none")
   bool by_array = false;  // private caches: lookups and misses per array too (SimulateArrayTable)
 };
 

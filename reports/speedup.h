@@ -14,7 +14,7 @@
 #include <utility>
 #include <vector>
 
-#include "reports/compare.h"
+#include "reports/timed_runs.h"
 
 namespace meshreuse {
 

@@ -32,13 +32,7 @@ std::string Ratio(double a, double b) { return b > 0 ? ExactNumber(a / b) : ""; 
 }  // namespace
 
 void CheckValidationConfig(const ValidationConfig& cfg) {
-  if (cfg.orderings.empty()) throw UsageError("no ordering given");
-  for (const std::string& o : cfg.orderings) CheckOrderingSpec(o);
-  if (cfg.iterations < 1 || cfg.iterations > kMaxStreamSweeps)
-    throw UsageError("--iterations must be 1..65536");
-  if (cfg.threads < 1 || cfg.threads > kMaxThreads)
-    throw UsageError("--threads must be 1.." + std::to_string(kMaxThreads));
-  CheckStreamSweeps(cfg.iterations, cfg.threads);
+  cfg.Check();
   if (cfg.element_bytes == 0) throw UsageError("--element-bytes must be positive");
   for (const CacheLevel& c : cfg.cache.levels)
     if (c.ways == 0)
@@ -55,14 +49,14 @@ std::vector<OrderingValidation> RunValidation(
   };
   if (cfg.cache.levels.empty()) throw std::invalid_argument("no cache levels");
   const std::vector<CacheLevel>& levels = cfg.cache.levels;
-  const SmoothOptions sweeps = ExactSweeps(cfg.iterations, cfg.threads, cfg.mode);
+  const SmoothOptions sweeps = cfg.Sweeps();
   std::vector<OrderingValidation> out;
-  for (const std::string& ord : cfg.orderings) {
-    say("validate: laying out " + cfg.mesh_name + " in " + ord + " order");
+  for (const OrderingSpec& ord : cfg.orderings) {
+    say("validate: laying out " + cfg.mesh_name + " in " + ord.text + " order");
     const Mesh laid =
         ApplyPermutation(base, ComputeOrdering(ord, base, cfg.seed), cfg.triangle_order);
     OrderingValidation v;
-    v.mesh = cfg.mesh_name, v.ordering = ParseOrderingSpec(ord).label;
+    v.mesh = cfg.mesh_name, v.ordering = ord.label;
     v.vertices = laid.NumVertices();
     v.iterations = cfg.iterations, v.threads = cfg.threads;
 
@@ -74,7 +68,7 @@ std::vector<OrderingValidation> RunValidation(
     CacheSimulation sim(cfg.cache, cfg.line_bytes);
     SweepFootprint footprint(cfg.line_bytes);
     {
-      say("validate: " + ord + ": " + std::to_string(cfg.iterations) +
+      say("validate: " + ord.text + ": " + std::to_string(cfg.iterations) +
           " traced sweep(s) into the analyzer and the simulator");
       Mesh m = laid.Clone();
       FanOut both({&analysis, &sim, &footprint});
@@ -103,7 +97,7 @@ std::vector<OrderingValidation> RunValidation(
         wanted.push_back(cfg.counter_events[i]);
       PapiCounters papi(wanted, cfg.threads);
       if (papi.available()) {
-        say("validate: " + ord + ": " + std::to_string(cfg.iterations) +
+        say("validate: " + ord.text + ": " + std::to_string(cfg.iterations) +
             " untraced sweep(s) with counters");
         Mesh m = laid.Clone();
         SmoothOptions o = sweeps;
@@ -232,19 +226,11 @@ Table ValidationCostTable(const std::vector<OrderingValidation>& r) {
   return t;
 }
 
-Json ValidationConfigJson(const ValidationConfig& cfg, const std::string& mesh) {
-  Json j;
-  j["mesh"] = mesh;
-  j["orderings"] = cfg.orderings;
-  j["seed"] = cfg.seed;
-  j["ordering_seeds"] = OrderingSeedsJson(cfg.orderings, cfg.seed);
-  j["iterations"] = cfg.iterations;
-  j["threads"] = cfg.threads;
-  j["mode"] = UpdateModeName(cfg.mode);
+Json ValidationConfigJson(const ValidationConfig& cfg) {
+  Json j = cfg.ToJson();
   j["cache"] = cfg.cache.text;
   j["element_bytes"] = cfg.element_bytes;
   j["line_bytes"] = cfg.line_bytes;
-  j["triangle_order"] = TriangleOrderName(cfg.triangle_order);
   j["exclude_cold"] = cfg.exclude_cold;
   j["counter_events"] = cfg.counter_events;
   return j;

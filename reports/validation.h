@@ -23,18 +23,16 @@
 #include "core/smoother.h"
 #include "core/table.h"
 #include "reports/run_info.h"
+#include "reports/stream_source.h"
 
 namespace meshreuse {
 
-struct ValidationConfig {
+struct ValidationConfig : StreamSource {
+  // StreamSource: the mesh (inputs[0]; RunValidation takes it read), orderings, seed, sweeps
+  // (default 2), threads, mode, triangle order.
+  ValidationConfig() { orderings = {"ori", "bfs", "rdr"}, iterations = 2; }
   std::string mesh_name;  // for the tables
-  std::vector<std::string> orderings = {"ori", "bfs", "rdr"};
-  uint64_t seed = 1;
-  int iterations = 2;
-  int threads = 1;
-  UpdateMode mode = UpdateMode::kGaussSeidel;
-  TriangleOrder triangle_order = TriangleOrder::kSorted;
-  CacheSpec cache;  // levels with associativity (the simulator needs it), latencies
+  CacheSpec cache;        // levels with associativity (the simulator needs it), latencies
   uint32_t element_bytes = 66, line_bytes = 64;
   // PAPI events for the levels, in level order (empty: no counters). Missing ones are simulated.
   std::vector<std::string> counter_events = {"PAPI_L1_DCM", "PAPI_L2_DCM", "PAPI_L3_TCM"};
@@ -91,7 +89,7 @@ Table Table3(const std::vector<OrderingValidation>& r);
 // Equation 2 on the line model's and on the simulator's misses per ordering (empty cells without
 // latencies).
 Table ValidationCostTable(const std::vector<OrderingValidation>& r);
-Json ValidationConfigJson(const ValidationConfig& cfg, const std::string& mesh);
+Json ValidationConfigJson(const ValidationConfig& cfg);
 // Notes for the tables: where an inverse capacity is infinite, why.
 std::vector<std::string> Table3Notes(const std::vector<OrderingValidation>& r, bool exclude_cold);
 

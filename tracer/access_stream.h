@@ -96,8 +96,8 @@ HaloResult StreamRankPart(RankPart& part, const HaloOptions& opt, Communicator& 
                           AccessConsumer& to);
 // What StreamRankPart announces: opt.max_iters sweeps of TracedPerSweep's counts.
 StreamInfo RankStreamInfo(const RankPart& part, const HaloOptions& opt);
-// Records [first, end) of a trace file: a chunk (reports/chunk_summary.h). The StreamInfo is still
-// the whole file's (its sweeps place the chunk's accesses in the profile).
+// Records [first, end) of a trace file: a chunk (reports/chunks/summarize_chunk.h). The StreamInfo
+// is still the whole file's (its sweeps place the chunk's accesses in the profile).
 struct RecordRange {
   uint64_t first = 0, end = ~uint64_t{0};
 };

@@ -48,10 +48,10 @@ class InputStream {
   // thinned beyond; none in a damaged file, which is entered at its start); for a plain file,
   // its size in bytes (any byte).
   uint64_t entry_points() const;
-  // Reading by range (a chunk of a trace, reports/chunk_summary.h): continue at byte `offset` of
-  // the content, and read at most `limit` bytes from there. A regular file that is seekable()
-  // only: a pipe cannot seek, a zstd stream without a seek table whose frames do not record their
-  // sizes cannot be entered in the middle (InputError saying so).
+  // Reading by range (a chunk of a trace, reports/chunks/summarize_chunk.h): continue at byte
+  // `offset` of the content, and read at most `limit` bytes from there. A regular file that is
+  // seekable() only: a pipe cannot seek, a zstd stream without a seek table whose frames do not
+  // record their sizes cannot be entered in the middle (InputError saying so).
   void SeekTo(uint64_t offset);
   void SetLimit(uint64_t limit) { limit_ = limit; }
   // Where the first line that begins at or after byte `offset` begins (the size at the end): a

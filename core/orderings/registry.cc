@@ -64,8 +64,13 @@ OrderingSpec ParseOrderingSpec(const std::string& text) {
   return s;
 }
 
-Permutation ComputeOrdering(const std::string& text, const Mesh& m, uint64_t seed) {
-  const OrderingSpec s = ParseOrderingSpec(text);
+OrderingSpec::OrderingSpec(const std::string& t) : OrderingSpec(ParseOrderingSpec(t)) {}
+
+std::vector<OrderingSpec> ParseOrderingSpecs(const std::vector<std::string>& texts) {
+  return std::vector<OrderingSpec>(texts.begin(), texts.end());
+}
+
+Permutation ComputeOrdering(const OrderingSpec& s, const Mesh& m, uint64_t seed) {
   OrderingContext ctx;
   ctx.seed = seed;
   ctx.argument = s.argument;
@@ -75,11 +80,10 @@ Permutation ComputeOrdering(const std::string& text, const Mesh& m, uint64_t see
   return p;
 }
 
-std::vector<std::pair<std::string, uint64_t>> SeededOrderings(const std::vector<std::string>& specs,
-                                                              uint64_t seed) {
+std::vector<std::pair<std::string, uint64_t>> SeededOrderings(
+    const std::vector<OrderingSpec>& specs, uint64_t seed) {
   std::vector<std::pair<std::string, uint64_t>> out;
-  for (const std::string& t : specs) {
-    const OrderingSpec s = ParseOrderingSpec(t);
+  for (const OrderingSpec& s : specs) {
     if (s.info->seeded) out.emplace_back(s.label, seed);
   }
   return out;

@@ -41,8 +41,13 @@ const std::vector<OrderingInfo>& Orderings();
 const OrderingInfo* FindOrdering(const std::string& name);  // nullptr when unknown
 std::string OrderingNames();                                // "ori, random, ..."
 
+// A parsed spec. Built from its text (a std::string or a literal) it parses it, so a list of specs
+// reads as {"ori", "bfs"}; the runners hold their orderings parsed once, as specs.
 struct OrderingSpec {
-  std::string text;      // as given
+  OrderingSpec() = default;
+  OrderingSpec(const std::string& text);  // NOLINT: ParseOrderingSpec (UsageError)
+  OrderingSpec(const char* text) : OrderingSpec(std::string(text)) {}  // NOLINT
+  std::string text;                                                    // as given
   std::string label;     // what tables call it: LABEL when given, else the spec without it
   std::string name;      // the registered name
   std::string argument;  // after ':' ("" when none)
@@ -58,11 +63,13 @@ inline void CheckOrderingSpec(const std::string& text) { ParseOrderingSpec(text)
 
 // Computes a spec ("name", "name:argument", "LABEL=..."). Throws UsageError for a bad spec and
 // whatever the ordering throws (file: InputError).
-Permutation ComputeOrdering(const std::string& spec, const Mesh& m, uint64_t seed = 1);
+Permutation ComputeOrdering(const OrderingSpec& spec, const Mesh& m, uint64_t seed = 1);
+// Each text parsed (UsageError for the first that is not a spec).
+std::vector<OrderingSpec> ParseOrderingSpecs(const std::vector<std::string>& texts);
 
 // The seeds that matter for these specs: {label: seed} for each seeded ordering among them
 // (run.json, .perm headers).
-std::vector<std::pair<std::string, uint64_t>> SeededOrderings(const std::vector<std::string>& specs,
-                                                              uint64_t seed);
+std::vector<std::pair<std::string, uint64_t>> SeededOrderings(
+    const std::vector<OrderingSpec>& specs, uint64_t seed);
 
 }  // namespace meshreuse

@@ -38,14 +38,14 @@ namespace {
 // computed from it) or a rank's neighbourhood (local ids increasing with the global ids `gid`,
 // `weight` per triangle given).
 RankPart BuildPart(const Mesh& m, const std::vector<int32_t>& part, int32_t parts,
-                   const std::vector<int32_t>& colour, int32_t rank, const std::string& ordering,
+                   const std::vector<int32_t>& colour, int32_t rank, const OrderingSpec& ordering,
                    uint64_t seed, CutPlacement placement, const int64_t* gid,
                    const double* weight) {
   const int32_t n = m.NumVertices();
   if (static_cast<int64_t>(part.size()) != n || static_cast<int32_t>(colour.size()) != parts ||
       rank < 0 || rank >= parts)
     throw std::invalid_argument("BuildRankPart: partition, colouring and rank disagree");
-  const OrderingSpec spec = ParseOrderingSpec(ordering);
+  const OrderingSpec& spec = ordering;
   RankPart p;
   p.rank = rank, p.parts = parts, p.colour = colour[rank], p.placement = placement;
   p.colours = parts ? *std::max_element(colour.begin(), colour.end()) + 1 : 1;
@@ -217,12 +217,12 @@ RankPart BuildPart(const Mesh& m, const std::vector<int32_t>& part, int32_t part
 
 RankPart BuildRankPart(const Mesh& m, const std::vector<int32_t>& part, int32_t parts,
                        const std::vector<int32_t>& colour, int32_t rank,
-                       const std::string& ordering, uint64_t seed, CutPlacement placement) {
+                       const OrderingSpec& ordering, uint64_t seed, CutPlacement placement) {
   return BuildPart(m, part, parts, colour, rank, ordering, seed, placement, nullptr, nullptr);
 }
 
 RankPart BuildRankPart(RankNeighbourhood&& nb, const std::vector<int32_t>& colour,
-                       const std::string& ordering, uint64_t seed, CutPlacement placement) {
+                       const OrderingSpec& ordering, uint64_t seed, CutPlacement placement) {
   // What the layout does not read goes first: the peak of a rank's set-up is here.
   decltype(nb.mesh.v2t.off)().swap(nb.mesh.v2t.off);
   decltype(nb.mesh.v2t.idx)().swap(nb.mesh.v2t.idx);
@@ -232,7 +232,7 @@ RankPart BuildRankPart(RankNeighbourhood&& nb, const std::vector<int32_t>& colou
 }
 
 RankPart BuildRankPart(const RankNeighbourhood& nb, const std::vector<int32_t>& colour,
-                       const std::string& ordering, uint64_t seed, CutPlacement placement) {
+                       const OrderingSpec& ordering, uint64_t seed, CutPlacement placement) {
   if (nb.gid.size() != static_cast<size_t>(nb.mesh.NumVertices()) ||
       nb.weight.size() != static_cast<size_t>(nb.mesh.NumTriangles()))
     throw std::invalid_argument("BuildRankPart: an inconsistent neighbourhood");

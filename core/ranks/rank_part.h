@@ -25,6 +25,7 @@
 
 #include "core/aligned.h"
 #include "core/mesh.h"
+#include "core/orderings/registry.h"
 #include "core/ranks/rank_neighbourhood.h"
 
 namespace meshreuse {
@@ -67,19 +68,19 @@ struct RankPart {
 // empty. Throws UsageError for a bad ordering spec, std::invalid_argument for inconsistent sizes.
 RankPart BuildRankPart(const Mesh& m, const std::vector<int32_t>& part, int32_t parts,
                        const std::vector<int32_t>& colour, int32_t rank,
-                       const std::string& ordering = "ori", uint64_t seed = 1,
+                       const OrderingSpec& ordering = "ori", uint64_t seed = 1,
                        CutPlacement placement = CutPlacement::kLast);
 
 // The same part from the rank's neighbourhood alone (a distributed read, rank_neighbourhood.h):
 // equal, member for member, to BuildRankPart on the whole mesh with the range partition
 // (nb.part), the neighbourhood's global ids and weights standing in for the whole mesh's.
 RankPart BuildRankPart(const RankNeighbourhood& nb, const std::vector<int32_t>& colour,
-                       const std::string& ordering = "ori", uint64_t seed = 1,
+                       const OrderingSpec& ordering = "ori", uint64_t seed = 1,
                        CutPlacement placement = CutPlacement::kLast);
 // The same from a neighbourhood not needed afterwards: its v2t and interior list are released
 // first (a third of its memory), lowering the rank's peak.
 RankPart BuildRankPart(RankNeighbourhood&& nb, const std::vector<int32_t>& colour,
-                       const std::string& ordering = "ori", uint64_t seed = 1,
+                       const OrderingSpec& ordering = "ori", uint64_t seed = 1,
                        CutPlacement placement = CutPlacement::kLast);
 
 // What π needs of one rank: its colour, placement, number of non-cut vertices and its movable

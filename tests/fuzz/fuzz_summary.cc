@@ -1,8 +1,8 @@
-// libFuzzer harness: a chunk summary's payload (reports/chunk_summary.h) behind a header whose size
-// and checksum are made to match, so the fuzzer reaches the parser instead of the checksum; an
-// accepted summary of one chunk is then merged into a whole analysis and its tables built. The
-// same bytes are also read back as a file (ReadSummary parses as it streams): the verdict and
-// message must be those of the in-memory decoder, or the harness aborts.
+// libFuzzer harness: a chunk summary's payload (reports/chunks/summary_file.h) behind a header
+// whose size and checksum are made to match, so the fuzzer reaches the parser instead of the
+// checksum; an accepted summary of one chunk is then merged into a whole analysis and its tables
+// built. The same bytes are also read back as a file (ReadSummary parses as it streams): the
+// verdict and message must be those of the in-memory decoder, or the harness aborts.
 #include <unistd.h>
 
 #include <cstdio>
@@ -11,7 +11,8 @@
 #include <string>
 
 #include "core/error.h"
-#include "reports/chunk_summary.h"
+#include "reports/chunks/merge_summaries.h"
+#include "reports/chunks/summary_file.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   using namespace meshreuse;

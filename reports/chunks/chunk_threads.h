@@ -1,5 +1,5 @@
-// The distributed analysis (RunDistributed, chunk_summary.h) with P ranks as P threads of one
-// process (core/ranks/thread_communicator.h). `meshreuse analyze TRACE --threads P` runs on it:
+// The distributed analysis (RunDistributed, distributed_analysis.h) with P ranks as P threads of
+// one process (core/ranks/thread_communicator.h). `meshreuse analyze TRACE --threads P` runs on it:
 // each thread reads and analyses its own chunk of the file (reading is parallel too, which the
 // batched analyzer's one reader is not), the LRU stacks stream thread to thread in blocks, and the
 // resolved chunks are handed over as objects (not encoded) and added up a binary tree, as across
@@ -11,7 +11,8 @@
 #include <cstdint>
 #include <string>
 
-#include "reports/analyze.h"
+#include "reports/log.h"
+#include "reports/reuse_job.h"
 
 namespace meshreuse {
 
@@ -20,9 +21,9 @@ namespace meshreuse {
 // standard input, a pipe, or a zstd file in fewer frames, whose later chunks would decompress most
 // of it to find their start: those go through the batched analyzer, ReuseOptions::workers), with an
 // analysis that chunks support (no fixed-size sample, no exact counting below K).
-bool CanAnalyzeInChunks(const AnalyzeConfig& cfg, const std::string& in);
+bool CanAnalyzeInChunks(const ReuseJob& cfg, const std::string& in);
 // cfg's one trace analysed as p chunks on p threads (RunDistributed over a ThreadCommunicator):
 // exactly the serial analyzer's result. Progress is rank 0's, on `log`.
-AnalyzeResult AnalyzeChunksOnThreads(const AnalyzeConfig& cfg, int p, const Log& log);
+AnalyzeResult AnalyzeChunksOnThreads(const ReuseJob& cfg, int p, const Log& log);
 
 }  // namespace meshreuse

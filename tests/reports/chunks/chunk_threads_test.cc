@@ -1,11 +1,11 @@
-// The distributed analysis on threads (reports/chunk_threads.h): the chunk relay's ids arrive in
-// order with each stream's end (the communicator itself: core/ranks/thread_communicator_test.cc);
-// and a trace analysed in P chunks on P
-// threads (P = 1-5, fewer accesses than chunks, a meshreuse trace of 2 threads and 3 sweeps with
-// its profile, with and without a profile, SHARDS at a fixed rate; the histograms added up a tree
-// of ranks and by distance) gives every table byte for byte as the serial analyzer; its exchange
-// by distance delivers every message, and a damaged slice is refused by name.
-#include "reports/chunk_threads.h"
+// The distributed analysis on threads (reports/chunks/chunk_threads.h): the chunk relay's ids
+// arrive in order with each stream's end (the communicator itself:
+// core/ranks/thread_communicator_test.cc); and a trace analysed in P chunks on P threads (P = 1-5,
+// fewer accesses than chunks, a meshreuse trace of 2 threads and 3 sweeps with its profile, with
+// and without a profile, SHARDS at a fixed rate; the histograms added up a tree of ranks and by
+// distance) gives every table byte for byte as the serial analyzer; its exchange by distance
+// delivers every message, and a damaged slice is refused by name.
+#include "reports/chunks/chunk_threads.h"
 
 #include <gtest/gtest.h>
 
@@ -21,7 +21,7 @@
 
 #include "core/ranks/thread_communicator.h"
 #include "reports/analyze.h"
-#include "reports/chunk_summary.h"
+#include "reports/chunks/distributed_analysis.h"
 #include "reports/trace.h"
 #include "tests/test_util.h"
 #include "tracer/input_stream.h"

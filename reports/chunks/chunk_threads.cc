@@ -1,5 +1,5 @@
 // The analysis of a trace as chunks on threads (chunk_threads.h).
-#include "reports/chunk_threads.h"
+#include "reports/chunks/chunk_threads.h"
 
 #include <sys/stat.h>
 
@@ -9,12 +9,12 @@
 #include <thread>
 
 #include "core/ranks/thread_communicator.h"
-#include "reports/chunk_summary.h"
+#include "reports/chunks/distributed_analysis.h"
 #include "tracer/input_stream.h"
 
 namespace meshreuse {
 
-bool CanAnalyzeInChunks(const AnalyzeConfig& cfg, const std::string& in) {
+bool CanAnalyzeInChunks(const ReuseJob& cfg, const std::string& in) {
   if (in == "-" || (cfg.sample && (cfg.shards.s_max || cfg.shards.exact_below))) return false;
   struct stat st;
   if (::stat(in.c_str(), &st) != 0 || !S_ISREG(st.st_mode)) return false;
@@ -27,15 +27,13 @@ bool CanAnalyzeInChunks(const AnalyzeConfig& cfg, const std::string& in) {
   }
 }
 
-AnalyzeResult AnalyzeChunksOnThreads(const AnalyzeConfig& cfg, int p, const Log& log) {
-  AnalyzeConfig one = cfg;
+AnalyzeResult AnalyzeChunksOnThreads(const ReuseJob& cfg, int p, const Log& log) {
+  ReuseJob one = cfg;
   one.threads = 1;  // each chunk on its own thread
   AnalyzeResult result;
   const Log quiet;
   ThreadCommunicator::Run(p, [&](Communicator& tx) {
-    AnalyzeConfig mine = one;
-    mine.transport = &tx;
-    AnalyzeResult r = RunDistributed(mine, tx, tx.rank() == 0 ? log : quiet);
+    AnalyzeResult r = RunDistributed(one, tx, tx.rank() == 0 ? log : quiet);
     if (tx.rank() == 0) result = std::move(r);
   });
   return result;

@@ -1,8 +1,9 @@
-// Chunk summary files (reports/chunk_summary.h): a summary written and read back is the same;
-// every single-byte change of the payload, with the checksum made to match, is either read as a
-// valid summary or refused as an InputError naming the file -- never a crash, a huge allocation or
-// another exception (counts are checked against the bytes left before anything is allocated).
-#include "reports/chunk_summary.h"
+// Chunk summary files (reports/chunks/summary_file.h; SweepsOfMeshChunk of summarize_chunk.h): a
+// summary written and read back is the same; every single-byte change of the payload, with the
+// checksum made to match, is either read as a valid summary or refused as an InputError naming the
+// file -- never a crash, a huge allocation or another exception (counts are checked against the
+// bytes left before anything is allocated).
+#include "reports/chunks/summary_file.h"
 
 #include <gtest/gtest.h>
 #include <sys/stat.h>
@@ -16,6 +17,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "reports/chunks/summarize_chunk.h"
 #include "tests/test_util.h"
 
 namespace meshreuse {
