@@ -204,12 +204,6 @@ int AnalyzeCommand(const Args& args, Communicator* transport) {
       if (std::fwrite(j.data(), 1, j.size(), f) != j.size())
         throw EnvironmentError(rank_stats, "cannot write");
     });
-  if (fmt == OutputFormat::kText) {
-    Print(AnalyzeTable(r, cfg, true), fmt);
-    for (const std::string& n : AnalyzeNotes(r, cfg)) std::printf("%s\n", n.c_str());
-  } else {
-    Print(AnalyzeTable(r, cfg, false), fmt);
-  }
   const Table prof = ProfileTable(r);
   // A trace without sweeps (a foreign one of unknown length) has no profile: say so rather than
   // write an empty file.
@@ -222,15 +216,7 @@ int AnalyzeCommand(const Args& args, Communicator* transport) {
   if (!hist_csv.empty()) WriteCsvFile(hist_csv, HistogramTable(r));
   if (!prof_csv.empty() && !no_profile) WriteCsvFile(prof_csv, prof);
   if (!mrc_csv.empty()) WriteCsvFile(mrc_csv, MrcTable(r));
-  if (!out_dir.empty()) {
-    const Table t = AnalyzeTable(r, cfg, false);
-    WriteTableFiles(out_dir, "analyze", t, {"csv", "json"});
-    WriteCsvFile(out_dir + "/histogram.csv", HistogramTable(r));
-    if (!no_profile) WriteCsvFile(out_dir + "/profile.csv", prof);
-    WriteRunJson(out_dir, "meshreuse analyze", AnalyzeConfigJson(cfg, r));
-    progress.Say("wrote " + out_dir + "/{analyze.csv,analyze.json,histogram.csv," +
-                 (no_profile ? "" : "profile.csv,") + "run.json}");
-  }
+  Emit(AnalyzeOutput(r, cfg), fmt, out_dir, progress);
   return 0;
 }
 

@@ -83,41 +83,13 @@ int CompareCommand(const Args& args) {
   const Progress progress(vm.count("quiet") > 0);
   const Log log = MakeLog(progress);
   const CompareResult result = RunCompare(cfg, log.progress, log.warn);
-  const std::vector<CompareRow>& rows = result.rows;
   for (const std::string& why : result.noise.Reasons())  // said once, before the tables
     std::fprintf(stderr, "meshreuse: warning: timings taken on a busy machine: %s\n", why.c_str());
   if (!result.noise.Reasons().empty() && cfg.clock == TimeClock::kWall)
     std::fprintf(stderr,
                  "meshreuse: note: --clock cpu ranks the orderings by the CPU time their sweeps "
                  "cost, which other work on the machine disturbs less than wall time\n");
-  const Table t = CompareTable(rows), summary = CompareSummaryTable(rows, cfg.seed, cfg.clock);
-  if (fmt == OutputFormat::kJson) {
-    std::printf("%s\n", Json({{"seed", cfg.seed},
-                              {"noise", result.noise.ToJson()},
-                              {"rows", CompareJson(rows)},
-                              {"summary", summary.JsonValue()}})
-                            .dump(1)
-                            .c_str());
-  } else if (fmt == OutputFormat::kCsv) {
-    Print(t, fmt);
-  } else {
-    Print(CompareTextTable(rows), OutputFormat::kText);
-    std::printf(
-        "(seed %llu; medians over the rounds after a warm-up, [95%% interval of the median]; "
-        "speedup = T_ori(1)/T, gain = (T_bfs-T)/T_bfs on per-sweep medians (%s clock); an "
-        "interval holding 1 is not distinguishable; every spread: --csv, --json, --out)"
-        "\n\nmean over %zu mesh(es):\n",
-        static_cast<unsigned long long>(cfg.seed), ClockName(cfg.clock), cfg.meshes.size());
-    Print(CompareSummaryTextTable(summary), OutputFormat::kText);
-  }
-  if (!out_dir.empty()) {
-    WriteTableFiles(out_dir, "compare", t, {"csv", "md"});
-    WriteTableFiles(out_dir, "summary", summary, {"csv", "md"});
-    WriteTextFile(out_dir + "/compare.json", Json({{"rows", CompareJson(rows)}}).dump(1) + "\n");
-    WriteRunJson(out_dir, "meshreuse compare", CompareConfigJson(cfg),
-                 {{"noise", result.noise.ToJson()}, {"results", CompareJson(rows)}});
-    progress.Say("wrote " + out_dir + "/{compare,summary}.{csv,md}, compare.json, run.json");
-  }
+  Emit(CompareOutput(result, cfg), fmt, out_dir, progress);
   return 0;
 }
 

@@ -19,11 +19,23 @@
 
 namespace meshreuse::cli {
 
-int DistSmoothCommand(const Args& args, Communicator& tx, const JobPartition& job_partition) {
-  po::options_description desc("options");
+namespace {
+
+// The options every rank of the distributed smoother parses alike (meshreuse-mpi smooth, and
+// smooth-ranks, which adds --ranks).
+struct DistSmoothOptions {
   DistSmoothConfig cfg;
-  cfg.job_partition = job_partition;
-  std::string mode = "ordered", seed = "1", out_dir, placement = "last";
+  std::string out_dir;
+  bool quiet = false;
+};
+
+// Parses `args` into `o` (false: --help was printed). `ranks`, when given, takes --ranks too.
+bool ParseDistSmooth(const Args& args, DistSmoothOptions* o, const char* usage,
+                     std::string* ranks = nullptr) {
+  po::options_description desc("options");
+  DistSmoothConfig& cfg = o->cfg;
+  std::string& out_dir = o->out_dir;
+  std::string mode = "ordered", seed = "1", placement = "last";
   desc.add_options()("mesh", po::value(&cfg.mesh)->required(), "mesh file")(
       "partition", po::value(&cfg.partition)->default_value("hilbert"),
       "hilbert: contiguous ranges of the Hilbert order (balanced to a vertex); metis: METIS "
@@ -58,33 +70,46 @@ int DistSmoothCommand(const Args& args, Communicator& tx, const JobPartition& jo
               "--visit-order FILE` reproduces the run bit for bit")(
       "out", po::value(&out_dir), "write sweeps.csv, ranks.csv and run.json here")(
       "quiet,q", "no progress on stderr");
+  if (ranks)
+    desc.add_options()("ranks,P", po::value(ranks),
+                       "P ranks as threads of this process (messages through memory)");
   po::positional_options_description pos;
   pos.add("mesh", 1);
   po::variables_map vm;
   if (!ParseOptions(
-          args,
-          "smooth MESH [--partition hilbert|metis|scotch|ptscotch|ranges|gmsh] [--ordering NAME] "
-          "[--mode "
-          "ordered|jacobi|hybrid] [-o OUT] [--pi-out FILE]",
-          "Laplacian smoothing across the ranks of an MPI job: each rank reads MESH (of a "
-          "mesh file FILE.mrm, only its range and ghost ring), keeps its part and one ring of "
-          "ghosts, and smooths it; rank 0 gathers the result. "
-          "The global quality is summed exactly, so it and the number of sweeps are the "
-          "same for any number of ranks.",
+          args, usage,
+          std::string(ranks ? "The distributed smoother of `mpirun -np P meshreuse-mpi smooth` "
+                              "with its P ranks as P threads of this process: the same parts, "
+                              "schedule, output and pi, bit for bit. In ranks.csv, peak_rss_mb is "
+                              "the whole process's peak (all ranks together). "
+                            : "") +
+              "Laplacian smoothing across the ranks of an MPI job: each rank reads MESH (of a "
+              "mesh file FILE.mrm, only its range and ghost ring), keeps its part and one ring of "
+              "ghosts, and smooths it; rank 0 gathers the result. "
+              "The global quality is summed exactly, so it and the number of sweeps are the "
+              "same for any number of ranks.",
           desc, pos, vm))
-    return 0;
+    return false;
   if (vm["partition"].defaulted() && IsMeshFilePath(cfg.mesh)) cfg.partition = "ranges";
   cfg.seed = ParseCount(seed, "--seed", 0, UINT64_MAX >> 1);
   cfg.smooth.mode = ParseHaloMode(mode);
   cfg.placement = ParseCutPlacement(placement);
+  o->quiet = vm.count("quiet") > 0;
   CheckDistSmoothConfig(cfg);
-  const bool writer = tx.rank() == 0;
   if (!cfg.output.empty())
     for (const std::string& f : MeshOutputFiles(cfg.output))
       CheckOutputPath(f, "-o", InputFiles({cfg.mesh}));
   if (!cfg.pi_out.empty()) CheckOutputPath(cfg.pi_out, "--pi-out", InputFiles({cfg.mesh}));
-  if (!out_dir.empty() && writer) PrepareOutDir(out_dir);
-  const Progress progress(vm.count("quiet") > 0 || !writer);
+  return true;
+}
+
+// One rank's run; rank 0 prints each sweep as it ends, then the summary and the ranks' table, and
+// writes --out.
+void RunDistSmooth(const DistSmoothOptions& o, Communicator& tx) {
+  const DistSmoothConfig& cfg = o.cfg;
+  const bool writer = tx.rank() == 0;
+  if (!o.out_dir.empty() && writer) PrepareOutDir(o.out_dir);
+  const Progress progress(o.quiet || !writer);
   auto on_setup = [&](const DistSmoothResult& r) {
     if (!writer) return;
     std::printf(
@@ -103,55 +128,34 @@ int DistSmoothCommand(const Args& args, Communicator& tx, const JobPartition& jo
     std::fflush(stdout);
   };
   const DistSmoothResult r = RunDistributedSmooth(cfg, tx, MakeLog(progress), on_setup, on_sweep);
-  if (!writer) return 0;
-  const HaloResult& h = r.result;
-  std::printf("sweeps %zu (%s), quality %.6f -> %.6f\n\n", h.sweeps.size(),
-              h.converged ? "converged" : "max-iters reached", h.quality_before.ToDouble(),
-              h.quality_after.ToDouble());
-  const Table ranks = RankStatsTable(r.ranks);
-  Print(ranks, OutputFormat::kText);
-  if (!out_dir.empty()) {
-    Table sweeps({"sweep", "quality", "improvement", "ms"});
-    for (const HaloSweep& s : h.sweeps)
-      sweeps.AddRow({std::to_string(s.sweep), ExactNumber(s.quality), ExactNumber(s.improvement),
-                     ExactNumber(1e3 * s.seconds)});
-    WriteCsvFile(out_dir + "/sweeps.csv", sweeps);
-    WriteCsvFile(out_dir + "/ranks.csv", ranks);
-    WriteRunJson(out_dir, "meshreuse-mpi smooth", DistSmoothJson(cfg, r));
-    progress.Say("wrote " + out_dir + "/{sweeps.csv,ranks.csv,run.json}");
-  }
+  if (writer) Emit(DistSmoothOutput(r, cfg), OutputFormat::kText, o.out_dir, progress);
+}
+
+}  // namespace
+
+int DistSmoothCommand(const Args& args, Communicator& tx, const JobPartition& job_partition) {
+  DistSmoothOptions o;
+  o.cfg.job_partition = job_partition;
+  if (!ParseDistSmooth(args, &o,
+                       "smooth MESH [--partition hilbert|metis|scotch|ptscotch|ranges|gmsh] "
+                       "[--ordering NAME] [--mode ordered|jacobi|hybrid] [-o OUT] [--pi-out FILE]"))
+    return 0;
+  RunDistSmooth(o, tx);
   return 0;
 }
 
 int DistSmoothThreads(const Args& args) {
-  Args rest;
+  DistSmoothOptions o;
   std::string ranks_text;
-  bool help = false;
-  for (size_t i = 0; i < args.size(); ++i) {
-    if (args[i] == "--ranks" || args[i] == "-P") {
-      if (i + 1 == args.size()) throw UsageError("--ranks needs a number");
-      ranks_text = args[++i];
-    } else if (args[i].rfind("--ranks=", 0) == 0) {
-      ranks_text = args[i].substr(8);
-    } else {
-      help = help || args[i] == "--help" || args[i] == "-h";
-      rest.push_back(args[i]);
-    }
-  }
-  if (help) {
-    std::printf(
-        "usage: meshreuse smooth-ranks MESH --ranks P [the options of meshreuse-mpi smooth]\n\n"
-        "The distributed smoother of `mpirun -np P meshreuse-mpi smooth` with its P ranks as P "
-        "threads of this process (messages through memory): the same parts, schedule, output "
-        "and pi, bit for bit. In ranks.csv, peak_rss_mb is the whole process's peak (all "
-        "ranks together).\n\n");
-    ThreadCommunicator::Run(1, [&](Communicator& tx) { DistSmoothCommand(rest, tx); });
+  if (!ParseDistSmooth(args, &o,
+                       "smooth-ranks MESH --ranks P [--partition hilbert|metis|scotch|ranges|gmsh] "
+                       "[--ordering NAME] [--mode ordered|jacobi|hybrid] [-o OUT] [--pi-out FILE]",
+                       &ranks_text))
     return 0;
-  }
   if (ranks_text.empty()) throw UsageError("--ranks P is required (the number of ranks)");
   // Every rank holds a copy of the mesh; a thread per rank beyond a few thousand is a mistake.
   const auto ranks = static_cast<int32_t>(ParseCount(ranks_text, "--ranks", 1, 4096));
-  ThreadCommunicator::Run(ranks, [&](Communicator& tx) { DistSmoothCommand(rest, tx); });
+  ThreadCommunicator::Run(ranks, [&](Communicator& tx) { RunDistSmooth(o, tx); });
   return 0;
 }
 

@@ -86,7 +86,7 @@ int SimulateCommand(const Args& args) {
   cfg.placement = ParsePlacement(placement);
   const RankOptions ro = RankOptionsOf(rank_text, vm);
   cfg.ranks = ro.ranks, cfg.partition = ro.partition, cfg.cut_placement = ro.placement;
-  cfg.interleave = ParseInterleave(interleave);
+  if (!cfg.machine.empty()) cfg.interleave = ParseInterleave(interleave);
   cfg.by_array = vm.count("by-array") > 0;
   if (!cfg.machine.empty() && !vm["cache"].defaulted())
     throw UsageError("--cache and --machine exclude each other (a machine names its caches)");
@@ -98,43 +98,12 @@ int SimulateCommand(const Args& args) {
   CheckSimulateConfig(cfg);
   if (!out_dir.empty()) PrepareOutDir(out_dir);
   const Progress progress(vm.count("quiet") > 0);
-  if (!cfg.machine.empty()) {
-    const auto runs = RunMachineSimulate(cfg, MakeLog(progress));
-    const Table t = MachineTable(runs, vm.count("warm") > 0);
-    Print(t, fmt);
-    if (fmt == OutputFormat::kText && !runs.empty()) {
-      const Machine& m = runs[0]->machine();
-      std::printf(
-          "(simulated on %s: %d socket(s) x %d cores, %s placement, interleave %s; per thread: "
-          "accesses per level, memory local/remote (NUMA %s), and on 'total' the cost model's "
-          "cycles)\n",
-          m.name.c_str(), m.sockets, m.cores_per_socket, PlacementName(cfg.placement),
-          InterleaveName(cfg.interleave).c_str(),
-          m.numa == Numa::kFirstTouch ? "first-touch: pages on socket 0" : "interleaved");
-    }
-    if (!out_dir.empty()) {
-      WriteTableFiles(out_dir, "simulate", t, {"csv", "json"});
-      WriteRunJson(out_dir, "meshreuse simulate", SimulateConfigJson(cfg));
-    }
-    return 0;
-  }
-  const auto runs = RunSimulate(cfg, MakeLog(progress));
-  const Table t = SimulateTable(runs, vm.count("per-sweep") > 0);
-  const Table arrays = cfg.by_array ? SimulateArrayTable(runs) : Table({});
-  Print(cfg.by_array ? arrays : t, fmt);
-  if (fmt == OutputFormat::kText)
-    std::printf(
-        "(simulated: set-associative, write-allocate, %u B lines; each thread stream "
-        "has private caches%s)\n",
-        cfg.line_bytes,
-        cfg.by_array ? "; per array: its lookups at each level and the misses among them, "
-                       "miss_share of the level's misses"
-                     : "");
-  if (!out_dir.empty()) {
-    WriteTableFiles(out_dir, "simulate", t, {"csv", "json"});
-    if (cfg.by_array) WriteTableFiles(out_dir, "simulate-arrays", arrays, {"csv", "json"});
-    WriteRunJson(out_dir, "meshreuse simulate", SimulateConfigJson(cfg));
-  }
+  if (!cfg.machine.empty())
+    Emit(MachineOutput(RunMachineSimulate(cfg, MakeLog(progress)), cfg, vm.count("warm") > 0), fmt,
+         out_dir, progress);
+  else
+    Emit(SimulateOutput(RunSimulate(cfg, MakeLog(progress)), cfg, vm.count("per-sweep") > 0), fmt,
+         out_dir, progress);
   return 0;
 }
 

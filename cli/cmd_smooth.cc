@@ -114,23 +114,7 @@ int SmoothCommand(const Args& args) {
   }
   const Progress progress(vm.count("quiet") > 0);
   const std::vector<SmoothRun> runs = RunSmooth(cfg, MakeLog(progress), hooks);
-  const Table summary = SmoothSummaryTable(runs), sweeps = SmoothSweepTable(runs);
-  if (text) {
-    if (runs.size() > 1) Print(summary, OutputFormat::kText);
-  } else if (fmt == OutputFormat::kJson) {
-    std::printf("%s\n", Json({{"results", SmoothResultsJson(runs)}, {"sweeps", sweeps.JsonValue()}})
-                            .dump(1)
-                            .c_str());
-  } else {
-    Print(sweeps, fmt);
-  }
-  if (!out_dir.empty()) {
-    WriteTableFiles(out_dir, "summary", summary, {"csv", "md"});
-    WriteTableFiles(out_dir, "sweeps", sweeps, {"csv"});
-    WriteRunJson(out_dir, "meshreuse smooth", SmoothConfigJson(cfg, note),
-                 {{"results", SmoothResultsJson(runs)}});
-    progress.Say("wrote " + out_dir + "/{summary.csv,summary.md,sweeps.csv,run.json}");
-  }
+  Emit(SmoothOutput(runs, cfg, note), fmt, out_dir, progress);
   return 0;
 }
 

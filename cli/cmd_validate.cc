@@ -70,38 +70,7 @@ int ValidateCommand(const Args& args) {
   const Progress progress(vm.count("quiet") > 0);
   const Log log = MakeLog(progress);
   const std::vector<OrderingValidation> r = RunValidation(LoadMesh(mesh, log), cfg, log.progress);
-  const Table v = ValidationTable(r), t3 = Table3(r), sw = ValidationSweepTable(r),
-              cost = ValidationCostTable(r);
-  const std::vector<std::string> notes = Table3Notes(r, cfg.exclude_cold);
-  if (fmt == OutputFormat::kJson) {
-    std::printf("%s\n", Json({{"validation", v.JsonValue()},
-                              {"table3", t3.JsonValue()},
-                              {"cost", cost.JsonValue()}})
-                            .dump(1)
-                            .c_str());
-  } else if (fmt == OutputFormat::kCsv) {
-    Print(v, fmt);
-  } else {
-    for (const Table* t : {&v, &cost, &t3}) {
-      Print(*t, fmt);
-      std::printf("\n");
-    }
-    for (const std::string& n : notes) std::printf("%s\n", n.c_str());
-  }
-  if (!out_dir.empty()) {
-    WriteTableFiles(out_dir, "validate", v, {"csv", "md", "json"});
-    WriteTableFiles(out_dir, "cost", cost, {"csv"});
-    WriteTableFiles(out_dir, "table3", t3, {"csv"});
-    std::string md = t3.Markdown();
-    for (const std::string& n : notes) md += "\n" + n + "\n";
-    WriteTextFile(out_dir + "/table3.md", md);
-    WriteTableFiles(out_dir, "sweeps", sw, {"csv"});
-    WriteRunJson(out_dir, "meshreuse validate", ValidationConfigJson(cfg),
-                 {{"counters", r.empty() ? "" : r[0].counters}});
-    progress.Say("wrote " + out_dir +
-                 "/{validate.csv,validate.md,validate.json,cost.csv,table3.csv,table3.md,"
-                 "sweeps.csv,run.json}");
-  }
+  Emit(ValidationOutput(r, cfg), fmt, out_dir, progress);
   return 0;
 }
 

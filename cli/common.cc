@@ -100,6 +100,36 @@ void WriteRunJson(const std::string& dir, const std::string& tool, const Json& c
                 RunJsonText(RunJson(tool, FullCommandLine(), configuration, extra)));
 }
 
+void Emit(const RunOutput& out, OutputFormat fmt, const std::string& out_dir,
+          const Progress& progress) {
+  if (fmt == OutputFormat::kJson) {
+    if (const RunOutput::TablePtr* t = std::get_if<RunOutput::TablePtr>(&out.json))
+      Print(**t, fmt);
+    else
+      std::printf("%s\n", std::get<Json>(out.json).dump(1).c_str());
+  } else if (fmt != OutputFormat::kText) {
+    if (out.csv) Print(*out.csv, fmt);
+  } else {
+    for (const auto& part : out.text)
+      if (const RunOutput::TablePtr* t = std::get_if<RunOutput::TablePtr>(&part))
+        Print(**t, fmt);
+      else
+        std::printf("%s\n", std::get<std::string>(part).c_str());
+  }
+  if (out_dir.empty()) return;
+  std::string wrote;
+  for (const RunOutput::TableFile& f : out.tables) {
+    WriteTableFiles(out_dir, f.name, *f.table, f.exts);
+    for (const std::string& e : f.exts) wrote += (wrote.empty() ? "" : ",") + f.name + "." + e;
+  }
+  for (const auto& [name, text] : out.files) {
+    WriteTextFile(out_dir + "/" + name, text);
+    wrote += (wrote.empty() ? "" : ",") + name;
+  }
+  WriteRunJson(out_dir, out.tool, out.configuration, out.extra);
+  progress.Say("wrote " + out_dir + "/{" + wrote + (wrote.empty() ? "" : ",") + "run.json}");
+}
+
 void AddRankOptions(po::options_description& desc, RankOptionText* text, const char* ranks) {
   desc.add_options()("ranks", po::value(&text->ranks), ranks)(
       "partition", po::value(&text->partition)->default_value("hilbert"),

@@ -54,6 +54,10 @@ RankOptions RankOptionsOf(const RankOptionText& text, const po::variables_map& v
 
 // The full command line, for run.json.
 const std::vector<std::string>& FullCommandLine();
+// A runner's output: printed on stdout in `fmt` and, with `out_dir`, written under it (its
+// tables, text files and run.json), the files written listed on `progress`.
+void Emit(const RunOutput& out, OutputFormat fmt, const std::string& out_dir,
+          const Progress& progress);
 // DIR/run.json for this command.
 void WriteRunJson(const std::string& dir, const std::string& tool, const Json& configuration,
                   const Json& extra = Json::object());

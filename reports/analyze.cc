@@ -359,4 +359,19 @@ Json AnalyzeConfigJson(const AnalyzeConfig& cfg, const AnalyzeResult& r) {
   return j;
 }
 
+RunOutput AnalyzeOutput(const AnalyzeResult& r, const AnalyzeConfig& cfg) {
+  RunOutput o;
+  o.tool = "meshreuse analyze";
+  o.text.emplace_back(RunOutput::Share(AnalyzeTable(r, cfg, true)));
+  for (const std::string& n : AnalyzeNotes(r, cfg)) o.text.emplace_back(n);
+  o.csv = RunOutput::Share(AnalyzeTable(r, cfg, false));
+  o.json = o.csv;
+  o.tables.push_back({"analyze", o.csv, {"csv", "json"}});
+  o.tables.push_back({"histogram", RunOutput::Share(HistogramTable(r)), {"csv"}});
+  Table prof = ProfileTable(r);
+  if (prof.Rows() > 0) o.tables.push_back({"profile", RunOutput::Share(std::move(prof)), {"csv"}});
+  o.configuration = AnalyzeConfigJson(cfg, r);
+  return o;
+}
+
 }  // namespace meshreuse

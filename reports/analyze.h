@@ -18,6 +18,7 @@
 #include "core/smoother.h"
 #include "core/table.h"
 #include "reports/log.h"
+#include "reports/output.h"
 #include "reports/reuse_job.h"
 #include "reports/run_info.h"
 
@@ -65,5 +66,9 @@ Table MrcTable(const AnalyzeResult& r);        // ReuseAnalysis::MrcColumns()
 // The lines printed under the aligned table: units, the model, the seed, the default chosen.
 std::vector<std::string> AnalyzeNotes(const AnalyzeResult& r, const AnalyzeConfig& cfg);
 Json AnalyzeConfigJson(const AnalyzeConfig& cfg, const AnalyzeResult& r);
+// What `analyze` prints and writes: the summary table (aligned with the notes under it for people,
+// at full precision for --csv, --json and --out), and under --out analyze.{csv,json},
+// histogram.csv, profile.csv (unless the input has no sweeps) and run.json.
+RunOutput AnalyzeOutput(const AnalyzeResult& r, const AnalyzeConfig& cfg);
 
 }  // namespace meshreuse

@@ -459,4 +459,33 @@ Json CompareConfigJson(const CompareConfig& cfg) {
   return j;
 }
 
+RunOutput CompareOutput(const CompareResult& result, const CompareConfig& cfg) {
+  RunOutput o;
+  o.tool = "meshreuse compare";
+  const std::vector<CompareRow>& rows = result.rows;
+  const RunOutput::TablePtr t = RunOutput::Share(CompareTable(rows)),
+                            summary =
+                                RunOutput::Share(CompareSummaryTable(rows, cfg.seed, cfg.clock));
+  o.json = Json({{"seed", cfg.seed},
+                 {"noise", result.noise.ToJson()},
+                 {"rows", CompareJson(rows)},
+                 {"summary", summary->JsonValue()}});
+  o.csv = t;
+  o.text.emplace_back(RunOutput::Share(CompareTextTable(rows)));
+  o.text.emplace_back(
+      "(seed " + std::to_string(cfg.seed) +
+      "; medians over the rounds after a warm-up, [95% interval of the median]; speedup = "
+      "T_ori(1)/T, gain = (T_bfs-T)/T_bfs on per-sweep medians (" +
+      ClockName(cfg.clock) +
+      " clock); an interval holding 1 is not distinguishable; every spread: --csv, --json, --out)");
+  o.text.emplace_back("");
+  o.text.emplace_back("mean over " + std::to_string(cfg.meshes.size()) + " mesh(es):");
+  o.text.emplace_back(RunOutput::Share(CompareSummaryTextTable(*summary)));
+  o.tables = {{"compare", t, {"csv", "md"}}, {"summary", summary, {"csv", "md"}}};
+  o.files.emplace_back("compare.json", Json({{"rows", CompareJson(rows)}}).dump(1) + "\n");
+  o.configuration = CompareConfigJson(cfg);
+  o.extra = {{"noise", result.noise.ToJson()}, {"results", CompareJson(rows)}};
+  return o;
+}
+
 }  // namespace meshreuse

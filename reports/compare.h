@@ -20,6 +20,7 @@
 #include "core/permutation.h"
 #include "core/smoother.h"
 #include "core/table.h"
+#include "reports/output.h"
 #include "reports/run_info.h"
 #include "reports/timed_runs.h"
 #include "reports/timing.h"
@@ -64,5 +65,9 @@ Table CompareSummaryTable(const std::vector<CompareRow>& rows, uint64_t seed,
 Table CompareSummaryTextTable(const Table& summary);
 Json CompareJson(const std::vector<CompareRow>& rows);  // an array, one object per row
 Json CompareConfigJson(const CompareConfig& cfg);
+// What `compare` prints and writes: the rows and the summary over the meshes (--json: seed, noise,
+// rows and summary; --csv: the rows); under --out compare.{csv,md}, summary.{csv,md},
+// compare.json and run.json.
+RunOutput CompareOutput(const CompareResult& result, const CompareConfig& cfg);
 
 }  // namespace meshreuse

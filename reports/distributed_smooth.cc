@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdio>
 #include <cstring>
 #include <stdexcept>
 
@@ -184,78 +185,149 @@ PartitionedMesh LoadPartitioned(const std::string& path, const std::string& meth
   return pm;
 }
 
+namespace {
+
+// A rank's part from a distributed read: each rank reads its part (its range, or its PT-Scotch
+// part), gets its ghosts from their owners, and one all-gather of counts checks what no rank can
+// alone and gives every rank the part graph to colour.
+RankPart SetUpFromRanges(const DistSmoothConfig& cfg, Communicator& tx, const Log& log,
+                         DistSmoothResult* res, SmoothRankStats* st) {
+  const int32_t parts = tx.size(), rank = tx.rank();
+  RankNeighbourhood nb;
+  uint64_t rows_read = 0;
+  if (cfg.partition == "ptscotch") {
+    log.Say("reading rank " + std::to_string(rank) + "'s range of graph rows of " + cfg.mesh);
+    GraphRows rows = ReadRangeGraphRows(cfg.mesh, rank, parts);
+    rows_read = rows.bytes_read;
+    const int64_t n = rows.vertices;
+    log.Say("partitioning " + Grouped(n) + " vertices into " + std::to_string(parts) +
+            " parts (PT-Scotch, all ranks)");
+    const std::vector<int32_t> mine = cfg.job_partition(rows, parts, cfg.seed);
+    rows = GraphRows();  // the rows are PT-Scotch's alone: freed before the part is read
+    std::vector<int64_t> owned = GatherOwnedIds(tx, n, mine);
+    log.Say("reading rank " + std::to_string(rank) + "'s PT-Scotch part of " + cfg.mesh);
+    nb = ReadPartNeighbourhood(
+        cfg.mesh, rank, parts, std::move(owned),
+        [&](const std::vector<int64_t>& ghosts) { return LookUpParts(tx, n, mine, ghosts); },
+        GhostExchange(tx));
+  } else {
+    log.Say("reading rank " + std::to_string(rank) + "'s range of " + cfg.mesh);
+    nb = ReadRankNeighbourhood(cfg.mesh, rank, parts, GhostExchange(tx));
+  }
+  nb.bytes_read += rows_read;
+  log.Say("rank " + std::to_string(rank) + " read " + Grouped(nb.owned) + " owned vertices and " +
+          Grouped(nb.mesh.NumVertices() - nb.owned) + " ghosts (" +
+          Fixed(nb.bytes_read / 1048576.0, 1) + " MB of the file)");
+  std::vector<RankShare> shares;
+  for (const std::string& b : tx.AllGather(PackShare(ShareOf(nb))))
+    shares.push_back(UnpackShare(b));
+  const std::vector<std::vector<int32_t>> graph = CheckRankShares(cfg.mesh, shares);
+  const std::vector<int32_t> colour = GreedyPartColouring(graph, &res->colours);
+  log.Say("laying out rank " + std::to_string(rank) + "'s part (" + cfg.ordering + ")");
+  const int64_t vertices = nb.vertices, triangles = nb.triangles, bytes_read = nb.bytes_read;
+  RankPart p = BuildRankPart(std::move(nb), colour, cfg.ordering, cfg.seed, cfg.placement);
+  res->vertices = static_cast<int32_t>(vertices);
+  res->triangles = static_cast<int32_t>(triangles);
+  for (const RankShare& s : shares) res->cut_edges += s.cut_edges;
+  st->bytes_read = static_cast<uint64_t>(bytes_read);
+  return p;
+}
+
+// A rank's part from the whole mesh, which every rank reads (and partitions, or PT-Scotch does
+// over the job); `m` keeps the mesh for rank 0's output.
+RankPart SetUpWhole(const DistSmoothConfig& cfg, Communicator& tx, const Log& log,
+                    DistSmoothResult* res, Mesh* m) {
+  const int32_t parts = tx.size(), rank = tx.rank();
+  PartitionedMesh pm;
+  if (cfg.partition == "ptscotch") {  // every rank reads the whole mesh; the job partitions it
+    pm.mesh = LoadForRanks(cfg.mesh, parts, log);
+    log.Say("partitioning " + std::to_string(pm.mesh.NumVertices()) + " vertices into " +
+            std::to_string(parts) + " parts (PT-Scotch, all ranks)");
+    const std::vector<int32_t> mine =
+        cfg.job_partition(RangeGraphRows(pm.mesh, rank, parts), parts, cfg.seed);
+    pm.part = AllParts(tx, pm.mesh.NumVertices(), mine);
+  } else {
+    pm = LoadPartitioned(cfg.mesh, cfg.partition, parts, cfg.seed, log);
+  }
+  *m = std::move(pm.mesh);
+  const std::vector<int32_t>& part = pm.part;
+  const PartitionStats ps = MeasurePartition(*m, part, parts);
+  RankPart p =
+      BuildRankPart(*m, part, parts, ps.colour, rank, cfg.ordering, cfg.seed, cfg.placement);
+  res->vertices = m->NumVertices(), res->triangles = m->NumTriangles();
+  res->colours = ps.colours, res->cut_edges = ps.cut_edges;
+  return p;
+}
+
+// Rank 0 gathers the moved vertices (boundary ones never move), pi's pieces and the ranks'
+// statistics, and writes the mesh (unless every rank wrote its range) and pi.
+void GatherAndWrite(const DistSmoothConfig& cfg, const RankPart& p, const SmoothRankStats& st,
+                    bool parallel_out, Communicator& tx, const Log& log, DistSmoothResult* res,
+                    Mesh* m) {
+  const int32_t parts = tx.size(), rank = tx.rank();
+  Packer out;
+  out.Put(st);
+  out.Put(p.colour);
+  // The moves only when something needs them (-o, --pi-out): 24 bytes a vertex on rank 0.
+  const size_t moved = (cfg.output.empty() || parallel_out) && cfg.pi_out.empty() ? 0 : p.movable;
+  out.PutVector(p.gid.data(), moved);
+  out.PutVector(p.xy.data(), 2 * moved);
+  out.Put<int64_t>(p.noncut);
+  const std::vector<std::string> all = tx.Gather(out.Take());
+  if (rank != 0) return;
+  // A distributed read leaves no rank the whole mesh: rank 0 reads it now to write it (a mesh that
+  // fits one node; the ranks' moves are what it gathered).
+  if (ReadsRanges(cfg) && !cfg.output.empty() && !parallel_out)
+    *m = LoadForRanks(cfg.mesh, parts, log);
+  std::vector<RankMoves> moves(parts);
+  for (int32_t r = 0; r < parts; ++r) {
+    Unpacker in(all[r]);
+    res->ranks.push_back(in.Get<SmoothRankStats>());
+    RankMoves& mv = moves[r];
+    mv.colour = in.Get<int32_t>();
+    mv.placement = cfg.placement;
+    mv.gid = in.GetVector<int64_t>();
+    const std::vector<double> xy = in.GetVector<double>();
+    mv.noncut = static_cast<int32_t>(in.Get<int64_t>());
+    for (size_t k = 0; k < mv.gid.size() && !m->xy.empty(); ++k) {
+      m->xy[2 * mv.gid[k]] = xy[2 * k];
+      m->xy[2 * mv.gid[k] + 1] = xy[2 * k + 1];
+    }
+  }
+  if (!cfg.output.empty() && !parallel_out)
+    for (const std::string& f : WriteMesh(*m, cfg.output)) {
+      log.Say("wrote " + f);
+      res->written.push_back(f);
+    }
+  if (!cfg.pi_out.empty()) {
+    const std::vector<int64_t> pi = VisitOrderOf(moves);
+    WriteAtomically(cfg.pi_out, [&](std::FILE* f) {
+      std::fprintf(f,
+                   "# the serial Gauss-Seidel visit order of `meshreuse-mpi smooth %s` on %d "
+                   "ranks (ordered mode, cut vertices %s): meshreuse smooth MESH --visit-order "
+                   "THIS\n",
+                   cfg.mesh.c_str(), parts, CutPlacementName(cfg.placement));
+      for (int64_t v : pi) std::fprintf(f, "%lld\n", static_cast<long long>(v));
+    });
+    log.Say("wrote " + cfg.pi_out);
+    res->written.push_back(cfg.pi_out);
+  }
+}
+
+}  // namespace
+
 DistSmoothResult RunDistributedSmooth(const DistSmoothConfig& cfg, Communicator& tx, const Log& log,
                                       const std::function<void(const DistSmoothResult&)>& on_setup,
                                       const std::function<void(const HaloSweep&)>& on_sweep) {
   CheckDistSmoothConfig(cfg);
   const auto t0 = std::chrono::steady_clock::now();
-  const int32_t parts = tx.size(), rank = tx.rank();
   DistSmoothResult res;
-  res.parts = parts;
+  res.parts = tx.size();
   Mesh m;
-  RankPart p;
   SmoothRankStats st;
-  if (ReadsRanges(cfg)) {
-    // Each rank reads its part (its range, or its PT-Scotch part), gets its ghosts from their
-    // owners, and one all-gather of counts checks what no rank can alone and gives every rank the
-    // part graph to colour.
-    RankNeighbourhood nb;
-    uint64_t rows_read = 0;
-    if (cfg.partition == "ptscotch") {
-      log.Say("reading rank " + std::to_string(rank) + "'s range of graph rows of " + cfg.mesh);
-      GraphRows rows = ReadRangeGraphRows(cfg.mesh, rank, parts);
-      rows_read = rows.bytes_read;
-      const int64_t n = rows.vertices;
-      log.Say("partitioning " + Grouped(n) + " vertices into " + std::to_string(parts) +
-              " parts (PT-Scotch, all ranks)");
-      const std::vector<int32_t> mine = cfg.job_partition(rows, parts, cfg.seed);
-      rows = GraphRows();  // the rows are PT-Scotch's alone: freed before the part is read
-      std::vector<int64_t> owned = GatherOwnedIds(tx, n, mine);
-      log.Say("reading rank " + std::to_string(rank) + "'s PT-Scotch part of " + cfg.mesh);
-      nb = ReadPartNeighbourhood(
-          cfg.mesh, rank, parts, std::move(owned),
-          [&](const std::vector<int64_t>& ghosts) { return LookUpParts(tx, n, mine, ghosts); },
-          GhostExchange(tx));
-    } else {
-      log.Say("reading rank " + std::to_string(rank) + "'s range of " + cfg.mesh);
-      nb = ReadRankNeighbourhood(cfg.mesh, rank, parts, GhostExchange(tx));
-    }
-    nb.bytes_read += rows_read;
-    log.Say("rank " + std::to_string(rank) + " read " + Grouped(nb.owned) + " owned vertices and " +
-            Grouped(nb.mesh.NumVertices() - nb.owned) + " ghosts (" +
-            Fixed(nb.bytes_read / 1048576.0, 1) + " MB of the file)");
-    std::vector<RankShare> shares;
-    for (const std::string& b : tx.AllGather(PackShare(ShareOf(nb))))
-      shares.push_back(UnpackShare(b));
-    const std::vector<std::vector<int32_t>> graph = CheckRankShares(cfg.mesh, shares);
-    const std::vector<int32_t> colour = GreedyPartColouring(graph, &res.colours);
-    log.Say("laying out rank " + std::to_string(rank) + "'s part (" + cfg.ordering + ")");
-    const int64_t vertices = nb.vertices, triangles = nb.triangles, bytes_read = nb.bytes_read;
-    p = BuildRankPart(std::move(nb), colour, cfg.ordering, cfg.seed, cfg.placement);
-    res.vertices = static_cast<int32_t>(vertices);
-    res.triangles = static_cast<int32_t>(triangles);
-    for (const RankShare& s : shares) res.cut_edges += s.cut_edges;
-    st.bytes_read = static_cast<uint64_t>(bytes_read);
-  } else {
-    PartitionedMesh pm;
-    if (cfg.partition == "ptscotch") {  // every rank reads the whole mesh; the job partitions it
-      pm.mesh = LoadForRanks(cfg.mesh, parts, log);
-      log.Say("partitioning " + std::to_string(pm.mesh.NumVertices()) + " vertices into " +
-              std::to_string(parts) + " parts (PT-Scotch, all ranks)");
-      const std::vector<int32_t> mine =
-          cfg.job_partition(RangeGraphRows(pm.mesh, rank, parts), parts, cfg.seed);
-      pm.part = AllParts(tx, pm.mesh.NumVertices(), mine);
-    } else {
-      pm = LoadPartitioned(cfg.mesh, cfg.partition, parts, cfg.seed, log);
-    }
-    m = std::move(pm.mesh);
-    const std::vector<int32_t>& part = pm.part;
-    const PartitionStats ps = MeasurePartition(m, part, parts);
-    p = BuildRankPart(m, part, parts, ps.colour, rank, cfg.ordering, cfg.seed, cfg.placement);
-    res.vertices = m.NumVertices(), res.triangles = m.NumTriangles();
-    res.colours = ps.colours, res.cut_edges = ps.cut_edges;
-  }
-  st.rank = rank, st.colour = p.colour;
+  RankPart p = ReadsRanges(cfg) ? SetUpFromRanges(cfg, tx, log, &res, &st)
+                                : SetUpWhole(cfg, tx, log, &res, &m);
+  st.rank = tx.rank(), st.colour = p.colour;
   st.owned = p.owned, st.noncut = p.noncut, st.cut = p.cut(), st.boundary = p.owned - p.movable;
   st.ghosts = p.ghosts(), st.triangles = static_cast<int64_t>(p.weight.size());
   st.links = static_cast<int64_t>(p.links.size());
@@ -274,60 +346,11 @@ DistSmoothResult RunDistributedSmooth(const DistSmoothConfig& cfg, Communicator&
   st.messages = res.result.messages;
   st.bytes_sent = res.result.values_sent * sizeof(double);
   st.peak_rss_bytes = PeakRssBytes();
-
   // A mesh file read in ranges is written by every rank at once (mesh_file.h); -o in any other
   // format, or onto a device, is gathered.
   const bool parallel_out =
       ReadsRanges(cfg) && IsMeshFilePath(cfg.output) && WriteInRanges(cfg, p, tx, log, &res);
-
-  // Rank 0 gathers the moved vertices (boundary ones never move), pi's pieces and the stats.
-  Packer out;
-  out.Put(st);
-  out.Put(p.colour);
-  // The moves only when something needs them (-o, --pi-out): 24 bytes a vertex on rank 0.
-  const size_t moved = (cfg.output.empty() || parallel_out) && cfg.pi_out.empty() ? 0 : p.movable;
-  out.PutVector(p.gid.data(), moved);
-  out.PutVector(p.xy.data(), 2 * moved);
-  out.Put<int64_t>(p.noncut);
-  const std::vector<std::string> all = tx.Gather(out.Take());
-  if (rank != 0) return res;
-  // A distributed read leaves no rank the whole mesh: rank 0 reads it now to write it (a mesh that
-  // fits one node; the ranks' moves are what it gathered).
-  if (ReadsRanges(cfg) && !cfg.output.empty() && !parallel_out)
-    m = LoadForRanks(cfg.mesh, parts, log);
-  std::vector<RankMoves> moves(parts);
-  for (int32_t r = 0; r < parts; ++r) {
-    Unpacker in(all[r]);
-    res.ranks.push_back(in.Get<SmoothRankStats>());
-    RankMoves& mv = moves[r];
-    mv.colour = in.Get<int32_t>();
-    mv.placement = cfg.placement;
-    mv.gid = in.GetVector<int64_t>();
-    const std::vector<double> xy = in.GetVector<double>();
-    mv.noncut = static_cast<int32_t>(in.Get<int64_t>());
-    for (size_t k = 0; k < mv.gid.size() && !m.xy.empty(); ++k) {
-      m.xy[2 * mv.gid[k]] = xy[2 * k];
-      m.xy[2 * mv.gid[k] + 1] = xy[2 * k + 1];
-    }
-  }
-  if (!cfg.output.empty() && !parallel_out)
-    for (const std::string& f : WriteMesh(m, cfg.output)) {
-      log.Say("wrote " + f);
-      res.written.push_back(f);
-    }
-  if (!cfg.pi_out.empty()) {
-    const std::vector<int64_t> pi = VisitOrderOf(moves);
-    WriteAtomically(cfg.pi_out, [&](std::FILE* f) {
-      std::fprintf(f,
-                   "# the serial Gauss-Seidel visit order of `meshreuse-mpi smooth %s` on %d "
-                   "ranks (ordered mode, cut vertices %s): meshreuse smooth MESH --visit-order "
-                   "THIS\n",
-                   cfg.mesh.c_str(), parts, CutPlacementName(cfg.placement));
-      for (int64_t v : pi) std::fprintf(f, "%lld\n", static_cast<long long>(v));
-    });
-    log.Say("wrote " + cfg.pi_out);
-    res.written.push_back(cfg.pi_out);
-  }
+  GatherAndWrite(cfg, p, st, parallel_out, tx, log, &res, &m);
   return res;
 }
 
@@ -370,6 +393,27 @@ Json DistSmoothJson(const DistSmoothConfig& cfg, const DistSmoothResult& r) {
           {"quality_after", r.result.quality_after.ToDouble()},
           {"sweeps", sweeps},
           {"per_rank", RankStatsTable(r.ranks).JsonValue()}};
+}
+
+RunOutput DistSmoothOutput(const DistSmoothResult& r, const DistSmoothConfig& cfg) {
+  RunOutput o;
+  o.tool = "meshreuse-mpi smooth";
+  const HaloResult& h = r.result;
+  char line[200];
+  std::snprintf(line, sizeof line, "sweeps %zu (%s), quality %.6f -> %.6f", h.sweeps.size(),
+                h.converged ? "converged" : "max-iters reached", h.quality_before.ToDouble(),
+                h.quality_after.ToDouble());
+  o.text.emplace_back(line);
+  o.text.emplace_back("");
+  o.csv = RunOutput::Share(RankStatsTable(r.ranks));
+  o.text.emplace_back(o.csv);
+  Table sweeps({"sweep", "quality", "improvement", "ms"});
+  for (const HaloSweep& s : h.sweeps)
+    sweeps.AddRow({std::to_string(s.sweep), ExactNumber(s.quality), ExactNumber(s.improvement),
+                   ExactNumber(1e3 * s.seconds)});
+  o.tables = {{"sweeps", RunOutput::Share(std::move(sweeps)), {"csv"}}, {"ranks", o.csv, {"csv"}}};
+  o.configuration = DistSmoothJson(cfg, r);
+  return o;
 }
 
 }  // namespace meshreuse

@@ -22,6 +22,7 @@
 #include "core/ranks/rank_neighbourhood.h"
 #include "core/table.h"
 #include "reports/log.h"
+#include "reports/output.h"
 #include "reports/run_info.h"
 
 namespace meshreuse {
@@ -87,5 +88,8 @@ DistSmoothResult RunDistributedSmooth(
     const std::function<void(const HaloSweep&)>& on_sweep = {});
 Table RankStatsTable(const std::vector<SmoothRankStats>& ranks);
 Json DistSmoothJson(const DistSmoothConfig& cfg, const DistSmoothResult& r);
+// What rank 0 prints after the sweeps (the summary line and each rank's table) and writes under
+// --out (sweeps.csv, ranks.csv, run.json).
+RunOutput DistSmoothOutput(const DistSmoothResult& r, const DistSmoothConfig& cfg);
 
 }  // namespace meshreuse

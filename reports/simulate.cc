@@ -137,4 +137,49 @@ Json SimulateConfigJson(const SimulateConfig& cfg) {
   return j;
 }
 
+RunOutput SimulateOutput(const std::vector<std::unique_ptr<CacheSimulation>>& runs,
+                         const SimulateConfig& cfg, bool per_sweep) {
+  RunOutput o;
+  o.tool = "meshreuse simulate";
+  const RunOutput::TablePtr t = RunOutput::Share(SimulateTable(runs, per_sweep));
+  const RunOutput::TablePtr arrays =
+      cfg.by_array ? RunOutput::Share(SimulateArrayTable(runs)) : nullptr;
+  o.csv = cfg.by_array ? arrays : t;
+  o.json = o.csv;
+  o.text.emplace_back(o.csv);
+  o.text.emplace_back("(simulated: set-associative, write-allocate, " +
+                      std::to_string(cfg.line_bytes) +
+                      " B lines; each thread stream has private caches" +
+                      (cfg.by_array ? "; per array: its lookups at each level and the misses "
+                                      "among them, miss_share of the level's misses"
+                                    : "") +
+                      ")");
+  o.tables.push_back({"simulate", t, {"csv", "json"}});
+  if (cfg.by_array) o.tables.push_back({"simulate-arrays", arrays, {"csv", "json"}});
+  o.configuration = SimulateConfigJson(cfg);
+  return o;
+}
+
+RunOutput MachineOutput(const std::vector<std::unique_ptr<MulticoreSimulation>>& runs,
+                        const SimulateConfig& cfg, bool warm) {
+  RunOutput o;
+  o.tool = "meshreuse simulate";
+  o.csv = RunOutput::Share(MachineTable(runs, warm));
+  o.json = o.csv;
+  o.text.emplace_back(o.csv);
+  if (!runs.empty()) {
+    const Machine& m = runs[0]->machine();
+    o.text.emplace_back(
+        "(simulated on " + m.name + ": " + std::to_string(m.sockets) + " socket(s) x " +
+        std::to_string(m.cores_per_socket) + " cores, " + PlacementName(cfg.placement) +
+        " placement, interleave " + InterleaveName(cfg.interleave) +
+        "; per thread: accesses per level, memory local/remote (NUMA " +
+        (m.numa == Numa::kFirstTouch ? "first-touch: pages on socket 0" : "interleaved") +
+        "), and on 'total' the cost model's cycles)");
+  }
+  o.tables.push_back({"simulate", o.csv, {"csv", "json"}});
+  o.configuration = SimulateConfigJson(cfg);
+  return o;
+}
+
 }  // namespace meshreuse

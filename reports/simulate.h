@@ -16,6 +16,7 @@
 #include "core/smoother.h"
 #include "core/table.h"
 #include "reports/log.h"
+#include "reports/output.h"
 #include "reports/run_info.h"
 #include "reports/stream_source.h"
 
@@ -50,5 +51,11 @@ Table MachineTable(const std::vector<std::unique_ptr<MulticoreSimulation>>& runs
 int ParseInterleave(const std::string& s);
 std::string InterleaveName(int interleave);
 Json SimulateConfigJson(const SimulateConfig& cfg);
+// What `simulate` prints and writes: the rows (per array with cfg.by_array) and the line saying
+// what was simulated; under --out simulate.{csv,json} (and simulate-arrays), run.json.
+RunOutput SimulateOutput(const std::vector<std::unique_ptr<CacheSimulation>>& runs,
+                         const SimulateConfig& cfg, bool per_sweep);
+RunOutput MachineOutput(const std::vector<std::unique_ptr<MulticoreSimulation>>& runs,
+                        const SimulateConfig& cfg, bool warm);
 
 }  // namespace meshreuse

@@ -164,4 +164,19 @@ Json SmoothConfigJson(const SmoothConfig& cfg, const CounterNote& counters) {
   return j;
 }
 
+RunOutput SmoothOutput(const std::vector<SmoothRun>& runs, const SmoothConfig& cfg,
+                       const CounterNote& counters) {
+  RunOutput o;
+  o.tool = "meshreuse smooth";
+  const RunOutput::TablePtr summary = RunOutput::Share(SmoothSummaryTable(runs)),
+                            sweeps = RunOutput::Share(SmoothSweepTable(runs));
+  if (runs.size() > 1) o.text.emplace_back(summary);
+  o.json = Json({{"results", SmoothResultsJson(runs)}, {"sweeps", sweeps->JsonValue()}});
+  o.csv = sweeps;
+  o.tables = {{"summary", summary, {"csv", "md"}}, {"sweeps", sweeps, {"csv"}}};
+  o.configuration = SmoothConfigJson(cfg, counters);
+  o.extra = {{"results", SmoothResultsJson(runs)}};
+  return o;
+}
+
 }  // namespace meshreuse

@@ -13,6 +13,7 @@
 #include "core/smoother.h"
 #include "core/table.h"
 #include "reports/log.h"
+#include "reports/output.h"
 #include "reports/run_info.h"
 
 namespace meshreuse {
@@ -58,5 +59,10 @@ Table SmoothSummaryTable(const std::vector<SmoothRun>& runs);
 Table SmoothSweepTable(const std::vector<SmoothRun>& runs);
 Json SmoothResultsJson(const std::vector<SmoothRun>& runs);
 Json SmoothConfigJson(const SmoothConfig& cfg, const CounterNote& counters);
+// What `smooth` prints and writes once the runs are done (each run's sweeps are printed as they
+// come, by the CLI's hooks): the summary of several runs; --json the results and sweeps, --csv the
+// sweeps; under --out summary.{csv,md}, sweeps.csv and run.json.
+RunOutput SmoothOutput(const std::vector<SmoothRun>& runs, const SmoothConfig& cfg,
+                       const CounterNote& counters);
 
 }  // namespace meshreuse

@@ -260,4 +260,31 @@ std::vector<std::string> Table3Notes(const std::vector<OrderingValidation>& r, b
   return notes;
 }
 
+RunOutput ValidationOutput(const std::vector<OrderingValidation>& r, const ValidationConfig& cfg) {
+  RunOutput o;
+  o.tool = "meshreuse validate";
+  const Table v = ValidationTable(r), t3 = Table3(r), sw = ValidationSweepTable(r),
+              cost = ValidationCostTable(r);
+  const std::vector<std::string> notes = Table3Notes(r, cfg.exclude_cold);
+  o.json =
+      Json({{"validation", v.JsonValue()}, {"table3", t3.JsonValue()}, {"cost", cost.JsonValue()}});
+  const RunOutput::TablePtr vp = RunOutput::Share(v), cp = RunOutput::Share(cost),
+                            tp = RunOutput::Share(t3);
+  for (const RunOutput::TablePtr& t : {vp, cp, tp}) {
+    o.text.emplace_back(t);
+    o.text.emplace_back("");
+  }
+  for (const std::string& n : notes) o.text.emplace_back(n);
+  o.csv = vp;
+  o.tables = {
+      {"validate", vp, {"csv", "md", "json"}}, {"cost", cp, {"csv"}}, {"table3", tp, {"csv"}}};
+  std::string md = t3.Markdown();
+  for (const std::string& n : notes) md += "\n" + n + "\n";
+  o.files.emplace_back("table3.md", md);
+  o.tables.push_back({"sweeps", RunOutput::Share(sw), {"csv"}});
+  o.configuration = ValidationConfigJson(cfg);
+  o.extra = {{"counters", r.empty() ? "" : r[0].counters}};
+  return o;
+}
+
 }  // namespace meshreuse

@@ -22,6 +22,7 @@
 #include "core/permutation.h"
 #include "core/smoother.h"
 #include "core/table.h"
+#include "reports/output.h"
 #include "reports/run_info.h"
 #include "reports/stream_source.h"
 
@@ -90,6 +91,10 @@ Table Table3(const std::vector<OrderingValidation>& r);
 // latencies).
 Table ValidationCostTable(const std::vector<OrderingValidation>& r);
 Json ValidationConfigJson(const ValidationConfig& cfg);
+// What `validate` prints and writes: the validation, cost and Table 3 tables with Table 3's notes
+// (--csv: the validation table; --json: the three as one object), and under --out validate.{csv,
+// md,json}, cost.csv, table3.{csv,md}, sweeps.csv and run.json.
+RunOutput ValidationOutput(const std::vector<OrderingValidation>& r, const ValidationConfig& cfg);
 // Notes for the tables: where an inverse capacity is infinite, why.
 std::vector<std::string> Table3Notes(const std::vector<OrderingValidation>& r, bool exclude_cold);
 
