@@ -45,20 +45,9 @@ struct Where {
   }
 };
 
-}  // namespace
-
-Mesh BuildMesh(RawMesh raw, BuildReport* report) {
-  const Where where{raw};
-  if (raw.xy.size() % 2 != 0 || raw.tri.size() % 3 != 0)
-    throw InputError(raw.vertex_file, 0, "internal: coordinate or triangle array has a bad length");
-  const int64_t nv_raw = static_cast<int64_t>(raw.xy.size() / 2);
-  const int64_t nt = static_cast<int64_t>(raw.tri.size() / 3);
-  if (nv_raw > INT32_MAX || nt > INT32_MAX)
-    throw InputError(raw.vertex_file, 0, "mesh too large: vertex and triangle ids are 32-bit");
-  if (nt == 0) throw InputError(raw.triangle_file, 0, "the mesh has no triangles");
-
-  // Coordinates beyond 1e150 would overflow the squared edge lengths (quality, area) to inf and
-  // NaN; no mesh needs them, so they are refused where they are read.
+// Coordinates beyond 1e150 would overflow the squared edge lengths (quality, area) to inf and
+// NaN; no mesh needs them, so they are refused where they are read.
+void CheckCoordinates(const RawMesh& raw, const Where& where, int64_t nv_raw) {
   constexpr double kMaxCoordinate = 1e150;
   for (int64_t v = 0; v < nv_raw; ++v)
     for (int k = 0; k < 2; ++k) {
@@ -74,9 +63,11 @@ Mesh BuildMesh(RawMesh raw, BuildReport* report) {
                              ", beyond +-1e150 (squared edge lengths would overflow)");
       }
     }
+}
 
-  // Per-triangle checks, in parallel; on a failure the first failing triangle is checked again,
-  // serially, for the message the serial order gives. Then which vertices are used.
+// Per-triangle checks, in parallel; on a failure the first failing triangle is checked again,
+// serially, for the message the serial order gives.
+void CheckTriangles(const RawMesh& raw, const Where& where, int64_t nv_raw, int64_t nt) {
   auto check_triangle = [&](int64_t t, bool loud) {
     const int32_t* c = &raw.tri[3 * t];
     for (int k = 0; k < 3; ++k)
@@ -107,14 +98,14 @@ Mesh BuildMesh(RawMesh raw, BuildReport* report) {
   for (int64_t t = 0; t < nt; ++t)
     if (!check_triangle(t, false)) first_bad_tri = std::min(first_bad_tri, t);
   if (first_bad_tri < nt) check_triangle(first_bad_tri, true);  // throws
-  std::vector<uint8_t> used(nv_raw, 0);
-  for (int32_t c : raw.tri) used[c] = 1;
+}
 
-  // Drop unused vertices, keeping the order of the rest (the ORI ordering is the file's order).
-  // Only then are the renumbering arrays built: a mesh that uses every vertex needs none.
-  Mesh m;
-  if (report)
-    for (std::string& w : raw.warnings) report->warnings.push_back(std::move(w));
+// Drops unused vertices, keeping the order of the rest (the ORI ordering is the file's order);
+// returns the kept raw ids (empty when every vertex is used). Only then are the renumbering arrays
+// built: a mesh that uses every vertex needs none.
+std::vector<int32_t> DropUnused(RawMesh& raw, const Where& where, std::vector<uint8_t>& used,
+                                BuildReport* report) {
+  const int64_t nv_raw = static_cast<int64_t>(raw.xy.size() / 2);
   int64_t n_used = 0;
   for (uint8_t u : used) n_used += u;
   const int32_t nv = static_cast<int32_t>(n_used);
@@ -146,11 +137,12 @@ Mesh BuildMesh(RawMesh raw, BuildReport* report) {
     raw.xy.shrink_to_fit();
     for (int32_t& c : raw.tri) c = new_id[c];
   }
-  used = std::vector<uint8_t>();
-  m.xy = std::move(raw.xy);
-  m.tri = std::move(raw.tri);
-  // v2t by a counting sort: rows in increasing triangle id. The offsets serve as the fill cursors
-  // (each ends at the next row's start) and are shifted back afterwards.
+  return kept;
+}
+
+// v2t by a counting sort: rows in increasing triangle id. The offsets serve as the fill cursors
+// (each ends at the next row's start) and are shifted back afterwards.
+void BuildV2t(Mesh& m, int32_t nv) {
   m.v2t.off.assign(static_cast<size_t>(nv) + 1, 0);
   for (int32_t c : m.tri) ++m.v2t.off[c + 1];
   for (int32_t v = 0; v < nv; ++v) m.v2t.off[v + 1] += m.v2t.off[v];
@@ -163,110 +155,114 @@ Mesh BuildMesh(RawMesh raw, BuildReport* report) {
     for (int32_t v = nv; v > 0; --v) cur[v] = cur[v - 1];
     cur[0] = 0;
   }
-  // Tags of mesh vertices, for messages: the raw vertex's.
-  auto raw_of = [&](int32_t v) { return kept.empty() ? v : kept[v]; };
+}
 
-  // Per vertex: its distinct neighbours with each edge's triangle count (boundary and non-manifold
-  // edges) and duplicate triangles (checked at the triangle's smallest corner). Vertices are
-  // independent, so this runs in parallel. On an error the first offending vertex is visited
-  // again, serially, to throw the message the serial order would give.
-  struct Nbr {
-    int32_t u;
-    int32_t count;  // triangles on the edge v-u
-  };
-  // Fills `row` with v's neighbours, sorted, and says whether v's triangles are sound. Without
-  // branches on the data: the 2 x deg other corners (a < b per triangle) are ranked, stably, into
-  // order, runs of equal ids become (id, count), and duplicate triangles are a mask over the
-  // pairs. With branches (a lookup per corner, an insertion sort) the pass was bound by
-  // mispredictions: 0.96 s against 0.51 s at 10^7 vertices on two threads. That is O(deg^2) per
-  // vertex, so above kSmallFan corners the same results come from sorting, O(deg log deg): one
-  // vertex in 100,000 triangles (a fan) took 20 s the quadratic way.
-  constexpr int kSmallFan = 128;
-  struct Scratch {
-    std::vector<int32_t> w, sorted;
-    std::vector<Nbr> row;
-    std::vector<std::pair<int32_t, int32_t>> pairs;
-  };
-  auto neighbours = [&](int32_t v, Scratch& s) {
-    const int32_t* tb = m.v2t.RowBegin(v);
-    const int n = static_cast<int>(2 * m.v2t.RowSize(v));
-    s.w.resize(n);
-    s.sorted.resize(n);
-    int32_t* w = s.w.data();
-    for (int j = 0; j < n; j += 2) {
-      const int32_t* c = &m.tri[3 * static_cast<int64_t>(tb[j / 2])];
-      const int32_t a = c[0] == v ? c[1] : c[0], b = c[2] == v ? c[1] : c[2];
-      w[j] = std::min(a, b), w[j + 1] = std::max(a, b);
+// Per vertex: its distinct neighbours with each edge's triangle count (boundary and non-manifold
+// edges) and duplicate triangles (checked at the triangle's smallest corner). Vertices are
+// independent, so this runs in parallel. On an error the first offending vertex is visited
+// again, serially, to throw the message the serial order would give.
+struct Nbr {
+  int32_t u;
+  int32_t count;  // triangles on the edge v-u
+};
+// Fills `row` with v's neighbours, sorted, and says whether v's triangles are sound. Without
+// branches on the data: the 2 x deg other corners (a < b per triangle) are ranked, stably, into
+// order, runs of equal ids become (id, count), and duplicate triangles are a mask over the
+// pairs. With branches (a lookup per corner, an insertion sort) the pass was bound by
+// mispredictions: 0.96 s against 0.51 s at 10^7 vertices on two threads. That is O(deg^2) per
+// vertex, so above kSmallFan corners the same results come from sorting, O(deg log deg): one
+// vertex in 100,000 triangles (a fan) took 20 s the quadratic way.
+constexpr int kSmallFan = 128;
+struct Scratch {
+  std::vector<int32_t> w, sorted;
+  std::vector<Nbr> row;
+  std::vector<std::pair<int32_t, int32_t>> pairs;
+};
+bool Neighbours(const Mesh& m, int32_t v, Scratch& s) {
+  const int32_t* tb = m.v2t.RowBegin(v);
+  const int n = static_cast<int>(2 * m.v2t.RowSize(v));
+  s.w.resize(n);
+  s.sorted.resize(n);
+  int32_t* w = s.w.data();
+  for (int j = 0; j < n; j += 2) {
+    const int32_t* c = &m.tri[3 * static_cast<int64_t>(tb[j / 2])];
+    const int32_t a = c[0] == v ? c[1] : c[0], b = c[2] == v ? c[1] : c[2];
+    w[j] = std::min(a, b), w[j + 1] = std::max(a, b);
+  }
+  bool bad = false;
+  if (n <= kSmallFan) {
+    for (int i = 0; i < n; ++i) {
+      int rank = 0;
+      for (int l = 0; l < n; ++l) rank += (w[l] < w[i]) | ((w[l] == w[i]) & (l < i));
+      s.sorted[rank] = w[i];
     }
-    bool bad = false;
-    if (n <= kSmallFan) {
-      for (int i = 0; i < n; ++i) {
-        int rank = 0;
-        for (int l = 0; l < n; ++l) rank += (w[l] < w[i]) | ((w[l] == w[i]) & (l < i));
-        s.sorted[rank] = w[i];
+    for (int j = 0; j < n; j += 2)
+      for (int q = 0; q < j; q += 2) bad |= (v < w[j]) & (w[q] == w[j]) & (w[q + 1] == w[j + 1]);
+  } else {
+    std::copy(w, w + n, s.sorted.begin());
+    std::sort(s.sorted.begin(), s.sorted.end());
+    s.pairs.clear();  // the triangles whose smallest corner is v: a repeated pair is a duplicate
+    for (int j = 0; j < n; j += 2)
+      if (v < w[j]) s.pairs.emplace_back(w[j], w[j + 1]);
+    std::sort(s.pairs.begin(), s.pairs.end());
+    bad = std::adjacent_find(s.pairs.begin(), s.pairs.end()) != s.pairs.end();
+  }
+  std::vector<Nbr>& row = s.row;
+  row.resize(static_cast<size_t>(n));
+  int k = 0;
+  if (n) row[0] = {s.sorted[0], 1};
+  for (int i = 1; i < n; ++i) {
+    const bool same = s.sorted[i] == s.sorted[i - 1];
+    const int32_t c = row[k].count;
+    k += !same;
+    row[k].u = s.sorted[i];
+    row[k].count = same ? c + 1 : 1;
+  }
+  row.resize(static_cast<size_t>(n ? k + 1 : 0));
+  for (const Nbr& x : row) bad |= x.count > 2;
+  return !bad;
+}
+
+// The first topology error at v, in the order of v's triangles, as a message (thrown).
+[[noreturn]] void ThrowTopologyError(const Mesh& m, const Where& where,
+                                     const std::vector<int32_t>& kept, int32_t v) {
+  auto raw_tag = [&](int32_t x) { return where.Tag(kept.empty() ? x : kept[x]); };
+  // Hashed, so that a vertex of any degree is checked in linear time.
+  std::unordered_map<int32_t, int32_t> seen;     // neighbour -> triangles on the edge v-u
+  std::unordered_map<uint64_t, int32_t> formed;  // (a, b) -> the first triangle v-a-b
+  const int32_t* tb = m.v2t.RowBegin(v);
+  for (const int32_t* p = tb; p != m.v2t.RowEnd(v); ++p) {
+    const int32_t* c = &m.tri[3 * static_cast<int64_t>(*p)];
+    const int32_t a0 = c[0] == v ? c[1] : c[0], b0 = c[2] == v ? c[1] : c[2];
+    const int32_t a = std::min(a0, b0), b = std::max(a0, b0);
+    if (v < a) {  // v is the smallest corner: compare with earlier triangles at v of that kind
+      const uint64_t key = uint64_t{static_cast<uint32_t>(a)} << 32 | static_cast<uint32_t>(b);
+      const auto [it, fresh] = formed.emplace(key, *p);
+      if (!fresh)
+        where.TriError(*p, "duplicate triangle: vertices " + raw_tag(v) + ", " + raw_tag(a) + ", " +
+                               raw_tag(b) + " already form a triangle at " +
+                               where.TriName(it->second));
+    }
+    for (int32_t u : {a, b}) {
+      if (++seen[u] > 2) {
+        const int32_t* first = tb;  // the first triangle at v with the edge v-u
+        while (!HasCorner(&m.tri[3 * static_cast<int64_t>(*first)], u)) ++first;
+        where.TriError(*p, "non-manifold edge: the edge " + raw_tag(v) + "-" + raw_tag(u) +
+                               " already has two triangles (first at " + where.TriName(*first) +
+                               ")");
       }
-      for (int j = 0; j < n; j += 2)
-        for (int q = 0; q < j; q += 2) bad |= (v < w[j]) & (w[q] == w[j]) & (w[q + 1] == w[j + 1]);
-    } else {
-      std::copy(w, w + n, s.sorted.begin());
-      std::sort(s.sorted.begin(), s.sorted.end());
-      s.pairs.clear();  // the triangles whose smallest corner is v: a repeated pair is a duplicate
-      for (int j = 0; j < n; j += 2)
-        if (v < w[j]) s.pairs.emplace_back(w[j], w[j + 1]);
-      std::sort(s.pairs.begin(), s.pairs.end());
-      bad = std::adjacent_find(s.pairs.begin(), s.pairs.end()) != s.pairs.end();
     }
-    std::vector<Nbr>& row = s.row;
-    row.resize(static_cast<size_t>(n));
-    int k = 0;
-    if (n) row[0] = {s.sorted[0], 1};
-    for (int i = 1; i < n; ++i) {
-      const bool same = s.sorted[i] == s.sorted[i - 1];
-      const int32_t c = row[k].count;
-      k += !same;
-      row[k].u = s.sorted[i];
-      row[k].count = same ? c + 1 : 1;
-    }
-    row.resize(static_cast<size_t>(n ? k + 1 : 0));
-    for (const Nbr& x : row) bad |= x.count > 2;
-    return !bad;
-  };
-  // The first topology error at v, in the order of v's triangles, as a message (thrown).
-  auto throw_error_at = [&](int32_t v) {
-    auto raw_tag = [&](int32_t x) { return where.Tag(raw_of(x)); };
-    // Hashed, so that a vertex of any degree is checked in linear time.
-    std::unordered_map<int32_t, int32_t> seen;     // neighbour -> triangles on the edge v-u
-    std::unordered_map<uint64_t, int32_t> formed;  // (a, b) -> the first triangle v-a-b
-    const int32_t* tb = m.v2t.RowBegin(v);
-    for (const int32_t* p = tb; p != m.v2t.RowEnd(v); ++p) {
-      const int32_t* c = &m.tri[3 * static_cast<int64_t>(*p)];
-      const int32_t a0 = c[0] == v ? c[1] : c[0], b0 = c[2] == v ? c[1] : c[2];
-      const int32_t a = std::min(a0, b0), b = std::max(a0, b0);
-      if (v < a) {  // v is the smallest corner: compare with earlier triangles at v of that kind
-        const uint64_t key = uint64_t{static_cast<uint32_t>(a)} << 32 | static_cast<uint32_t>(b);
-        const auto [it, fresh] = formed.emplace(key, *p);
-        if (!fresh)
-          where.TriError(*p, "duplicate triangle: vertices " + raw_tag(v) + ", " + raw_tag(a) +
-                                 ", " + raw_tag(b) + " already form a triangle at " +
-                                 where.TriName(it->second));
-      }
-      for (int32_t u : {a, b}) {
-        if (++seen[u] > 2) {
-          const int32_t* first = tb;  // the first triangle at v with the edge v-u
-          while (!HasCorner(&m.tri[3 * static_cast<int64_t>(*first)], u)) ++first;
-          where.TriError(*p, "non-manifold edge: the edge " + raw_tag(v) + "-" + raw_tag(u) +
-                                 " already has two triangles (first at " + where.TriName(*first) +
-                                 ")");
-        }
-      }
-    }
-    throw InputError(raw.triangle_file, 0,
-                     "internal: no topology error at vertex " + std::to_string(v));
-  };
-  // One pass writes each row at a slot bounded by its triangle count: a vertex whose triangles
-  // form one fan has at most one neighbour more than triangles, so row v starts at
-  // v2t.off[v] + v. The rows are then moved down in order (each only ever moves left). A vertex
-  // with several fans (a bowtie) may not fit: then a second pass fills the sized rows.
+  }
+  throw InputError(where.raw.triangle_file, 0,
+                   "internal: no topology error at vertex " + std::to_string(v));
+}
+
+// v2v and the boundary flags, each vertex's row from its triangles (Neighbours), in parallel. One
+// pass writes each row at a slot bounded by its triangle count: a vertex whose triangles form one
+// fan has at most one neighbour more than triangles, so row v starts at v2t.off[v] + v. The rows
+// are then moved down in order (each only ever moves left). A vertex with several fans (a bowtie)
+// may not fit: then a second pass fills the sized rows.
+void BuildV2v(Mesh& m, const Where& where, const std::vector<int32_t>& kept, int32_t nv) {
   m.boundary.resize(nv);
   m.v2v.off.resize(static_cast<size_t>(nv) + 1);
   m.v2v.off[0] = 0;
@@ -278,7 +274,7 @@ Mesh BuildMesh(RawMesh raw, BuildReport* report) {
     Scratch s;
 #pragma omp for schedule(static, 4096)
     for (int32_t v = 0; v < nv; ++v) {
-      if (!neighbours(v, s)) first_bad = std::min(first_bad, v);
+      if (!Neighbours(m, v, s)) first_bad = std::min(first_bad, v);
       bool on_boundary = false;
       for (const Nbr& n : s.row) on_boundary |= n.count == 1;
       m.boundary[v] = on_boundary;
@@ -291,7 +287,7 @@ Mesh BuildMesh(RawMesh raw, BuildReport* report) {
       for (const Nbr& n : s.row) *out++ = n.u;
     }
   }
-  if (first_bad < nv) throw_error_at(first_bad);
+  if (first_bad < nv) ThrowTopologyError(m, where, kept, first_bad);
   for (int32_t v = 0; v < nv; ++v) m.v2v.off[v + 1] += m.v2v.off[v];
   if (!spill) {
     for (int32_t v = 0; v < nv; ++v)  // off[v] <= v2t.off[v] + v: a forward move never overlaps
@@ -305,12 +301,39 @@ Mesh BuildMesh(RawMesh raw, BuildReport* report) {
       Scratch s;
 #pragma omp for schedule(static, 4096)
       for (int32_t v = 0; v < nv; ++v) {
-        neighbours(v, s);
+        Neighbours(m, v, s);
         int32_t* out = m.v2v.idx.data() + m.v2v.off[v];
         for (const Nbr& n : s.row) *out++ = n.u;
       }
     }
   }
+}
+
+}  // namespace
+
+Mesh BuildMesh(RawMesh raw, BuildReport* report) {
+  const Where where{raw};
+  if (raw.xy.size() % 2 != 0 || raw.tri.size() % 3 != 0)
+    throw InputError(raw.vertex_file, 0, "internal: coordinate or triangle array has a bad length");
+  const int64_t nv_raw = static_cast<int64_t>(raw.xy.size() / 2);
+  const int64_t nt = static_cast<int64_t>(raw.tri.size() / 3);
+  if (nv_raw > INT32_MAX || nt > INT32_MAX)
+    throw InputError(raw.vertex_file, 0, "mesh too large: vertex and triangle ids are 32-bit");
+  if (nt == 0) throw InputError(raw.triangle_file, 0, "the mesh has no triangles");
+  CheckCoordinates(raw, where, nv_raw);
+  CheckTriangles(raw, where, nv_raw, nt);
+  std::vector<uint8_t> used(nv_raw, 0);
+  for (int32_t c : raw.tri) used[c] = 1;
+  Mesh m;
+  if (report)
+    for (std::string& w : raw.warnings) report->warnings.push_back(std::move(w));
+  std::vector<int32_t> kept = DropUnused(raw, where, used, report);
+  const int32_t nv = static_cast<int32_t>(raw.xy.size() / 2);
+  used = std::vector<uint8_t>();
+  m.xy = std::move(raw.xy);
+  m.tri = std::move(raw.tri);
+  BuildV2t(m, nv);
+  BuildV2v(m, where, kept, nv);
   int64_t n_interior = 0;
   for (uint8_t b : m.boundary) n_interior += !b;
   m.interior.resize(static_cast<size_t>(n_interior));

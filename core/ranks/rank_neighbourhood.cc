@@ -165,6 +165,95 @@ void CheckRanks(int64_t n, int32_t rank, int32_t parts) {
   if (rank < 0 || rank >= parts) throw std::invalid_argument("a rank outside the job");
 }
 
+// The ghosts' data read from the file itself (no owner to ask): coordinates, boundary flags and
+// the size of each one's v2t row, checked against the triangle count.
+std::vector<GhostRecord> GhostsFromFile(MeshFile& f, const std::vector<int64_t>& ghosts) {
+  const int64_t nt = f.triangles();
+  std::vector<GhostRecord> ghost;
+  std::vector<double> gxy(2 * ghosts.size());
+  std::vector<uint8_t> gflag(ghosts.size());
+  std::vector<int64_t> goff_at, goff(2 * ghosts.size());
+  for (int64_t g : ghosts) goff_at.push_back(g), goff_at.push_back(g + 1);
+  f.ReadAt(MeshFile::kXy, ghosts, gxy.data());
+  f.ReadAt(MeshFile::kBoundary, ghosts, gflag.data());
+  f.ReadAt(MeshFile::kV2tOff, goff_at, goff.data());
+  for (size_t i = 0; i < ghosts.size(); ++i) {
+    if (goff[2 * i] < 0 || goff[2 * i + 1] > 3 * nt || goff[2 * i + 1] < goff[2 * i])
+      throw InputError(f.path(), 0,
+                       "vertex " + std::to_string(ghosts[i]) + ": v2t row [" +
+                           std::to_string(goff[2 * i]) + ", " + std::to_string(goff[2 * i + 1]) +
+                           ") is reversed or outside 0.." + std::to_string(3 * nt));
+    ghost.push_back({gxy[2 * i], gxy[2 * i + 1], goff[2 * i + 1] - goff[2 * i], gflag[i]});
+  }
+  return ghost;
+}
+
+// Boundary flags: the owned ones checked, the ghosts' taken from the file (their owners check).
+void SetBoundaryFlags(const std::string& path, const std::vector<int64_t>& owned,
+                      const std::vector<uint8_t>& flag, const std::vector<int64_t>& ghosts,
+                      const std::vector<GhostRecord>& ghost, const SortedIds& local_index,
+                      Mesh* mesh) {
+  auto fail = [&](const std::string& what) { throw InputError(path, 0, what); };
+  auto local_of = [&](int64_t g) { return static_cast<int32_t>(local_index.Find(g)); };
+  for (size_t k = 0; k < owned.size(); ++k) {
+    const uint8_t mine = mesh->boundary[local_of(owned[k])];
+    if (flag[k] != mine)
+      fail("vertex " + std::to_string(owned[k]) + ": boundary flag " + std::to_string(flag[k]) +
+           ", but its triangles make it " + (mine ? "a boundary" : "an interior") + " vertex");
+  }
+  for (size_t i = 0; i < ghosts.size(); ++i) {
+    if (ghost[i].boundary > 1)
+      fail("vertex " + std::to_string(ghosts[i]) + ": boundary flag " +
+           std::to_string(ghost[i].boundary) + " (0 or 1)");
+    mesh->boundary[local_of(ghosts[i])] = ghost[i].boundary;
+  }
+  mesh->interior.clear();
+  for (size_t l = 0; l < mesh->boundary.size(); ++l)
+    if (!mesh->boundary[l]) mesh->interior.push_back(static_cast<int32_t>(l));
+}
+
+// The quality weights of the triangles here (from each corner's global row size, as
+// GlobalQualityWeight computes them), the owned triangles, the neighbouring ranks and cut edges.
+void WeighAndLink(const std::string& path, const std::vector<int64_t>& owned,
+                  const std::vector<int64_t>& start, const std::vector<int64_t>& ghosts,
+                  const std::vector<GhostRecord>& ghost, const SortedIds& local_index,
+                  size_t triangles_here, RankNeighbourhood* out) {
+  RankNeighbourhood& nb = *out;
+  const int32_t rank = nb.rank;
+  const int64_t n = nb.vertices;
+  const size_t total = nb.gid.size();
+  auto fail = [&](const std::string& what) { throw InputError(path, 0, what); };
+  auto local_of = [&](int64_t g) { return static_cast<int32_t>(local_index.Find(g)); };
+  // Global row sizes (triangles at each corner) for the quality weights, as GlobalQualityWeight.
+  std::vector<int64_t> row(total);
+  for (size_t i = 0; i < ghosts.size(); ++i) {
+    const int64_t here = nb.mesh.v2t.RowSize(local_of(ghosts[i]));
+    if (ghost[i].triangles < here)
+      fail("vertex " + std::to_string(ghosts[i]) + ": its v2t row has " +
+           std::to_string(ghost[i].triangles) + " triangles, fewer than the " +
+           std::to_string(here) + " that hold it");
+    row[local_of(ghosts[i])] = ghost[i].triangles;
+  }
+  for (size_t k = 0; k < owned.size(); ++k) row[local_of(owned[k])] = start[k + 1] - start[k];
+  const double inv_v = 1.0 / static_cast<double>(n);
+  nb.weight.resize(triangles_here);
+  for (size_t t = 0; t < triangles_here; ++t) {
+    const int32_t* c = &nb.mesh.tri[3 * t];
+    nb.weight[t] = QualityWeightOf(inv_v, row[c[0]], row[c[1]], row[c[2]]);
+    nb.owned_triangles += nb.part[std::min(c[0], std::min(c[1], c[2]))] == rank;
+  }
+  for (size_t k = 0; k < owned.size(); ++k) {
+    const int32_t l = local_of(owned[k]);
+    for (const int32_t* u = nb.mesh.v2v.RowBegin(l); u != nb.mesh.v2v.RowEnd(l); ++u)
+      if (nb.part[*u] != rank) {
+        nb.neighbours.push_back(nb.part[*u]);
+        nb.cut_edges += nb.gid[*u] > owned[k];
+      }
+  }
+  std::sort(nb.neighbours.begin(), nb.neighbours.end());
+  nb.neighbours.erase(std::unique(nb.neighbours.begin(), nb.neighbours.end()), nb.neighbours.end());
+}
+
 RankNeighbourhood ReadNeighbourhood(MeshFile& f, int32_t rank, int32_t parts,
                                     std::vector<int64_t> owned, const GhostOwners& owners,
                                     const GhostLookup& lookup) {
@@ -174,7 +263,6 @@ RankNeighbourhood ReadNeighbourhood(MeshFile& f, int32_t rank, int32_t parts,
   nb.rank = rank, nb.parts = parts, nb.vertices = n, nb.triangles = nt;
   nb.content_id = f.content_id();
   nb.owned = static_cast<int64_t>(owned.size());
-  auto fail = [&](const std::string& what) { throw InputError(path, 0, what); };
   if (!owned.empty() && (owned.front() < 0 || owned.back() >= n))
     throw std::invalid_argument("ReadPartNeighbourhood: an owned id outside the mesh");
   const SortedIds own_index(owned);
@@ -238,20 +326,7 @@ RankNeighbourhood ReadNeighbourhood(MeshFile& f, int32_t rank, int32_t parts,
     GhostRequest req{path, nb.content_id, n, ghosts, ghost_owner};
     ghost = lookup(req, own);
   } else {
-    std::vector<double> gxy(2 * ghosts.size());
-    std::vector<uint8_t> gflag(ghosts.size());
-    std::vector<int64_t> goff_at, goff(2 * ghosts.size());
-    for (int64_t g : ghosts) goff_at.push_back(g), goff_at.push_back(g + 1);
-    f.ReadAt(MeshFile::kXy, ghosts, gxy.data());
-    f.ReadAt(MeshFile::kBoundary, ghosts, gflag.data());
-    f.ReadAt(MeshFile::kV2tOff, goff_at, goff.data());
-    for (size_t i = 0; i < ghosts.size(); ++i) {
-      if (goff[2 * i] < 0 || goff[2 * i + 1] > 3 * nt || goff[2 * i + 1] < goff[2 * i])
-        fail("vertex " + std::to_string(ghosts[i]) + ": v2t row [" + std::to_string(goff[2 * i]) +
-             ", " + std::to_string(goff[2 * i + 1]) + ") is reversed or outside 0.." +
-             std::to_string(3 * nt));
-      ghost.push_back({gxy[2 * i], gxy[2 * i + 1], goff[2 * i + 1] - goff[2 * i], gflag[i]});
-    }
+    ghost = GhostsFromFile(f, ghosts);
   }
   if (ghost.size() != ghosts.size())
     throw std::logic_error("ReadPartNeighbourhood: a ghost lookup answered the wrong count");
@@ -269,53 +344,10 @@ RankNeighbourhood ReadNeighbourhood(MeshFile& f, int32_t rank, int32_t parts,
     throw std::logic_error(
         "ReadPartNeighbourhood: a vertex of the neighbourhood lies in no triangle");
 
-  // Boundary flags: the owned ones checked, the ghosts' taken from the file (their owners check).
-  for (size_t k = 0; k < owned.size(); ++k) {
-    const uint8_t mine = nb.mesh.boundary[local_of(owned[k])];
-    if (flag[k] != mine)
-      fail("vertex " + std::to_string(owned[k]) + ": boundary flag " + std::to_string(flag[k]) +
-           ", but its triangles make it " + (mine ? "a boundary" : "an interior") + " vertex");
-  }
-  for (size_t i = 0; i < ghosts.size(); ++i) {
-    if (ghost[i].boundary > 1)
-      fail("vertex " + std::to_string(ghosts[i]) + ": boundary flag " +
-           std::to_string(ghost[i].boundary) + " (0 or 1)");
-    nb.mesh.boundary[local_of(ghosts[i])] = ghost[i].boundary;
-  }
-  nb.mesh.interior.clear();
-  for (size_t l = 0; l < total; ++l)
-    if (!nb.mesh.boundary[l]) nb.mesh.interior.push_back(static_cast<int32_t>(l));
-
+  SetBoundaryFlags(path, owned, flag, ghosts, ghost, local_index, &nb.mesh);
   nb.part.assign(total, rank);
   for (size_t i = 0; i < ghosts.size(); ++i) nb.part[local_of(ghosts[i])] = ghost_owner[i];
-  // Global row sizes (triangles at each corner) for the quality weights, as GlobalQualityWeight.
-  std::vector<int64_t> row(total);
-  for (size_t i = 0; i < ghosts.size(); ++i) {
-    const int64_t here = nb.mesh.v2t.RowSize(local_of(ghosts[i]));
-    if (ghost[i].triangles < here)
-      fail("vertex " + std::to_string(ghosts[i]) + ": its v2t row has " +
-           std::to_string(ghost[i].triangles) + " triangles, fewer than the " +
-           std::to_string(here) + " that hold it");
-    row[local_of(ghosts[i])] = ghost[i].triangles;
-  }
-  for (size_t k = 0; k < owned.size(); ++k) row[local_of(owned[k])] = o.start[k + 1] - o.start[k];
-  const double inv_v = 1.0 / static_cast<double>(n);
-  nb.weight.resize(triangles_here);
-  for (size_t t = 0; t < triangles_here; ++t) {
-    const int32_t* c = &nb.mesh.tri[3 * t];
-    nb.weight[t] = QualityWeightOf(inv_v, row[c[0]], row[c[1]], row[c[2]]);
-    nb.owned_triangles += nb.part[std::min(c[0], std::min(c[1], c[2]))] == rank;
-  }
-  for (size_t k = 0; k < owned.size(); ++k) {
-    const int32_t l = local_of(owned[k]);
-    for (const int32_t* u = nb.mesh.v2v.RowBegin(l); u != nb.mesh.v2v.RowEnd(l); ++u)
-      if (nb.part[*u] != rank) {
-        nb.neighbours.push_back(nb.part[*u]);
-        nb.cut_edges += nb.gid[*u] > owned[k];
-      }
-  }
-  std::sort(nb.neighbours.begin(), nb.neighbours.end());
-  nb.neighbours.erase(std::unique(nb.neighbours.begin(), nb.neighbours.end()), nb.neighbours.end());
+  WeighAndLink(path, owned, o.start, ghosts, ghost, local_index, triangles_here, &nb);
   nb.bytes_read = f.bytes_read();
   return nb;
 }
