@@ -11,9 +11,14 @@
 # Usage: scripts/fuzz.sh [SECONDS]   (per harness, default 60; two harnesses run at a time)
 set -euo pipefail
 cd "$(dirname "$0")/.."
-secs=${1:-60}
-[[ $secs =~ ^[0-9]+$ ]] || { echo "fuzz.sh: SECONDS must be a number" >&2; exit 2; }
+source scripts/lib.sh
+usage() { lib_usage 2 11; }
+LIB_USAGE=usage
+secs=60
+lib_options @=secs -- "$@"
+[[ $secs =~ ^[0-9]+$ ]] || lib_die "SECONDS must be a number"
 bash scripts/setup.sh --with-fuzz
+mkdir -p build  # its logs go there, on a fresh clone too
 
 echo "== configure and build build/fuzz (clang, libFuzzer)" >&2
 CC=clang CXX=clang++ cmake -S . -B build/fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo -DMESHREUSE_FUZZ=ON \

@@ -26,28 +26,19 @@ cd "$(dirname "$0")/.."
 
 mode=full vertices="" quiet="" orderings="ori,bfs,rdr" threads="" repeat=3 out=""
 shapes="carabiner,crake,dialog,lake,riverflow,ocean,stress,valve,wrench"
-usage() { sed -n '2,22p' "$0" | sed 's/^# \{0,1\}//'; }
-die() { echo "reproduce.sh: $*" >&2; exit 2; }
-need() { [[ $# -ge 2 && -n $2 && $2 != --* ]] || die "$1 needs a value (see --help)"; }
-while (($#)); do
-  case $1 in
-    --quick) mode=quick; shift ;;
-    --scale) mode=scale; shift ;;
-    --vertices) need "$@"; vertices=$2; shift 2 ;;
-    --orderings) need "$@"; orderings=$2; shift 2 ;;
-    --threads) need "$@"; threads=$2; shift 2 ;;
-    --repeat) need "$@"; repeat=$2; shift 2 ;;
-    --shapes) need "$@"; shapes=$2; shift 2 ;;
-    --out) need "$@"; out=$2; shift 2 ;;
-    --quiet) quiet=--quiet; shift ;;
-    -h|--help) usage; exit 0 ;;
-    *) die "unknown argument '$1' (see --help)" ;;
-  esac
-done
-[[ -z $vertices || $vertices =~ ^[0-9]+$ ]] || die "--vertices takes a number, found '$vertices'"
-[[ $repeat =~ ^(auto(:[0-9]+)?|[0-9]+)$ ]] || die "--repeat takes a number >= 3 or auto, found '$repeat'"
-[[ $repeat == auto* || $repeat -ge 3 ]] || die "--repeat must be at least 3: a median and its interval need rounds"
-[[ -z $threads || $threads =~ ^[0-9]+(,[0-9]+)*$ ]] || die "--threads takes numbers like 1,2, found '$threads'"
+source scripts/lib.sh
+usage() { lib_usage 2 22; }
+LIB_USAGE=usage
+quick=0 scale=0 q=0
+lib_options --quick=quick! --scale=scale! --vertices=vertices --orderings=orderings \
+  --threads=threads --repeat=repeat --shapes=shapes --out=out --quiet=q! -- "$@"
+((q)) && quiet=--quiet
+((quick)) && mode=quick
+((scale)) && mode=scale
+[[ -z $vertices || $vertices =~ ^[0-9]+$ ]] || lib_die "--vertices takes a number, found '$vertices'"
+[[ $repeat =~ ^(auto(:[0-9]+)?|[0-9]+)$ ]] || lib_die "--repeat takes a number >= 3 or auto, found '$repeat'"
+[[ $repeat == auto* || $repeat -ge 3 ]] || lib_die "--repeat must be at least 3: a median and its interval need rounds"
+[[ -z $threads || $threads =~ ^[0-9]+(,[0-9]+)*$ ]] || lib_die "--threads takes numbers like 1,2, found '$threads'"
 [[ ,$orderings, == *,ori,* ]] || orderings="ori,$orderings"
 # file:PATH and LABEL=file:PATH resolved from the caller's folder; {mesh} in PATH is each mesh's
 # name (checked by meshreuse report before any work).
@@ -59,7 +50,7 @@ for o in "${specs[@]}"; do
   if [[ $o == file:* ]]; then
     p=${o#file:}
     [[ $p == /* ]] || p=$caller/$p
-    [[ $p == *'{mesh}'* || -f $p ]] || die "--orderings: ${o#file:}: no such file"
+    [[ $p == *'{mesh}'* || -f $p ]] || lib_die "--orderings: ${o#file:}: no such file"
     o=file:$p
   fi
   resolved+=("$label$o")
@@ -79,8 +70,8 @@ if [[ -z $out ]]; then
 fi
 probe=$out
 while [[ ! -e $probe && $probe == */* ]]; do probe=${probe%/*}; done
-[[ ! -e $probe || -d $probe ]] || die "cannot write to '$out': '$probe' is not a folder"
-[[ ! -e $out ]] || [[ -d $out && -z $(ls -A "$out") ]] || die "'$out' exists and is not empty: give a new --out"
+[[ ! -e $probe || -d $probe ]] || lib_die "cannot write to '$out': '$probe' is not a folder"
+[[ ! -e $out ]] || [[ -d $out && -z $(ls -A "$out") ]] || lib_die "'$out' exists and is not empty: give a new --out"
 
 bash scripts/setup.sh --with-plots
 say "building Release in build/release"

@@ -17,34 +17,20 @@ caller=$PWD
 cd "$(dirname "$0")/.."
 trace="" format="" accesses=20000000 ids=1048576 max_np="" repeat=3 out="out/scale_mpi"
 pn=100000000000 pm=100000000 alpha=2e-6 beta=1e10
-usage() { sed -n '2,16p' "$0" | sed 's/^# \{0,1\}//'; }
-die() { echo "scale_mpi.sh: $*" >&2; exit 2; }
-while (($#)); do
-  case $1 in
-    --trace) trace=$2; shift ;;
-    --format) format=$2; shift ;;
-    --accesses) accesses=$2; shift ;;
-    --ids) ids=$2; shift ;;
-    --max-np) max_np=$2; shift ;;
-    --repeat) repeat=$2; shift ;;
-    --project-accesses) pn=$2; shift ;;
-    --project-ids) pm=$2; shift ;;
-    --alpha) alpha=$2; shift ;;
-    --beta) beta=$2; shift ;;
-    --out) out=$2; shift ;;
-    -h|--help) usage; exit 0 ;;
-    *) die "unknown option '$1' (see --help)" ;;
-  esac
-  shift
-done
+source scripts/lib.sh
+usage() { lib_usage 2 16; }
+LIB_USAGE=usage
+lib_options --trace=trace --format=format --accesses=accesses --ids=ids --max-np=max_np \
+  --repeat=repeat --project-accesses=pn --project-ids=pm --alpha=alpha --beta=beta --out=out \
+  -- "$@"
 [[ $out = /* ]] || out=$caller/$out
 [[ -z $trace || $trace = /* ]] || trace=$caller/$trace
 for v in "$accesses" "$ids" "$repeat" ${max_np:+"$max_np"}; do
-  [[ $v =~ ^[1-9][0-9]{0,11}$ ]] || die "'$v' is not a positive count"
+  [[ $v =~ ^[1-9][0-9]{0,11}$ ]] || lib_die "'$v' is not a positive count"
 done
 mpi=${MESHREUSE_MPI_BIN:-build/release/cli/meshreuse-mpi}
-[[ -x $mpi ]] || die "no $mpi: build Release with MPI (scripts/setup.sh installs Open MPI)"
-command -v mpirun >/dev/null || die "no mpirun (apt-get install openmpi-bin)"
+[[ -x $mpi ]] || lib_die "no $mpi: build Release with MPI (scripts/setup.sh installs Open MPI)"
+command -v mpirun >/dev/null || lib_die "no mpirun (apt-get install openmpi-bin)"
 cores=$(env -u OMP_NUM_THREADS -u OMP_THREAD_LIMIT nproc)  # nproc obeys OMP_NUM_THREADS
 [[ -n $max_np ]] || max_np=$((cores > 2 ? cores : 2))
 mkdir -p "$out"

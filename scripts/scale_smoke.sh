@@ -13,15 +13,10 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 
 vertices=1000000 keep= bin=build/release/cli/meshreuse given=
-while (($#)); do
-  case $1 in
-    --vertices) vertices=$2; shift 2 ;;
-    --keep) keep=$2; shift 2 ;;
-    --mesh) given=$2; shift 2 ;;
-    -h|--help) sed -n '2,13p' "$0"; exit 0 ;;
-    *) bin=$1; shift ;;
-  esac
-done
+source scripts/lib.sh
+usage() { lib_usage 2 11; }
+LIB_USAGE=usage
+lib_options --vertices=vertices --keep=keep --mesh=given @=bin -- "$@"
 [[ $vertices =~ ^[0-9]+$ ]] || { echo "scale_smoke: --vertices takes a number" >&2; exit 2; }
 [[ -x $bin ]] || { echo "scale_smoke: no meshreuse binary at $bin (build first)" >&2; exit 2; }
 [[ -x /usr/bin/time ]] || { echo "scale_smoke: needs GNU time (/usr/bin/time; scripts/setup.sh)" >&2; exit 2; }

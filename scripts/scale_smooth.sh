@@ -25,43 +25,26 @@ caller=$PWD
 cd "$(dirname "$0")/.."
 levels=5 mesh="" max_ranks="" weak=0 transport=threads sweeps=10 repeat=3 ordering=ori
 partition=hilbert mesh_file=0 pv=1000000000 alpha=2e-6 beta=1e10 out="out/scale_smooth"
-usage() { sed -n '2,20p' "$0" | sed 's/^# \{0,1\}//'; }
-die() { echo "scale_smooth.sh: $*" >&2; exit 2; }
-while (($#)); do
-  case $1 in
-    --levels) levels=$2; shift ;;
-    --mesh) mesh=$2; shift ;;
-    --max-ranks) max_ranks=$2; shift ;;
-    --weak) weak=1 ;;
-    --mesh-file) mesh_file=1 ;;
-    --transport) transport=$2; shift ;;
-    --sweeps) sweeps=$2; shift ;;
-    --repeat) repeat=$2; shift ;;
-    --ordering) ordering=$2; shift ;;
-    --partition) partition=$2; shift ;;
-    --project-vertices) pv=$2; shift ;;
-    --alpha) alpha=$2; shift ;;
-    --beta) beta=$2; shift ;;
-    --out) out=$2; shift ;;
-    -h|--help) usage; exit 0 ;;
-    *) die "unknown option '$1' (see --help)" ;;
-  esac
-  shift
-done
+source scripts/lib.sh
+usage() { lib_usage 2 20; }
+LIB_USAGE=usage
+lib_options --levels=levels --mesh=mesh --max-ranks=max_ranks --weak=weak! --mesh-file=mesh_file! \
+  --transport=transport --sweeps=sweeps --repeat=repeat --ordering=ordering --partition=partition \
+  --project-vertices=pv --alpha=alpha --beta=beta --out=out -- "$@"
 [[ $out = /* ]] || out=$caller/$out
 [[ -z $mesh || $mesh = /* ]] || mesh=$caller/$mesh
 for v in "$levels" "$sweeps" "$repeat" ${max_ranks:+"$max_ranks"}; do
-  [[ $v =~ ^[0-9]{1,6}$ ]] || die "'$v' is not a count"
+  [[ $v =~ ^[0-9]{1,6}$ ]] || lib_die "'$v' is not a count"
 done
-((levels <= 8)) || die "--levels $levels: at most 8 (plate41 refined 8 times is 6*10^7 vertices)"
-[[ $transport == threads || $transport == mpi ]] || die "--transport must be threads or mpi"
-((weak == 0)) || [[ -z $mesh ]] || die "--weak refines plate41 itself: leave out --mesh"
+((levels <= 8)) || lib_die "--levels $levels: at most 8 (plate41 refined 8 times is 6*10^7 vertices)"
+[[ $transport == threads || $transport == mpi ]] || lib_die "--transport must be threads or mpi"
+((weak == 0)) || [[ -z $mesh ]] || lib_die "--weak refines plate41 itself: leave out --mesh"
 bin=${MESHREUSE_BIN:-build/release/cli/meshreuse}
 mpi=${MESHREUSE_MPI_BIN:-build/release/cli/meshreuse-mpi}
-[[ -x $bin ]] || die "no $bin: build Release first"
+[[ -x $bin ]] || lib_die "no $bin: build Release first"
 if [[ $transport == mpi ]]; then
-  [[ -x $mpi ]] || die "no $mpi: build Release with MPI (scripts/setup.sh installs Open MPI)"
-  command -v mpirun >/dev/null || die "no mpirun (apt-get install openmpi-bin)"
+  [[ -x $mpi ]] || lib_die "no $mpi: build Release with MPI (scripts/setup.sh installs Open MPI)"
+  command -v mpirun >/dev/null || lib_die "no mpirun (apt-get install openmpi-bin)"
   if [[ $(id -u) -eq 0 ]]; then export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1; fi
 fi
 py=/usr/bin/python3

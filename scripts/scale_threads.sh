@@ -24,32 +24,24 @@ set -euo pipefail
 caller=$PWD
 cd "$(dirname "$0")/.."
 threads="" repeat=5 accesses=20000000 ids=1048576 mesh=1 out="out/scale_threads"
-usage() { sed -n '2,/^#   default:/p' "$0" | sed 's/^# \{0,1\}//'; }
-die() { echo "scale_threads.sh: $*" >&2; exit 2; }
-while (($#)); do
-  case $1 in
-    --threads) threads=$2; shift ;;
-    --repeat) repeat=$2; shift ;;
-    --accesses) accesses=$2; shift ;;
-    --ids) ids=$2; shift ;;
-    --no-mesh) mesh=0 ;;
-    --out) out=$2; shift ;;
-    -h|--help) usage; exit 0 ;;
-    *) die "unknown option '$1' (see --help)" ;;
-  esac
-  shift
-done
+source scripts/lib.sh
+usage() { lib_usage 2 '/^#   default:/'; }
+LIB_USAGE=usage
+nomesh=0
+lib_options --threads=threads --repeat=repeat --accesses=accesses --ids=ids --no-mesh=nomesh! \
+  --out=out -- "$@"
+((nomesh)) && mesh=0
 [[ $out = /* ]] || out=$caller/$out
 for v in "$accesses" "$ids" "$repeat"; do
-  [[ $v =~ ^[1-9][0-9]{0,11}$ ]] || die "'$v' is not a positive count"
+  [[ $v =~ ^[1-9][0-9]{0,11}$ ]] || lib_die "'$v' is not a positive count"
 done
 cores=$(env -u OMP_NUM_THREADS -u OMP_THREAD_LIMIT nproc)
 [[ -n $threads ]] || { threads=2; ((cores > 2)) && threads="2,$cores"; }
-[[ $threads =~ ^[0-9]+(,[0-9]+)*$ ]] || die "--threads takes counts like 2,4, found '$threads'"
+[[ $threads =~ ^[0-9]+(,[0-9]+)*$ ]] || lib_die "--threads takes counts like 2,4, found '$threads'"
 bin=${MESHREUSE_BIN:-build/release/cli/meshreuse}
-[[ -x $bin ]] || die "no $bin: build Release first (scripts/test.sh or cmake)"
-[[ -x /usr/bin/time ]] || die "no /usr/bin/time (apt-get install time)"
-/usr/bin/python3 -c 'import numpy' 2>/dev/null || die "no numpy for /usr/bin/python3 (apt-get install python3-numpy)"
+[[ -x $bin ]] || lib_die "no $bin: build Release first (scripts/test.sh or cmake)"
+[[ -x /usr/bin/time ]] || lib_die "no /usr/bin/time (apt-get install time)"
+/usr/bin/python3 -c 'import numpy' 2>/dev/null || lib_die "no numpy for /usr/bin/python3 (apt-get install python3-numpy)"
 mkdir -p "$out/model"
 if [[ ! -e $out/uniform.u64 ]]; then
   echo "scale_threads.sh: writing the traces in $out ($accesses accesses over $ids ids, seed 1)" >&2
@@ -118,7 +110,7 @@ at_once() {  # at_once NAME FORMAT GRANULARITY T: wall seconds of the T parts' r
     "$bin" analyze "$out/parts/$1.$4.$r" --format "$2" --granularity "$3" --csv --quiet >/dev/null &
     pids+=($!)
   done
-  for r in "${pids[@]}"; do wait "$r" || die "$1: a part's analysis failed"; done
+  for r in "${pids[@]}"; do wait "$r" || lib_die "$1: a part's analysis failed"; done
   t1=$(date +%s%N)
   t_parts=$(awk -v a="$t0" -v b="$t1" 'BEGIN { printf "%.3f", (b - a) / 1e9 }')
 }
@@ -152,7 +144,7 @@ for spec in "${traces[@]}"; do
         at_once "$1" "$2" "$3" "$t"
       fi
       timed "$out/serial" "${args[@]}"
-      cmp -s "$out/run.csv" "$out/serial.csv" || die "$name: --threads $t's table differs from the serial one"
+      cmp -s "$out/run.csv" "$out/serial.csv" || lib_die "$name: --threads $t's table differs from the serial one"
       [[ -n $t_parts ]] && ps=$(awk -v a="$t_wall" -v b="$t_parts" 'BEGIN { printf "%.3f", a / b }')
       echo "$name,$t,$k,$w,$c,$m,$t_wall,$t_cpu,$t_peak,$(awk -v a="$t_wall" -v b="$w" 'BEGIN { printf "%.3f", a / b }'),$t_parts,$ps" >>"$out/threads.csv"
       [[ $name = uniform.u64 ]] && model_runs+=("$t:$w:$out/model/$name-t$t-$k.json")

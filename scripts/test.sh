@@ -10,15 +10,11 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-usage() { sed -n '2,9p' "$0" | sed 's/^# \{0,1\}//'; }
+source scripts/lib.sh
+usage() { lib_usage 2 9; }
+LIB_USAGE=usage
 quick=0
-for a in "$@"; do
-  case $a in
-    --quick) quick=1 ;;
-    -h|--help) usage; exit 0 ;;
-    *) echo "test.sh: unknown argument '$a' (see --help)" >&2; exit 2 ;;
-  esac
-done
+lib_options --quick=quick! -- "$@"
 bash scripts/setup.sh --with-plots
 
 jobs=$(nproc 2>/dev/null || echo 2)

@@ -55,6 +55,13 @@ inline std::string DataPath(const std::string& name) {
   return std::string(MESHREUSE_TEST_DATA) + "/" + name;
 }
 
+// A synthetic mesh (core/synthetic.h) of nx x ny cells with `holes` holes: the tests' one builder.
+inline Mesh Synthetic(int nx, int ny, int holes, uint64_t seed) {
+  SyntheticOptions o;
+  o.nx = nx, o.ny = ny, o.holes = holes, o.seed = seed;
+  return BuildMesh(MakeSyntheticMesh(o));
+}
+
 // The meshes the ordering and permutation tests loop over: 24 synthetic meshes (holes, graded
 // cells, sizes 4..26 x 3..19, boundary vertices with no interior neighbour) plus two_interior and
 // two_components (a component without interior vertices).

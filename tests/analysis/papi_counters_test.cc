@@ -10,15 +10,12 @@
 
 #include "core/smoother.h"
 #include "core/synthetic.h"
+#include "tests/test_util.h"
 
 namespace meshreuse {
 namespace {
 
-Mesh Synthetic() {
-  SyntheticOptions so;
-  so.nx = 120, so.ny = 90, so.holes = 2, so.seed = 5;
-  return BuildMesh(MakeSyntheticMesh(so));
-}
+Mesh Synthetic() { return testing::Synthetic(120, 90, 2, 5); }
 
 TEST(PapiCounters, SoftwareEventCountsPerThreadAroundTheSweeps) {
   PapiCounters c({"perf::TASK-CLOCK"}, 2);

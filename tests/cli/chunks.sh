@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Chunk summaries and the merge (reports/chunk_summary.h) as a user runs them, against the serial
+# Chunk summaries and the merge (reports/chunks/summary_file.h) as a user runs them, against the serial
 # analyzer: every output (table, histogram, profile, miss-ratio curve) byte for byte equal for
 # P = 1, 2, 3, 4, 7 chunks on a meshreuse trace (2 threads, 3 sweeps, element and line), u64
 # scans, uniform and hashed 64-bit ids, u32, oracle, text (BOM, comments, CRLF: cut at line
@@ -73,7 +73,7 @@ for opts in "--orderings rdr -k 3" "--orderings bfs -k 2 --threads 2" "--orderin
 done
 
 # Threads: a plain trace file is cut into one chunk per thread, each read by its own thread, the
-# stacks streamed thread to thread (reports/chunk_threads.h); a zstd trace, standard input and a
+# stacks streamed thread to thread (reports/chunks/chunk_threads.h); a zstd trace, standard input and a
 # pipe go through the batched analyzer (one reader, the streamed merge per batch), as do the
 # samplers chunks cannot run. The same outputs, every one.
 outputs "$tmp/serial" "$bin" analyze "$tmp/mesh.trace"

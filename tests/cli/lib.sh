@@ -1,7 +1,19 @@
 # Shared by the shell tests (sourced): pass/fail counting, commands checked for their exit status
 # and output, and the small traces of every format the chunk and MPI tests compare on.
-# The caller sets $tmp (a scratch folder) and reads $pass and $fail at the end.
+# The caller sets $tmp (a scratch folder; `scratch` makes one) and reads $pass and $fail at the
+# end. MPI tests call mpi_setup first.
 pass=0 fail=0
+scratch() {  # scratch : $tmp, a new folder removed when the script exits
+  tmp=$(mktemp -d)
+  trap 'rm -rf "$tmp"' EXIT
+}
+mpi_setup() {  # mpi_setup MPIEXEC : Open MPI as root, oversubscribed, yielding; run NP ARGS...
+  if [[ $(id -u) -eq 0 ]]; then export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1; fi
+  export OMPI_MCA_mpi_yield_when_idle=1 OMPI_MCA_rmaps_base_oversubscribe=1
+  export ASAN_OPTIONS=${ASAN_OPTIONS:+$ASAN_OPTIONS:}detect_leaks=0  # Open MPI's own allocations
+  mpiexec=$1
+  run() { timeout 120 "$mpiexec" --oversubscribe -np "$@"; }
+}
 check() {  # check NAME EXPECTED_RC COMMAND... ; stdout+stderr in $tmp/out
   local name=$1 want=$2
   shift 2

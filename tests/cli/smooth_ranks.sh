@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # meshreuse smooth-ranks: the distributed smoother's P ranks as threads of one process
-# (core/ranks/halo_threads.h), compared byte for byte with the serial smoother, as tests/mpi/mpi_smooth.sh
+# (core/ranks/thread_communicator.h), compared byte for byte with the serial smoother, as tests/mpi/mpi_smooth.sh
 # does for MPI ranks (this one runs where MPI is not built):
 #   --ranks 1            == meshreuse smooth (ordered Gauss-Seidel and Jacobi);
 #   --ranks P, ordered   == meshreuse smooth --visit-order PI (PI from --pi-out), Hilbert and METIS

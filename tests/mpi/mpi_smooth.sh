@@ -19,13 +19,9 @@
 # Usage: mpi_smooth.sh MESHREUSE MESHREUSE_MPI MPIEXEC DATA
 set -u
 bin=$1 mpi=$2 mpiexec=$3 data=$4
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
-if [[ $(id -u) -eq 0 ]]; then export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1; fi
-export OMPI_MCA_mpi_yield_when_idle=1 OMPI_MCA_rmaps_base_oversubscribe=1
-export ASAN_OPTIONS=${ASAN_OPTIONS:+$ASAN_OPTIONS:}detect_leaks=0  # Open MPI's own allocations
-run() { timeout 120 "$mpiexec" --oversubscribe -np "$@"; }
 source "$(dirname "$0")/../cli/lib.sh"
+scratch
+mpi_setup "$mpiexec"
 equal() {  # equal NAME A B : two written meshes identical, A not empty
   if [[ -s "$2" ]] && cmp -s "$2" "$3"; then pass=$((pass + 1)); else
     fail=$((fail + 1)); echo "FAIL $1: $2 and $3 differ"; sed 's/^/    /' "$tmp/out" | head -20; fi

@@ -10,15 +10,12 @@
 
 #include "core/orderings/registry.h"
 #include "core/synthetic.h"
+#include "tests/test_util.h"
 
 namespace meshreuse {
 namespace {
 
-Mesh Small() {
-  SyntheticOptions so;
-  so.nx = 40, so.ny = 30, so.holes = 1, so.seed = 8;
-  return BuildMesh(MakeSyntheticMesh(so));
-}
+Mesh Small() { return testing::Synthetic(40, 30, 1, 8); }
 
 TEST(Validation, FullyAssociativeL1EqualsTheLineModelAndCountsAddUp) {
   const Mesh m = Small();

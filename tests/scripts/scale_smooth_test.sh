@@ -6,10 +6,9 @@
 # Usage: scale_smooth_test.sh MESHREUSE
 set -u
 bin=$1
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
 here=$(cd "$(dirname "$0")/../.." && pwd)
-fail=0
+source "$here/tests/cli/lib.sh"  # pass, fail, scratch
+scratch
 MESHREUSE_BIN=$bin OMP_NUM_THREADS=1 "$here/scripts/scale_smooth.sh" --levels 2 --max-ranks 2 --repeat 1 \
   --sweeps 3 --weak --out "$tmp/out" >"$tmp/log" 2>&1 || { echo "FAIL scale_smooth.sh exited $?"; cat "$tmp/log"; exit 1; }
 for f in runs.json constants.json scaling.md projection.md; do

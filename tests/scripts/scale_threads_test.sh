@@ -6,10 +6,9 @@
 # Usage: scale_threads_test.sh MESHREUSE
 set -u
 bin=$1
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
 here=$(cd "$(dirname "$0")/../.." && pwd)
-fail=0
+source "$here/tests/cli/lib.sh"  # pass, fail, scratch
+scratch
 /usr/bin/python3 -c 'import numpy' 2>/dev/null || { echo "skipped: no numpy for /usr/bin/python3"; exit 77; }
 MESHREUSE_BIN=$bin "$here/scripts/scale_threads.sh" --accesses 50000 --ids 2000 --no-mesh --repeat 1 \
   --threads 2,3 --out "$tmp/out" >"$tmp/log" 2>&1 || { echo "FAIL scale_threads.sh exited $?"; cat "$tmp/log"; exit 1; }

@@ -15,11 +15,7 @@
 namespace meshreuse {
 namespace {
 
-Mesh SmallMesh() {
-  SyntheticOptions so;
-  so.nx = 20, so.ny = 16, so.holes = 1, so.seed = 5;
-  return BuildMesh(MakeSyntheticMesh(so));
-}
+Mesh SmallMesh() { return testing::Synthetic(20, 16, 1, 5); }
 
 // One (thread, canonical address, size, direction, kind) per access.
 struct Rec {
@@ -67,8 +63,8 @@ struct ParallelRecorder {
   void Bind(const ArrayLayout& l) { canon = AddressCanonicalizer(l); }
   void BeginSweep(int) {}
   void Access(int thread, const MemRef& r) {
-    per_thread[thread].push_back({thread, canon(thread, r), r.size, r.write,
-                                  static_cast<uint8_t>(r.element)});
+    per_thread[thread].push_back(
+        {thread, canon(thread, r), r.size, r.write, static_cast<uint8_t>(r.element)});
   }
 };
 

@@ -20,11 +20,7 @@
 namespace meshreuse {
 namespace {
 
-Mesh Medium() {
-  SyntheticOptions o;
-  o.nx = 40, o.ny = 30, o.holes = 2, o.seed = 6;
-  return BuildMesh(MakeSyntheticMesh(o));
-}
+Mesh Medium() { return testing::Synthetic(40, 30, 2, 6); }
 
 TEST(Partition, HilbertRangesAreBalancedAndFollowTheCurve) {
   const Mesh m = Medium();
