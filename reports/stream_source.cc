@@ -88,7 +88,11 @@ void StreamMeshInput(const StreamSource& src, StreamJob job, StreamConsumer& c, 
     });
     return;
   }
-  Mesh m = LayOut(job.input, *job.ordering, src.seed, src.triangle_order, log);
+  Mesh m =
+      src.loaded && job.input == src.inputs[0]
+          ? ApplyPermutation(*src.loaded, ComputeOrdering(*job.ordering, *src.loaded, src.seed),
+                             src.triangle_order)
+          : LayOut(job.input, *job.ordering, src.seed, src.triangle_order, log);
   log.Say(c.Verb() + " " + std::to_string(src.iterations) + " sweep(s) of " + job.input + " in " +
           job.ordering->text + " order" + c.Where());
   const auto t0 = std::chrono::steady_clock::now();
@@ -109,7 +113,8 @@ void ForEachStream(const StreamSource& src, StreamConsumer& c, const Log& log) {
   for (const std::string& in : src.inputs) {
     StreamJob job;
     job.input = in;
-    job.kind = fmt ? InputKind::kText : ClassifyInput(in);
+    const bool loaded = src.loaded && in == src.inputs[0];  // a mesh already read
+    job.kind = loaded ? InputKind::kMesh : fmt ? InputKind::kText : ClassifyInput(in);
     if (job.kind == InputKind::kMesh) {
       for (const OrderingSpec& ord : src.orderings) {
         job.ordering = &ord;

@@ -43,6 +43,9 @@ struct StreamSource {
   int32_t ranks = 0;
   std::string partition = "hilbert";
   CutPlacement cut_placement = CutPlacement::kLast;
+  // The mesh inputs[0] names, already read (the report reads each mesh once for many runs): laid
+  // out from it, not read again. Not owned.
+  const Mesh* loaded = nullptr;
 
   // UsageError for what cannot be streamed, before any work: no input, an unknown format, no
   // ordering, sweeps or threads out of range, --instructions without lackey, --ranks with a trace

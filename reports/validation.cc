@@ -18,6 +18,7 @@
 #include "reports/inputs.h"
 #include "reports/paper.h"
 #include "reports/run_info.h"
+#include "reports/stream_source.h"
 
 namespace meshreuse {
 
@@ -41,105 +42,136 @@ void CheckValidationConfig(const ValidationConfig& cfg) {
   CacheSimulation check(cfg.cache, cfg.line_bytes);  // the geometry and the line size
 }
 
-std::vector<OrderingValidation> RunValidation(
-    const Mesh& base, const ValidationConfig& cfg,
-    const std::function<void(const std::string&)>& progress) {
-  auto say = [&](const std::string& s) {
-    if (progress) progress(s);
-  };
-  if (cfg.cache.levels.empty()) throw std::invalid_argument("no cache levels");
-  const std::vector<CacheLevel>& levels = cfg.cache.levels;
-  const SmoothOptions sweeps = cfg.Sweeps();
-  std::vector<OrderingValidation> out;
-  for (const OrderingSpec& ord : cfg.orderings) {
-    say("validate: laying out " + cfg.mesh_name + " in " + ord.text + " order");
-    const Mesh laid =
-        ApplyPermutation(base, ComputeOrdering(ord, base, cfg.seed), cfg.triangle_order);
-    OrderingValidation v;
-    v.mesh = cfg.mesh_name, v.ordering = ord.label;
-    v.vertices = laid.NumVertices();
-    v.iterations = cfg.iterations, v.threads = cfg.threads;
+namespace {
 
-    // One traced pass into both the reuse analysis and the simulator.
+// Counters: an untraced run of the sweeps on `laid`, where PAPI counts; per level the misses
+// counted, -1 where none. `note` says which.
+std::vector<double> CountMisses(const Mesh& laid, const ValidationConfig& cfg, const Log& log,
+                                std::string* note) {
+  const std::vector<CacheLevel>& levels = cfg.cache.levels;
+  std::vector<double> counted(levels.size(), -1);
+  if (cfg.counter_events.empty()) {
+    *note = "simulated (no counters asked for)";
+    return counted;
+  }
+  std::vector<std::string> wanted;
+  for (size_t i = 0; i < levels.size() && i < cfg.counter_events.size(); ++i)
+    wanted.push_back(cfg.counter_events[i]);
+  PapiCounters papi(wanted, cfg.threads);
+  if (!papi.available()) {
+    *note = "simulated";
+    return counted;
+  }
+  log.Say("validate: " + std::to_string(cfg.iterations) + " untraced sweep(s) with counters");
+  Mesh m = laid.Clone();
+  SmoothOptions o = cfg.Sweeps();
+  o.region = &papi;
+  Smooth(m, o);
+  if (!papi.error().empty()) throw std::runtime_error("counters failed: " + papi.error());
+  const std::vector<long long> sum = papi.Sum();
+  for (size_t i = 0; i < wanted.size(); ++i)
+    for (size_t e = 0; e < papi.events().size(); ++e)
+      if (papi.events()[e] == wanted[i]) counted[i] = static_cast<double>(sum[e]);
+  *note = "measured (" + PapiCounters::Version() + ")";
+  return counted;
+}
+
+// Per level: the models' misses on the merged histograms, the simulator's, the counters', the
+// floor, Table 3's capacities; then equation 2 on the line model's and the simulator's misses.
+void AddLevels(const ReuseHistogram& eh, const ReuseHistogram& lh, const CacheSimulation& sim,
+               const std::vector<double>& counted, const ValidationConfig& cfg,
+               OrderingValidation* v) {
+  const std::vector<CacheLevel>& levels = cfg.cache.levels;
+  const std::vector<uint64_t> floor = MissFloor(v->sweep_lines, cfg.cache, cfg.line_bytes);
+  const std::vector<LevelMisses> me = ModelMisses(eh, levels, cfg.element_bytes);
+  const std::vector<LevelMisses> ml = ModelMisses(lh, levels, cfg.line_bytes);
+  std::vector<uint64_t> model_misses, sim_misses;
+  for (size_t i = 0; i < levels.size(); ++i) {
+    LevelValidation l;
+    l.level = levels[i];
+    l.element_capacity = me[i].capacity, l.line_capacity = ml[i].capacity;
+    l.model_element = me[i].misses, l.model_line = ml[i].misses;
+    l.floor = floor[i];
+    for (int t = 0; t < cfg.threads; ++t) l.simulated += sim.Stats(t)[i];
+    l.measured = counted[i] >= 0;
+    l.counter = l.measured ? counted[i] : 0;
+    l.table3_misses = l.measured ? static_cast<uint64_t>(l.counter) : l.simulated.misses;
+    l.capacity_elements = CapacityForMisses(eh, l.table3_misses, cfg.exclude_cold);
+    l.capacity_lines = CapacityForMisses(lh, l.table3_misses, cfg.exclude_cold);
+    model_misses.push_back(l.model_line);
+    sim_misses.push_back(l.simulated.misses);
+    v->levels.push_back(l);
+  }
+  v->cost_model = AdditionalCycles(model_misses, cfg.cache);
+  v->cost_simulated = AdditionalCycles(sim_misses, cfg.cache);
+}
+
+// Each ordering's traced sweeps streamed at once into the reuse analysis, the simulator and the
+// footprint; at the stream's end its validation (and the counters' run on the same layout).
+class ValidateStreams : public StreamConsumer {
+ public:
+  ValidateStreams(const ValidationConfig& cfg, const Log& log) : cfg_(cfg), log_(log) {}
+  std::string Verb() const override { return "validate: tracing"; }
+  AccessConsumer& Start(const StreamJob& job) override {
     ReuseOptions ao;
-    ao.line_bytes = cfg.line_bytes;
+    ao.line_bytes = cfg_.line_bytes;
     ao.profile = false;
-    ReuseAnalysis analysis(ao);
-    CacheSimulation sim(cfg.cache, cfg.line_bytes);
-    SweepFootprint footprint(cfg.line_bytes);
-    {
-      say("validate: " + ord.text + ": " + std::to_string(cfg.iterations) +
-          " traced sweep(s) into the analyzer and the simulator");
-      Mesh m = laid.Clone();
-      FanOut both({&analysis, &sim, &footprint});
-      StreamMesh(m, sweeps, cfg.mesh_name, v.ordering, both);
-    }
+    analysis_ = std::make_unique<ReuseAnalysis>(ao);
+    sim_ = std::make_unique<CacheSimulation>(cfg_.cache, cfg_.line_bytes);
+    footprint_ = std::make_unique<SweepFootprint>(cfg_.line_bytes);
+    both_ = std::make_unique<FanOut>(
+        std::vector<AccessConsumer*>{analysis_.get(), sim_.get(), footprint_.get()});
+    laid_ = std::make_unique<Mesh>(job.mesh->Clone());  // for the counters' untraced run
+    return *both_;
+  }
+  void Finish(const StreamJob& job) override {
+    OrderingValidation v;
+    v.mesh = cfg_.mesh_name, v.ordering = job.ordering->label;
+    v.vertices = laid_->NumVertices();
+    v.iterations = cfg_.iterations, v.threads = cfg_.threads;
     ReuseHistogram eh, lh;
-    for (int t = 0; t < cfg.threads; ++t) {
-      if (const StreamAnalysis* s = analysis.element(t)) eh.Merge(s->hist);
-      if (const StreamAnalysis* s = analysis.line(t)) lh.Merge(s->hist);
+    for (int t = 0; t < cfg_.threads; ++t) {
+      if (const StreamAnalysis* s = analysis_->element(t)) eh.Merge(s->hist);
+      if (const StreamAnalysis* s = analysis_->line(t)) lh.Merge(s->hist);
     }
     v.element_accesses = eh.accesses(), v.line_accesses = lh.accesses();
     v.element_cold = eh.cold(), v.line_cold = lh.cold();
-    v.sweep_lines = footprint.lines();
-    const std::vector<uint64_t> floor = MissFloor(v.sweep_lines, cfg.cache, cfg.line_bytes);
-    for (size_t s = 0; s < sim.sweeps(); ++s) {
+    v.sweep_lines = footprint_->lines();
+    for (size_t s = 0; s < sim_->sweeps(); ++s) {
       std::vector<std::vector<LevelStats>> per;
-      for (int t = 0; t < cfg.threads; ++t) per.push_back(sim.SweepStats(t, s));
+      for (int t = 0; t < cfg_.threads; ++t) per.push_back(sim_->SweepStats(t, s));
       v.sweeps.push_back(std::move(per));
     }
-
-    // Counters: an untraced run of the same sweeps, where PAPI counts.
-    std::vector<double> counted(levels.size(), -1);
-    if (!cfg.counter_events.empty()) {
-      std::vector<std::string> wanted;
-      for (size_t i = 0; i < levels.size() && i < cfg.counter_events.size(); ++i)
-        wanted.push_back(cfg.counter_events[i]);
-      PapiCounters papi(wanted, cfg.threads);
-      if (papi.available()) {
-        say("validate: " + ord.text + ": " + std::to_string(cfg.iterations) +
-            " untraced sweep(s) with counters");
-        Mesh m = laid.Clone();
-        SmoothOptions o = sweeps;
-        o.region = &papi;
-        Smooth(m, o);
-        if (!papi.error().empty()) throw std::runtime_error("counters failed: " + papi.error());
-        const std::vector<long long> sum = papi.Sum();
-        for (size_t i = 0; i < wanted.size(); ++i)
-          for (size_t e = 0; e < papi.events().size(); ++e)
-            if (papi.events()[e] == wanted[i]) counted[i] = static_cast<double>(sum[e]);
-        v.counters = "measured (" + PapiCounters::Version() + ")";
-      } else {
-        v.counters = "simulated";
-      }
-    } else {
-      v.counters = "simulated (no counters asked for)";
-    }
-
-    const std::vector<LevelMisses> me = ModelMisses(eh, levels, cfg.element_bytes);
-    const std::vector<LevelMisses> ml = ModelMisses(lh, levels, cfg.line_bytes);
-    std::vector<uint64_t> model_misses, sim_misses;
-    for (size_t i = 0; i < levels.size(); ++i) {
-      LevelValidation l;
-      l.level = levels[i];
-      l.element_capacity = me[i].capacity, l.line_capacity = ml[i].capacity;
-      l.model_element = me[i].misses, l.model_line = ml[i].misses;
-      l.floor = floor[i];
-      for (int t = 0; t < cfg.threads; ++t) l.simulated += sim.Stats(t)[i];
-      l.measured = counted[i] >= 0;
-      l.counter = l.measured ? counted[i] : 0;
-      l.table3_misses = l.measured ? static_cast<uint64_t>(l.counter) : l.simulated.misses;
-      l.capacity_elements = CapacityForMisses(eh, l.table3_misses, cfg.exclude_cold);
-      l.capacity_lines = CapacityForMisses(lh, l.table3_misses, cfg.exclude_cold);
-      model_misses.push_back(l.model_line);
-      sim_misses.push_back(l.simulated.misses);
-      v.levels.push_back(l);
-    }
-    v.cost_model = AdditionalCycles(model_misses, cfg.cache);
-    v.cost_simulated = AdditionalCycles(sim_misses, cfg.cache);
+    const std::vector<double> counted = CountMisses(*laid_, cfg_, log_, &v.counters);
+    AddLevels(eh, lh, *sim_, counted, cfg_, &v);
     out.push_back(std::move(v));
   }
-  return out;
+  std::vector<OrderingValidation> out;
+
+ private:
+  const ValidationConfig& cfg_;
+  const Log& log_;
+  std::unique_ptr<ReuseAnalysis> analysis_;
+  std::unique_ptr<CacheSimulation> sim_;
+  std::unique_ptr<SweepFootprint> footprint_;
+  std::unique_ptr<FanOut> both_;
+  std::unique_ptr<Mesh> laid_;
+};
+
+}  // namespace
+
+std::vector<OrderingValidation> RunValidation(
+    const Mesh& base, const ValidationConfig& cfg,
+    const std::function<void(const std::string&)>& progress) {
+  if (cfg.cache.levels.empty()) throw std::invalid_argument("no cache levels");
+  Log log;
+  log.progress = progress;
+  ValidationConfig src = cfg;
+  if (src.inputs.empty()) src.inputs = {cfg.mesh_name};
+  src.loaded = &base;
+  ValidateStreams c(src, log);
+  ForEachStream(src, c, log);
+  return std::move(c.out);
 }
 
 Table ValidationTable(const std::vector<OrderingValidation>& r) {
