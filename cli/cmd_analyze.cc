@@ -18,94 +18,139 @@ namespace meshreuse::cli {
 
 int AnalyzeCommand(const Args& args) { return AnalyzeCommand(args, nullptr); }
 
-int AnalyzeCommand(const Args& args, Communicator* transport) {
-  po::options_description desc("options");
-  AnalyzeConfig cfg;
-  std::string orderings = "ori", granularity, quantiles = "50,75,90,100", cache = "westmere-ex",
-              mode = "gauss-seidel", hist_csv, prof_csv, mrc_csv, out_dir, measured, triangle_order,
-              seed = "1", sample_size, sample_exact_below, element_bytes = "66", line_bytes = "64",
-              chunk, rank_stats, scatter_from = "16";
-  RankOptionText rank_text;
+namespace {
+
+// The options only analyze has (the stream source's are common.h's), as given.
+struct AnalyzeOptionText {
+  SourceOptionText source;
+  std::string granularity, quantiles = "50,75,90,100", cache = "westmere-ex", hist_csv, prof_csv,
+                           mrc_csv, out_dir, measured, sample_size, sample_exact_below,
+                           element_bytes = "66", line_bytes = "64", chunk, rank_stats,
+                           scatter_from = "16";
   double sample_rate = 0;
+};
+
+void AddAnalyzeOptions(po::options_description& desc, AnalyzeConfig* cfg, AnalyzeOptionText* out) {
+  AnalyzeOptionText& t = *out;
   desc.add_options()(
-      "input", po::value(&cfg.inputs)->required()->multitoken(),
+      "input", po::value(&cfg->inputs)->required()->multitoken(),
       "mesh(es) (.node/.ele/.msh: the smoother streams into the analyzer), a trace file from "
-      "`meshreuse trace` (plain or zstd), or another tool's trace with --format ('-': stdin)")(
-      "orderings", po::value(&orderings)->default_value("ori"),
-      "for meshes: comma-separated orderings")("seed", po::value(&seed)->default_value("1"),
-                                               "seed of seeded orderings and of the sampling hash")(
-      "iterations,k", po::value(&cfg.iterations)->default_value(1),
-      "for meshes: sweeps to analyse")(
-      "threads,t", po::value(&cfg.threads)->default_value(1),
+      "`meshreuse trace` (plain or zstd), or another tool's trace with --format ('-': stdin)");
+  static const std::string format_help =
+      "other tools' traces (any may be zstd-compressed):\n" + TraceFormatHelp();
+  SourceHelp help;
+  help.seed = "seed of seeded orderings and of the sampling hash";
+  help.iterations = "for meshes: sweeps to analyse";
+  help.threads =
       "for meshes: the smoother's threads (one stream each); for trace files: the analyzer's "
       "threads (exact): a file is cut into one chunk per thread, each read by its own thread "
       "(zstd: when in as many frames, as `trace --compress` writes them); standard input or a "
-      "zstd trace in fewer frames is read by one thread in batches")(
-      "mode", po::value(&mode)->default_value("gauss-seidel"),
-      "for meshes: gauss-seidel or jacobi")(
-      "format", po::value(&cfg.format),
-      ("other tools' traces (any may be zstd-compressed):\n" + TraceFormatHelp()).c_str())(
-      "instructions", "lackey: count instruction fetches (I lines) too, not only data")(
-      "granularity", po::value(&granularity),
+      "zstd trace in fewer frames is read by one thread in batches";
+  help.format = format_help;
+  help.instructions = "lackey: count instruction fetches (I lines) too, not only data";
+  help.ranks =
+      "meshes: analyse each of P ranks' parts as the distributed smoother lays it out and sweeps "
+      "it (owned non-cut, cut, boundary, ghosts; --orderings inside each part): one row per rank";
+  AddSourceOptions(desc, cfg, &t.source, help);
+  desc.add_options()(
+      "granularity", po::value(&t.granularity),
       "element, line or both (default: both for meshes and meshreuse traces; line for address "
       "traces: lackey, parda, u32, u64; element for id traces: text, oracle)")(
-      "quantiles", po::value(&quantiles)->default_value("50,75,90,100"),
+      "quantiles", po::value(&t.quantiles)->default_value("50,75,90,100"),
       "percentages to report, each in 0..100")(
-      "cache", po::value(&cache)->default_value("westmere-ex"),
+      "cache", po::value(&t.cache)->default_value("westmere-ex"),
       "westmere-ex or NAME=SIZE[/WAYS[/POLICY]][@CYCLES],... and mem@CYCLES")(
-      "element-bytes", po::value(&element_bytes)->default_value("66"),
+      "element-bytes", po::value(&t.element_bytes)->default_value("66"),
       "element size for the element miss model")("line-bytes",
-                                                 po::value(&line_bytes)->default_value("64"),
+                                                 po::value(&t.line_bytes)->default_value("64"),
                                                  "cache line size (a power of two)")(
-      "measured-misses", po::value(&measured),
+      "measured-misses", po::value(&t.measured),
       "inverse model: L1=N,L2=N,... measured misses -> the capacity (elements or lines) that "
-      "explains them")("sample-rate", po::value(&sample_rate),
+      "explains them")("sample-rate", po::value(&t.sample_rate),
                        "approximate instead: SHARDS at this fixed rate (e.g. 0.01)")(
-      "sample-size", po::value(&sample_size),
+      "sample-size", po::value(&t.sample_size),
       "approximate instead: SHARDS tracking at most this many ids (fixed size)")(
-      "sample-exact-below", po::value(&sample_exact_below),
+      "sample-exact-below", po::value(&t.sample_exact_below),
       "with --sample-*: count the distances below K exactly (every access through an exact LRU "
       "stack of depth K, memory O(K)); the miss ratio at every capacity up to K is then exact, "
       "where SHARDS' scaling is coarsest (e.g. the L1 or L2 capacity in elements or lines)")(
       "sample-error",
       "with --sample-*: run the exact analysis too and report the miss-ratio curve's mean "
-      "absolute error")("histogram-csv", po::value(&hist_csv),
+      "absolute error")("histogram-csv", po::value(&t.hist_csv),
                         "write the histograms (exact < 64, powers of two beyond, and cold)")(
-      "profile-csv", po::value(&prof_csv),
+      "profile-csv", po::value(&t.prof_csv),
       "write the profiles (each sweep in 100 steps; fewer, at least 1, beyond 2,621 sweeps x "
       "streams)")(
-      "vtk", po::value(&cfg.vtk),
+      "vtk", po::value(&cfg->vtk),
       "one mesh, one ordering: write the laid-out mesh as VTK with each vertex's rank, original "
       "id and the reuse distances of its touches (mean, max, cold), for ParaView")(
-      "mrc-csv", po::value(&mrc_csv),
+      "mrc-csv", po::value(&t.mrc_csv),
       "write the miss-ratio curves (capacity -> misses, miss ratio; exact, or the estimate when "
-      "sampling)")("out", po::value(&out_dir),
+      "sampling)")("out", po::value(&t.out_dir),
                    "write analyze.{csv,json}, histogram.csv, profile.csv, run.json")(
-      "chunk", po::value(&chunk),
+      "chunk", po::value(&t.chunk),
       "r/P: analyse only chunk r (0-based) of P equal parts of one input and write its summary "
       "(--summary-out): records of a meshreuse or fixed-record trace, whole lines of a text or "
       "lackey one (plain files), or of a mesh's stream in one ordering (regenerated, no file); any "
-      "batch system can run the P chunks, then --merge")("summary-out", po::value(&cfg.summary_out),
-                                                         "with --chunk: the summary file to write")(
+      "batch system can run the P chunks, then --merge")(
+      "summary-out", po::value(&cfg->summary_out), "with --chunk: the summary file to write")(
       "merge",
       "the inputs are the summaries of chunks 0..P-1, in order: merge them into exactly the "
       "serial analysis (every table and output below)")(
-      "scatter-from", po::value(&scatter_from),
+      "scatter-from", po::value(&t.scatter_from),
       "meshreuse-mpi, or --threads over a plain trace file: from N ranks (threads) on, add the "
       "histograms up by distance, each rank one slice of every rank's (a reduce-scatter; below, "
       "up a tree of ranks: fewer steps, but log2 P merges of whole lists on the way to rank 0); "
       "default 16")(
-      "rank-stats", po::value(&rank_stats),
+      "rank-stats", po::value(&t.rank_stats),
       "meshreuse-mpi, or --threads over a plain trace file (a chunk per thread): write each "
       "rank's (thread's) CPU seconds per phase, wall seconds, records, distinct ids, stack ids "
       "received and sent, bytes sent and peak memory (JSON) to this file")("quiet,q",
                                                                            "no progress on stderr");
-  AddRankOptions(desc, &rank_text,
-                 "meshes: analyse each of P ranks' parts as the distributed smoother lays it out "
-                 "and sweeps it (owned non-cut, cut, boundary, ghosts; --orderings inside each "
-                 "part): one row per rank");
   AddFormatOptions(desc);
-  AddTriangleOrderOption(desc, &triangle_order);
+}
+
+// The configuration the options give (UsageError for what they cannot).
+void AnalyzeConfigOf(const AnalyzeOptionText& t, const po::variables_map& vm, AnalyzeConfig* cfg) {
+  SourceOf(t.source, vm, cfg);
+  if (!t.granularity.empty()) cfg->granularity = ParseGranularity(t.granularity);
+  cfg->quantiles = ParseQuantiles(t.quantiles);
+  cfg->cache = ParseCacheSpec(t.cache);
+  if (!t.measured.empty()) cfg->inverse = ParseCacheSpec(t.measured).levels;
+  cfg->element_bytes =
+      static_cast<uint32_t>(ParseCount(t.element_bytes, "--element-bytes", 1, 1 << 20));
+  cfg->line_bytes = static_cast<uint32_t>(ParseCount(t.line_bytes, "--line-bytes", 1, 1 << 20));
+  cfg->profile = !t.prof_csv.empty() || !t.out_dir.empty();
+  cfg->sample = vm.count("sample-rate") || vm.count("sample-size");
+  if (vm.count("sample-rate") && vm.count("sample-size"))
+    throw UsageError("--sample-rate and --sample-size exclude each other");
+  if (vm.count("sample-rate") && !(t.sample_rate > 0 && t.sample_rate <= 1))
+    throw UsageError("--sample-rate must be in (0, 1]");
+  if (vm.count("sample-size"))
+    cfg->shards.s_max = ParseCount(t.sample_size, "--sample-size", 1, 1u << 30);
+  cfg->shards.rate = cfg->sample && !cfg->shards.s_max ? t.sample_rate : 1;
+  cfg->shards.seed = cfg->seed;
+  cfg->sample_error = vm.count("sample-error") > 0;
+  cfg->scatter_from_ranks =
+      static_cast<int32_t>(ParseCount(t.scatter_from, "--scatter-from", 1, uint64_t{1} << 20));
+  if (!t.sample_exact_below.empty()) {
+    if (!cfg->sample) throw UsageError("--sample-exact-below needs --sample-rate or --sample-size");
+    cfg->shards.exact_below = static_cast<uint32_t>(
+        ParseCount(t.sample_exact_below, "--sample-exact-below", 1, uint64_t{1} << 26));
+  }
+  if (cfg->sample_error && !cfg->sample)
+    throw UsageError("--sample-error needs --sample-rate or --sample-size");
+  if (!t.chunk.empty()) cfg->chunk = ParseChunk(t.chunk);
+  cfg->merge = vm.count("merge") > 0;
+}
+
+}  // namespace
+
+int AnalyzeCommand(const Args& args, Communicator* transport) {
+  po::options_description desc("options");
+  AnalyzeConfig cfg;
+  AnalyzeOptionText t;
+  AddAnalyzeOptions(desc, &cfg, &t);
   po::positional_options_description pos;
   pos.add("input", -1);
   po::variables_map vm;
@@ -118,42 +163,9 @@ int AnalyzeCommand(const Args& args, Communicator* transport) {
                     "Table 2. With --sample-rate or --sample-size: a SHARDS estimate instead.",
                     desc, pos, vm))
     return 0;
-  cfg.orderings = ParseOrderingSpecs(SplitList(orderings));
-  const RankOptions ro = RankOptionsOf(rank_text, vm);
-  cfg.ranks = ro.ranks, cfg.partition = ro.partition, cfg.cut_placement = ro.placement;
-  cfg.seed = ParseCount(seed, "--seed", 0, UINT64_MAX >> 1);
-  cfg.mode = ParseUpdateMode(mode);
-  cfg.triangle_order = ParseTriangleOrder(triangle_order);
-  if (!granularity.empty()) cfg.granularity = ParseGranularity(granularity);
-  cfg.quantiles = ParseQuantiles(quantiles);
-  cfg.cache = ParseCacheSpec(cache);
-  if (!measured.empty()) cfg.inverse = ParseCacheSpec(measured).levels;
-  cfg.element_bytes =
-      static_cast<uint32_t>(ParseCount(element_bytes, "--element-bytes", 1, 1 << 20));
-  cfg.line_bytes = static_cast<uint32_t>(ParseCount(line_bytes, "--line-bytes", 1, 1 << 20));
-  cfg.instructions = vm.count("instructions") > 0;
-  cfg.profile = !prof_csv.empty() || !out_dir.empty();
-  cfg.sample = vm.count("sample-rate") || vm.count("sample-size");
-  if (vm.count("sample-rate") && vm.count("sample-size"))
-    throw UsageError("--sample-rate and --sample-size exclude each other");
-  if (vm.count("sample-rate") && !(sample_rate > 0 && sample_rate <= 1))
-    throw UsageError("--sample-rate must be in (0, 1]");
-  if (vm.count("sample-size"))
-    cfg.shards.s_max = ParseCount(sample_size, "--sample-size", 1, 1u << 30);
-  cfg.shards.rate = cfg.sample && !cfg.shards.s_max ? sample_rate : 1;
-  cfg.shards.seed = cfg.seed;
-  cfg.sample_error = vm.count("sample-error") > 0;
-  cfg.scatter_from_ranks =
-      static_cast<int32_t>(ParseCount(scatter_from, "--scatter-from", 1, uint64_t{1} << 20));
-  if (!sample_exact_below.empty()) {
-    if (!cfg.sample) throw UsageError("--sample-exact-below needs --sample-rate or --sample-size");
-    cfg.shards.exact_below = static_cast<uint32_t>(
-        ParseCount(sample_exact_below, "--sample-exact-below", 1, uint64_t{1} << 26));
-  }
-  if (cfg.sample_error && !cfg.sample)
-    throw UsageError("--sample-error needs --sample-rate or --sample-size");
-  if (!chunk.empty()) cfg.chunk = ParseChunk(chunk);
-  cfg.merge = vm.count("merge") > 0;
+  AnalyzeConfigOf(t, vm, &cfg);
+  const std::string &hist_csv = t.hist_csv, &prof_csv = t.prof_csv, &mrc_csv = t.mrc_csv,
+                    &out_dir = t.out_dir, &rank_stats = t.rank_stats;
   cfg.transport = transport;
   // A distributed run: every rank analyses its chunk; rank 0 alone prints and writes.
   const bool writer = !transport || transport->rank() == 0;

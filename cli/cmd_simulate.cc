@@ -13,27 +13,27 @@ namespace meshreuse::cli {
 int SimulateCommand(const Args& args) {
   po::options_description desc("options");
   SimulateConfig cfg;
-  std::string orderings = "ori", cache = "westmere-ex", mode = "gauss-seidel", triangle_order,
-              seed = "1", line_bytes = "64", out_dir, placement = "compact", interleave = "1";
-  RankOptionText rank_text;
+  std::string cache = "westmere-ex", line_bytes = "64", out_dir, placement = "compact",
+              interleave = "1";
+  SourceOptionText source;
   desc.add_options()("input", po::value(&cfg.inputs)->required()->multitoken(),
                      "mesh(es) (the smoother streams into the simulator), a trace file from "
-                     "`meshreuse trace`, or another tool's trace with --format ('-': stdin)")(
-      "orderings", po::value(&orderings)->default_value("ori"),
-      "for meshes: comma-separated orderings")("seed", po::value(&seed)->default_value("1"),
-                                               "seed of seeded orderings")(
-      "iterations,k", po::value(&cfg.iterations)->default_value(1),
-      "for meshes: sweeps to simulate")("threads,t", po::value(&cfg.threads)->default_value(1),
-                                        "for meshes: streams (static schedule)")(
-      "mode", po::value(&mode)->default_value("gauss-seidel"),
-      "for meshes: gauss-seidel or jacobi")(
-      "format", po::value(&cfg.format),
-      ("other tools' traces (values are byte addresses; any may be zstd-compressed):\n" +
-       TraceFormatHelp())
-          .c_str())("instructions",
-                    "lackey: simulate instruction fetches (I lines) too: through a level named I1 "
-                    "(cachegrind's instruction cache) and the data levels below the first, "
-                    "or the data path when there is no I1")(
+                     "`meshreuse trace`, or another tool's trace with --format ('-': stdin)");
+  const std::string format_help =
+      "other tools' traces (values are byte addresses; any may be zstd-compressed):\n" +
+      TraceFormatHelp();
+  SourceHelp help;
+  help.iterations = "for meshes: sweeps to simulate";
+  help.format = format_help;
+  help.instructions =
+      "lackey: simulate instruction fetches (I lines) too: through a level named I1 "
+      "(cachegrind's instruction cache) and the data levels below the first, or the data path "
+      "when there is no I1";
+  help.ranks =
+      "meshes, private caches: simulate each of P ranks' parts as the distributed smoother lays it "
+      "out and sweeps it (--orderings inside each part): one row per rank and level";
+  AddSourceOptions(desc, &cfg, &source, help);
+  desc.add_options()(
       "cache", po::value(&cache)->default_value("westmere-ex"),
       "westmere-ex (L1=32K/8,L2=256K/8,L3=24M/24) or NAME=SIZE/WAYS[/lru|fifo|random],... "
       "(cachegrind's: I1=32K/8,D1=32K/8,LL=8M/16)")("line-bytes",
@@ -58,12 +58,7 @@ int SimulateCommand(const Args& args) {
       "warm", "with --machine: rows of the last sweep only (caches warm from those before)")(
       "out", po::value(&out_dir), "write simulate.{csv,json} and run.json here")(
       "quiet,q", "no progress on stderr");
-  AddRankOptions(desc, &rank_text,
-                 "meshes, private caches: simulate each of P ranks' parts as the distributed "
-                 "smoother lays it out and sweeps it (--orderings inside each part): one row per "
-                 "rank and level");
   AddFormatOptions(desc);
-  AddTriangleOrderOption(desc, &triangle_order);
   po::positional_options_description pos;
   pos.add("input", -1);
   po::variables_map vm;
@@ -76,16 +71,10 @@ int SimulateCommand(const Args& args) {
                     desc, pos, vm))
     return 0;
   const OutputFormat fmt = FormatOption(vm);
-  cfg.orderings = ParseOrderingSpecs(SplitList(orderings));
-  cfg.seed = ParseCount(seed, "--seed", 0, UINT64_MAX >> 1);
+  SourceOf(source, vm, &cfg);
   cfg.line_bytes = static_cast<uint32_t>(ParseCount(line_bytes, "--line-bytes", 1, 1 << 20));
-  cfg.mode = ParseUpdateMode(mode);
-  cfg.triangle_order = ParseTriangleOrder(triangle_order);
   cfg.cache = ParseCacheSpec(cache);
-  cfg.instructions = vm.count("instructions") > 0;
   cfg.placement = ParsePlacement(placement);
-  const RankOptions ro = RankOptionsOf(rank_text, vm);
-  cfg.ranks = ro.ranks, cfg.partition = ro.partition, cfg.cut_placement = ro.placement;
   if (!cfg.machine.empty()) cfg.interleave = ParseInterleave(interleave);
   cfg.by_array = vm.count("by-array") > 0;
   if (!cfg.machine.empty() && !vm["cache"].defaulted())

@@ -16,16 +16,18 @@ namespace meshreuse::cli {
 
 int ValidateCommand(const Args& args) {
   po::options_description desc("options");
-  std::string mesh, orderings = "ori,bfs,rdr", cache = "westmere-ex", mode = "gauss-seidel",
-                    triangle_order, counters = "PAPI_L1_DCM,PAPI_L2_DCM,PAPI_L3_TCM", out_dir,
-                    seed = "1";
+  std::string mesh, cache = "westmere-ex",
+                    counters = "PAPI_L1_DCM,PAPI_L2_DCM,PAPI_L3_TCM", out_dir;
   ValidationConfig cfg;
-  desc.add_options()("mesh", po::value(&mesh)->required(), "input mesh")(
-      "orderings", po::value(&orderings)->default_value(orderings), "comma-separated orderings")(
-      "seed", po::value(&seed)->default_value("1"), "seed of seeded orderings")(
-      "iterations,k", po::value(&cfg.iterations)->default_value(2), "sweeps")(
-      "threads,t", po::value(&cfg.threads)->default_value(1), "streams (static schedule)")(
-      "mode", po::value(&mode)->default_value("gauss-seidel"), "gauss-seidel or jacobi")(
+  SourceOptionText source;
+  source.orderings = "ori,bfs,rdr";
+  desc.add_options()("mesh", po::value(&mesh)->required(), "input mesh");
+  SourceHelp help;
+  help.orderings = "comma-separated orderings";
+  help.iterations = "sweeps";
+  help.threads = "streams (static schedule)";
+  AddSourceOptions(desc, &cfg, &source, help);
+  desc.add_options()(
       "cache", po::value(&cache)->default_value("westmere-ex"),
       "westmere-ex (L1=32K/8,L2=256K/8,L3=24M/24) or NAME=SIZE/WAYS[@CYCLES],...,mem@CYCLES")(
       "element-bytes", po::value(&cfg.element_bytes)->default_value(66),
@@ -38,7 +40,6 @@ int ValidateCommand(const Args& args) {
       "write validate.{csv,md,json}, cost.csv, table3.{csv,md}, sweeps.csv and run.json here")(
       "quiet,q", "no progress on stderr");
   AddFormatOptions(desc, /*markdown=*/true);
-  AddTriangleOrderOption(desc, &triangle_order);
   po::positional_options_description pos;
   pos.add("mesh", 1);
   po::variables_map vm;
@@ -52,11 +53,8 @@ int ValidateCommand(const Args& args) {
           desc, pos, vm))
     return 0;
   const OutputFormat fmt = FormatOption(vm);
-  cfg.seed = ParseCount(seed, "--seed", 0, UINT64_MAX >> 1);
+  SourceOf(source, vm, &cfg);
   cfg.cache = ParseCacheSpec(cache);
-  cfg.mode = ParseUpdateMode(mode);
-  cfg.orderings = ParseOrderingSpecs(SplitList(orderings));
-  cfg.triangle_order = ParseTriangleOrder(triangle_order);
   cfg.counter_events = counters == "none" ? std::vector<std::string>{} : SplitList(counters);
   cfg.exclude_cold = vm.count("exclude-cold") > 0;
   cfg.inputs = {mesh};

@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "core/orderings/registry.h"
 #include "core/output_file.h"
 #include "core/schedule.h"
 #include "core/table.h"
@@ -128,6 +129,33 @@ void Emit(const RunOutput& out, OutputFormat fmt, const std::string& out_dir,
   }
   WriteRunJson(out_dir, out.tool, out.configuration, out.extra);
   progress.Say("wrote " + out_dir + "/{" + wrote + (wrote.empty() ? "" : ",") + "run.json}");
+}
+
+void AddSourceOptions(po::options_description& desc, StreamSource* src, SourceOptionText* text,
+                      const SourceHelp& help) {
+  desc.add_options()("orderings", po::value(&text->orderings)->default_value(text->orderings),
+                     help.orderings)("seed", po::value(&text->seed)->default_value("1"), help.seed)(
+      "iterations,k", po::value(&src->iterations)->default_value(src->iterations), help.iterations)(
+      "threads,t", po::value(&src->threads)->default_value(1), help.threads)(
+      "mode", po::value(&text->mode)->default_value("gauss-seidel"),
+      "for meshes: gauss-seidel or jacobi");
+  if (!help.format.empty())
+    desc.add_options()("format", po::value(&src->format), help.format.c_str())("instructions",
+                                                                               help.instructions);
+  if (help.ranks) AddRankOptions(desc, &text->ranks, help.ranks);
+  AddTriangleOrderOption(desc, &text->triangle_order);
+}
+
+void SourceOf(const SourceOptionText& text, const po::variables_map& vm, StreamSource* src) {
+  src->orderings = ParseOrderingSpecs(SplitList(text.orderings));
+  src->seed = ParseCount(text.seed, "--seed", 0, UINT64_MAX >> 1);
+  src->mode = ParseUpdateMode(text.mode);
+  src->triangle_order = ParseTriangleOrder(text.triangle_order);
+  src->instructions = vm.count("instructions") > 0;
+  if (vm.count("ranks") || vm.count("partition")) {
+    const RankOptions ro = RankOptionsOf(text.ranks, vm);
+    src->ranks = ro.ranks, src->partition = ro.partition, src->cut_placement = ro.placement;
+  }
 }
 
 void AddRankOptions(po::options_description& desc, RankOptionText* text, const char* ranks) {

@@ -13,6 +13,7 @@
 #include "reports/log.h"
 #include "reports/output.h"
 #include "reports/run_info.h"
+#include "reports/stream_source.h"
 
 namespace meshreuse::cli {
 
@@ -51,6 +52,27 @@ struct RankOptionText {
 };
 void AddRankOptions(po::options_description& desc, RankOptionText* text, const char* ranks);
 RankOptions RankOptionsOf(const RankOptionText& text, const po::variables_map& vm);
+
+// The stream source's options (reports/stream_source.h), the same on every command that streams
+// its inputs: --orderings, --seed, -k, -t, --mode, --triangle-order, and where `help` asks,
+// --format and --instructions (other tools' traces) and --ranks, --partition, --cut-placement.
+// `help` words what differs by command; SourceOf reads them back into `src`.
+struct SourceHelp {
+  const char* orderings = "for meshes: comma-separated orderings";
+  const char* seed = "seed of seeded orderings";
+  const char* iterations = "for meshes: sweeps";
+  const char* threads = "for meshes: streams (static schedule)";
+  std::string format;             // "" : no --format (nor --instructions)
+  const char* instructions = "";  // --instructions' help
+  const char* ranks = nullptr;    // --ranks' help; nullptr: no rank options
+};
+struct SourceOptionText {
+  std::string orderings = "ori", seed = "1", mode = "gauss-seidel", triangle_order;
+  RankOptionText ranks;
+};
+void AddSourceOptions(po::options_description& desc, StreamSource* src, SourceOptionText* text,
+                      const SourceHelp& help);
+void SourceOf(const SourceOptionText& text, const po::variables_map& vm, StreamSource* src);
 
 // The full command line, for run.json.
 const std::vector<std::string>& FullCommandLine();
