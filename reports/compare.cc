@@ -440,22 +440,27 @@ TimeClock ParseClock(const std::string& s) {
   throw UsageError("--clock: '" + s + "' is not a clock (wall or cpu)");
 }
 
+void TimingOptions::AddJson(Json* j) const {
+  Json& o = *j;
+  o["threads"] = threads;
+  o["repeat"] = repeat_auto ? Json("auto") : Json(repeat);
+  o["repeat_cap"] = repeat_cap;
+  o["clock"] = ClockName(clock);
+  o["mode"] = UpdateModeName(smooth.mode);
+  o["quality"] = QualityModeName(smooth.quality);
+  o["tol"] = smooth.tol;
+  o["max_iters"] = smooth.max_iters;
+  o["triangle_order"] = TriangleOrderName(triangle_order);
+}
+
 Json CompareConfigJson(const CompareConfig& cfg) {
   Json j;
   j["meshes"] = cfg.meshes;
   j["orderings"] = cfg.orderings;
   j["ordering_seeds"] = OrderingSeedsJson(ParseOrderingSpecs(cfg.orderings), cfg.seed);
-  j["threads"] = cfg.threads;
-  j["repeat"] = cfg.repeat_auto ? Json("auto") : Json(cfg.repeat);
-  j["repeat_cap"] = cfg.repeat_cap;
   j["seed"] = cfg.seed;
-  j["clock"] = ClockName(cfg.clock);
-  j["triangle_order"] = TriangleOrderName(cfg.triangle_order);
+  cfg.AddJson(&j);
   j["counters"] = cfg.counter_events;
-  j["mode"] = UpdateModeName(cfg.smooth.mode);
-  j["quality"] = QualityModeName(cfg.smooth.quality);
-  j["tol"] = cfg.smooth.tol;
-  j["max_iters"] = cfg.smooth.max_iters;
   return j;
 }
 

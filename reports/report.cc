@@ -382,14 +382,8 @@ Json ConfigurationJson(const ReportConfig& cfg) {
   j["meshes"] = cfg.meshes;
   j["orderings"] = cfg.orderings;
   j["ordering_seeds"] = OrderingSeedsJson(ParseOrderingSpecs(cfg.orderings), cfg.seed);
-  j["threads"] = cfg.threads;
-  j["repeat"] = cfg.repeat_auto ? Json("auto") : Json(cfg.repeat);
-  j["repeat_cap"] = cfg.repeat_cap;
-  j["clock"] = ClockName(cfg.clock);
   j["seed"] = cfg.seed;
-  j["tol"] = cfg.smooth.tol;
-  j["max_iters"] = cfg.smooth.max_iters;
-  j["triangle_order"] = TriangleOrderName(cfg.triangle_order);
+  cfg.AddJson(&j);
   j["caches"] = LevelsText(cfg.cache.levels);
   j["machine"] = cfg.machine;
   j["machine_threads"] = cfg.machine_threads;

@@ -11,6 +11,7 @@
 
 #include "core/permutation.h"
 #include "core/smoother.h"
+#include "reports/run_info.h"
 #include "reports/timing.h"
 
 namespace meshreuse {
@@ -32,6 +33,8 @@ struct TimingOptions {
   TimeClock clock = TimeClock::kWall;  // of the speedups and gains
   SmoothOptions smooth;                // tol, max_iters, mode; threads are taken from `threads`
   TriangleOrder triangle_order = TriangleOrder::kSorted;
+  // threads, repeat, repeat_cap, clock, mode, quality, tol, max_iters, triangle_order: run.json's.
+  void AddJson(Json* j) const;
 };
 
 struct CompareRound {

@@ -5,11 +5,7 @@
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   using namespace meshreuse;
-  static const Mesh mesh = [] {
-    SyntheticOptions so;
-    so.nx = 20, so.ny = 15, so.seed = 1;
-    return BuildMesh(MakeSyntheticMesh(so));
-  }();
+  const Mesh& mesh = fuzz::SmallMesh();
   fuzz::MemFile f(data, size);
   try {
     const Permutation p = ComputeOrdering("file:" + f.path(), mesh, 1);

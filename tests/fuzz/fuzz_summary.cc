@@ -11,6 +11,7 @@
 #include <string>
 
 #include "core/error.h"
+#include "reports/analyze.h"
 #include "reports/chunks/merge_summaries.h"
 #include "reports/chunks/summary_file.h"
 

@@ -16,6 +16,7 @@
 #include "core/orderings/registry.h"
 #include "core/permutation.h"
 #include "core/smoother.h"
+#include "core/synthetic.h"
 
 namespace meshreuse::fuzz {
 
@@ -61,6 +62,16 @@ inline void Exercise(RawMesh raw) {
     const Permutation p = ComputeOrdering(o.name, m, 1);
     ApplyPermutation(m, p, TriangleOrder::kSorted);
   }
+}
+
+// The 20 x 15 synthetic mesh the permutation and visit-order harnesses read their files against.
+inline const Mesh& SmallMesh() {
+  static const Mesh mesh = [] {
+    SyntheticOptions so;
+    so.nx = 20, so.ny = 15, so.seed = 1;
+    return BuildMesh(MakeSyntheticMesh(so));
+  }();
+  return mesh;
 }
 
 }  // namespace meshreuse::fuzz
