@@ -68,6 +68,10 @@ CacheHierarchy::CacheHierarchy(const std::vector<CacheLevel>& levels, uint32_t l
       throw UsageError("cache level " + l.name + " needs its associativity for simulation, e.g. " +
                        l.name + "=32K/8 (the fully associative model is `analyze`)");
     SetAssociativeCache::CheckGeometry(l.bytes, l.ways, line_bytes);
+    if (l.bytes / line_bytes > SetAssociativeCache::kMaxLines)
+      throw UsageError("cache level " + l.name + ": " + std::to_string(l.bytes / line_bytes) +
+                       " lines of " + std::to_string(line_bytes) + " B; a level holds at most " +
+                       std::to_string(SetAssociativeCache::kMaxLines) + " lines");
   }
   int i1 = -1;
   for (size_t i = 0; i < levels.size(); ++i) {

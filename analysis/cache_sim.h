@@ -51,6 +51,9 @@ struct LevelStats {
 // One level. Lines are addresses >> log2(line bytes).
 class SetAssociativeCache {
  public:
+  // Lines a level may hold: its tags are allocated up front (calloc: pages as they are touched),
+  // and a level of more lines is a mistake (1 B lines in a GiB cache), refused naming the level.
+  static constexpr uint64_t kMaxLines = uint64_t{1} << 26;
   // Throws UsageError unless bytes is a multiple of line_bytes * ways.
   SetAssociativeCache(uint64_t bytes, uint32_t ways, uint32_t line_bytes,
                       Replacement policy = Replacement::kLru);

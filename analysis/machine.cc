@@ -6,6 +6,7 @@
 #include <functional>
 #include <string>
 
+#include "analysis/cache_sim.h"
 #include "core/error.h"
 #include "core/text_file.h"
 
@@ -49,6 +50,10 @@ void Check(const Machine& m, const std::function<void(const std::string&)>& fail
     if (l.cache.ways == 0) fail("level " + l.cache.name + " needs its ways (e.g. 32K/8)");
     if (l.cache.bytes % (uint64_t{m.line_bytes} * l.cache.ways) != 0)
       fail("level " + l.cache.name + ": the size must be a multiple of ways x line size");
+    if (l.cache.bytes / m.line_bytes > SetAssociativeCache::kMaxLines)
+      fail("level " + l.cache.name + ": " + std::to_string(l.cache.bytes / m.line_bytes) +
+           " lines of " + std::to_string(m.line_bytes) + " B; a level holds at most " +
+           std::to_string(SetAssociativeCache::kMaxLines) + " lines");
     if (l.inclusive && !l.shared) fail("only a shared level can be inclusive");
     if (!l.cache.latency.known()) fail("level " + l.cache.name + " needs its latency (@CYCLES)");
   }
@@ -81,6 +86,11 @@ Machine ParseMachine(const std::string& spec) {
     if (key == "name") {
       need(2);
       m.name = std::string(tok[1]);
+      for (char c : m.name)  // it goes into tables, CSV and terminals as it is
+        if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f || c == ',' || c == '"')
+          f.Fail(
+              "the name holds a control character, a comma or a quote (it goes into tables "
+              "and CSV as it is)");
     } else if (key == "sockets") {
       need(2);
       m.sockets = static_cast<int>(count(tok[1], 1, 64));

@@ -142,6 +142,14 @@ void AnalyzeConfigOf(const AnalyzeOptionText& t, const po::variables_map& vm, An
     throw UsageError("--sample-error needs --sample-rate or --sample-size");
   if (!t.chunk.empty()) cfg->chunk = ParseChunk(t.chunk);
   cfg->merge = vm.count("merge") > 0;
+  // What the chunk runs decided (their summaries say it) is refused at the merge, not ignored.
+  if (cfg->merge)
+    for (const char* o : {"orderings", "seed", "iterations", "threads", "mode", "triangle-order",
+                          "instructions", "ranks", "line-bytes", "scatter-from", "rank-stats"})
+      if (vm.count(o) && !vm[o].defaulted())
+        throw UsageError(std::string("--merge: --") + o +
+                         " was the chunk runs' to choose (their summaries hold it): give it to "
+                         "`analyze --chunk`, not here");
 }
 
 }  // namespace
@@ -193,6 +201,16 @@ int AnalyzeCommand(const Args& args, Communicator* transport) {
           "thread)");
   }
   if (writer) {
+    std::vector<std::pair<std::string, std::string>> outputs = {{"--histogram-csv", hist_csv},
+                                                                {"--profile-csv", prof_csv},
+                                                                {"--mrc-csv", mrc_csv},
+                                                                {"--vtk", cfg.vtk},
+                                                                {"--rank-stats", rank_stats}};
+    if (!out_dir.empty())
+      for (const char* f :
+           {"analyze.csv", "analyze.json", "histogram.csv", "profile.csv", "run.json"})
+        outputs.emplace_back("--out", out_dir + "/" + f);
+    CheckDistinctOutputs(outputs);
     if (!rank_stats.empty()) CheckOutputPath(rank_stats, "--rank-stats", InputFiles(cfg.inputs));
     for (const auto& [path, opt] :
          {std::pair{hist_csv, "--histogram-csv"}, std::pair{prof_csv, "--profile-csv"},

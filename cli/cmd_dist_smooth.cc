@@ -100,6 +100,13 @@ bool ParseDistSmooth(const Args& args, DistSmoothOptions* o, const char* usage,
     for (const std::string& f : MeshOutputFiles(cfg.output))
       CheckOutputPath(f, "-o", InputFiles({cfg.mesh}));
   if (!cfg.pi_out.empty()) CheckOutputPath(cfg.pi_out, "--pi-out", InputFiles({cfg.mesh}));
+  std::vector<std::pair<std::string, std::string>> outputs = {{"--pi-out", cfg.pi_out}};
+  if (!cfg.output.empty())
+    for (const std::string& f : MeshOutputFiles(cfg.output)) outputs.emplace_back("-o", f);
+  if (!out_dir.empty())
+    for (const char* f : {"sweeps.csv", "ranks.csv", "run.json"})
+      outputs.emplace_back("--out", out_dir + "/" + f);
+  CheckDistinctOutputs(outputs);
   return true;
 }
 
@@ -109,6 +116,8 @@ void RunDistSmooth(const DistSmoothOptions& o, Communicator& tx) {
   const DistSmoothConfig& cfg = o.cfg;
   const bool writer = tx.rank() == 0;
   if (!o.out_dir.empty() && writer) PrepareOutDir(o.out_dir);
+  if (writer && !cfg.output.empty())
+    for (const std::string& f : MeshOutputFiles(cfg.output)) WarnStaleTemporaries(f);
   const Progress progress(o.quiet || !writer);
   auto on_setup = [&](const DistSmoothResult& r) {
     if (!writer) return;

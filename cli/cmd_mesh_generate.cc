@@ -1,6 +1,7 @@
 // meshreuse mesh generate: one of the nine shapes (or a .poly) meshed with Shewchuk's Triangle
 // to a vertex count (core/triangle_runner.h).
 #include <cstdio>
+#include <filesystem>
 #include <string>
 
 #include "cli/common.h"
@@ -45,12 +46,28 @@ int MeshGenerate(const Args& args) {
     if (!info) throw UsageError("--poly needs --vertices");
     vertices = info->paper_vertices;
   }
-  if (vertices < 100) throw UsageError("--vertices must be at least 100");
+  // Ids are 32-bit; Triangle reaches 10^7 vertices in minutes, 10^9 in days: a bound up front,
+  // not a search that runs Triangle over and over.
+  constexpr int64_t kMaxVertices = int64_t{1} << 30;
+  if (vertices < 100 || vertices > kMaxVertices)
+    throw UsageError("--vertices must be 100.." + std::to_string(kMaxVertices) + ", found " +
+                     std::to_string(vertices));
   if (!(angle >= 0 && angle <= 34))
     throw UsageError(
         "--min-angle must be between 0 and 34 degrees (Triangle may not terminate above)");
   if (out.empty()) out = "out/" + (info ? shape : std::string("mesh"));
   MeshOutputFiles(out);  // refuses a prefix that names no file
+  // The folders it makes: none of them may already be a file.
+  for (std::filesystem::path p = std::filesystem::path(out).parent_path(); !p.empty();
+       p = p.parent_path()) {
+    std::error_code ec;
+    if (std::filesystem::exists(p, ec)) {
+      if (!std::filesystem::is_directory(p, ec))
+        throw UsageError("-o '" + out + "': " + p.string() + " is not a folder");
+      break;
+    }
+    if (p == p.parent_path()) break;
+  }
   const Progress progress(vm.count("quiet") > 0);
   TriangulateOptions opt;
   opt.target_vertices = vertices;

@@ -16,6 +16,7 @@ namespace meshreuse::cli {
 int MeshPartition(const Args& args) {
   po::options_description desc("options");
   MeshPartitionConfig cfg;
+  std::string seed;
   const std::string& in = cfg.mesh;
   desc.add_options()("mesh", po::value(&cfg.mesh)->required(), "input mesh")(
       "parts,P", po::value(&cfg.parts)->default_value(2), "number of parts")(
@@ -23,7 +24,7 @@ int MeshPartition(const Args& args) {
       "hilbert (contiguous ranges of the Hilbert order), metis (METIS k-way, seeded), scotch "
       "(Scotch, seeded), ranges (contiguous ranges of the stored ids) or gmsh (Gmsh's own, for "
       "MESH a file of a split set PREFIX_K.msh, `gmsh -part P -part_split`)")(
-      "seed", po::value(&cfg.seed)->default_value(1), "METIS's seed")(
+      "seed", po::value(&seed)->default_value("1"), "METIS's and Scotch's seed")(
       "levels,K", po::value(&cfg.levels)->default_value(0),
       "partition MESH, then give the parts of its refinement into 4^K (mesh refine --levels K)")(
       "output,o", po::value(&cfg.output), "write one part per vertex, a line each, here")(
@@ -46,6 +47,7 @@ int MeshPartition(const Args& args) {
                     "triangle's smallest corner's.",
                     desc, pos, vm))
     return 0;
+  cfg.seed = ParseCount(seed, "--seed", 0, UINT64_MAX);
   CheckMeshPartitionConfig(cfg);
   if (!cfg.output.empty()) CheckOutputPath(cfg.output, "-o", InputFiles({in}));
   if (!cfg.split.empty()) {
@@ -55,8 +57,12 @@ int MeshPartition(const Args& args) {
     if (cfg.method == "gmsh" && us != std::string::npos)
       for (int32_t p = 1; p <= cfg.parts; ++p)
         inputs.push_back(in.substr(0, us + 1) + std::to_string(p) + ".msh");
-    for (int32_t p = 1; p <= cfg.parts; ++p)
+    std::vector<std::pair<std::string, std::string>> outputs = {{"-o", cfg.output}};
+    for (int32_t p = 1; p <= cfg.parts; ++p) {
       CheckOutputPath(cfg.split + std::to_string(p) + ".msh", "--split", inputs);
+      outputs.emplace_back("--split", cfg.split + std::to_string(p) + ".msh");
+    }
+    CheckDistinctOutputs(outputs);
   }
   const Progress progress(vm.count("quiet") > 0);
   Emit(RunMeshPartition(cfg, MakeLog(progress)), OutputFormat::kText, "", progress);

@@ -25,12 +25,12 @@ namespace meshreuse::cli {
 namespace {
 
 void AddRefineOptions(po::options_description& desc, std::string* in, std::string* out,
-                      RefineOptions* o, const char* out_help) {
+                      RefineOptions* o, std::string* seed, const char* out_help) {
   desc.add_options()("mesh", po::value(in)->required(), "input (coarse) mesh")(
       "levels,K", po::value(&o->levels)->default_value(1), "each triangle into 4^K (0..15)")(
       "jitter", po::value(&o->jitter)->default_value(0.0),
       "move each new vertex off the coarse boundary by up to JITTER/2 of the local fine spacing "
-      "in x and y (0..0.5; areas stay positive)")("seed", po::value(&o->seed)->default_value(1),
+      "in x and y (0..0.5; areas stay positive)")("seed", po::value(seed)->default_value("1"),
                                                   "seed of the jitter")(
       "output,o", po::value(out)->required(), out_help);
 }
@@ -41,7 +41,8 @@ int DistRefineCommand(const Args& args, Communicator& tx) {
   po::options_description desc("options");
   DistRefineConfig cfg;
   std::string rank_stats;
-  AddRefineOptions(desc, &cfg.mesh, &cfg.output, &cfg.refine,
+  std::string seed;
+  AddRefineOptions(desc, &cfg.mesh, &cfg.output, &cfg.refine, &seed,
                    "PATH.mrm, the distributed mesh file (a regular file or a new path)");
   desc.add_options()("rank-stats", po::value(&rank_stats),
                      "write each rank's coarse triangles, vertices, seconds and peak memory (CSV)")(
@@ -57,9 +58,12 @@ int DistRefineCommand(const Args& args, Communicator& tx) {
               "Layout " + kPiecesLayoutHelp + ".",
           desc, pos, vm))
     return 0;
+  cfg.refine.seed = ParseCount(seed, "--seed", 0, UINT64_MAX);
   CheckDistRefineConfig(cfg);
   const bool writer = tx.rank() == 0;
   CheckOutputPath(cfg.output, "-o", InputFiles({cfg.mesh}));
+  if (writer) WarnStaleTemporaries(cfg.output);
+  CheckDistinctOutputs({{"-o", cfg.output}, {"--rank-stats", rank_stats}});
   if (!rank_stats.empty()) CheckOutputPath(rank_stats, "--rank-stats", InputFiles({cfg.mesh}));
   const Progress progress(vm.count("quiet") > 0 || !writer);
   const DistRefineResult r = RunDistributedRefine(cfg, tx, MakeLog(progress));
@@ -73,7 +77,8 @@ int DistRefineCommand(const Args& args, Communicator& tx) {
 int MeshRefine(const Args& args) {
   po::options_description desc("options");
   MeshRefineConfig cfg;
-  AddRefineOptions(desc, &cfg.mesh, &cfg.output, &cfg.refine,
+  std::string seed;
+  AddRefineOptions(desc, &cfg.mesh, &cfg.output, &cfg.refine, &seed,
                    "PATH.vtk, PATH.mrm (the distributed mesh file), or a prefix for .node/.ele");
   desc.add_options()("layout", po::value(&cfg.layout),
                      (std::string("vertex order: refinement (the ids above; the default, except "
@@ -99,13 +104,14 @@ int MeshRefine(const Args& args) {
           "mesh's size and content hash (the same for any process computing any part of it).",
           desc, pos, vm))
     return 0;
+  cfg.refine.seed = ParseCount(seed, "--seed", 0, UINT64_MAX);
   if (vm.count("ranks") && cfg.ranks == 0) cfg.ranks = -1;  // refused: 1..4096
   CheckMeshRefineConfig(cfg);
-  if (cfg.ranks > 0)
-    CheckOutputPath(cfg.output, "-o", InputFiles({cfg.mesh}));
-  else
-    for (const std::string& f : MeshOutputFiles(cfg.output))
-      CheckOutputPath(f, "-o", InputFiles({cfg.mesh}));
+  for (const std::string& f :
+       cfg.ranks > 0 ? std::vector<std::string>{cfg.output} : MeshOutputFiles(cfg.output)) {
+    CheckOutputPath(f, "-o", InputFiles({cfg.mesh}));
+    WarnStaleTemporaries(f);
+  }
   const Progress progress(vm.count("quiet") > 0);
   Emit(RunMeshRefine(cfg, MakeLog(progress)), OutputFormat::kText, "", progress);
   return 0;

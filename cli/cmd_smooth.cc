@@ -68,9 +68,16 @@ int SmoothCommand(const Args& args) {
     cfg.counter_events = counters == "default" ? DefaultCounterEvents() : SplitList(counters);
   const OutputFormat fmt = FormatOption(vm);
   CheckSmoothConfig(cfg);
+  std::vector<std::pair<std::string, std::string>> outputs;
   if (!cfg.output.empty())
-    for (const std::string& f : MeshOutputFiles(cfg.output))
+    for (const std::string& f : MeshOutputFiles(cfg.output)) {
       CheckOutputPath(f, "-o", InputFiles(cfg.meshes));
+      outputs.emplace_back("-o", f);
+    }
+  if (!out_dir.empty())
+    for (const char* f : {"summary.csv", "summary.md", "sweeps.csv", "run.json"})
+      outputs.emplace_back("--out", out_dir + "/" + f);
+  CheckDistinctOutputs(outputs);
   if (!out_dir.empty()) PrepareOutDir(out_dir);
   const CounterNote note = ProbeCounters(cfg.counter_events, cfg.smooth.threads);
   if (!note.note.empty())

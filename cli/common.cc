@@ -131,6 +131,29 @@ void Emit(const RunOutput& out, OutputFormat fmt, const std::string& out_dir,
   progress.Say("wrote " + out_dir + "/{" + wrote + (wrote.empty() ? "" : ",") + "run.json}");
 }
 
+void CheckDistinctOutputs(const std::vector<std::pair<std::string, std::string>>& option_paths) {
+  std::vector<std::pair<std::string, const std::pair<std::string, std::string>*>> seen;
+  for (const auto& op : option_paths) {
+    if (op.second.empty() || op.second == "-") continue;
+    std::error_code ec;
+    std::string key = std::filesystem::weakly_canonical(op.second, ec).string();
+    if (ec) key = op.second;
+    for (const auto& [k, first] : seen)
+      if (k == key)
+        throw UsageError(op.first + " '" + op.second + "' is the file " + first->first +
+                         " writes too: give each output its own path");
+    seen.emplace_back(key, &op);
+  }
+}
+
+void WarnStaleTemporaries(const std::string& path) {
+  for (const std::string& t : StaleTemporaries(path))
+    std::fprintf(stderr,
+                 "meshreuse: warning: %s: a temporary an earlier run left when it was killed (its "
+                 "process is gone): remove it\n",
+                 t.c_str());
+}
+
 void AddSourceOptions(po::options_description& desc, StreamSource* src, SourceOptionText* text,
                       const SourceHelp& help) {
   desc.add_options()("orderings", po::value(&text->orderings)->default_value(text->orderings),

@@ -74,6 +74,14 @@ void AddSourceOptions(po::options_description& desc, StreamSource* src, SourceOp
                       const SourceHelp& help);
 void SourceOf(const SourceOptionText& text, const po::variables_map& vm, StreamSource* src);
 
+// Two outputs of one run on one file (`-o same.vtk --pi-out same.vtk`; links and relative paths
+// resolved): UsageError naming both options, before any work. Empty paths are not given outputs.
+void CheckDistinctOutputs(const std::vector<std::pair<std::string, std::string>>& option_paths);
+
+// Warns (stderr) of temporaries of `path` an earlier run left when it was killed (PATH.tmp.PID
+// whose process is gone): the files a cancelled job could not remove, named for the user.
+void WarnStaleTemporaries(const std::string& path);
+
 // The full command line, for run.json.
 const std::vector<std::string>& FullCommandLine();
 // A runner's output: printed on stdout in `fmt` and, with `out_dir`, written under it (its

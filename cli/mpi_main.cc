@@ -25,6 +25,7 @@
 #include "cli/mpi_ptscotch.h"
 #endif
 #include "core/error.h"
+#include "core/output_file.h"
 
 namespace meshreuse::cli {
 namespace {
@@ -72,6 +73,9 @@ int main(int argc, char** argv) {
   MPI_Init_thread(&argc, &argv, ptscotch_asked ? MPI_THREAD_MULTIPLE : MPI_THREAD_SINGLE,
                   &provided);
   SetFullCommandLine(argc, argv);
+  // Temporaries (this rank's outputs, and a file every rank writes together) are removed on
+  // SIGINT and SIGTERM (what mpirun forwards when cancelled: SLURM's scancel) and before an abort.
+  meshreuse::InstallOutputCleanup();
   const std::vector<std::string> args(argv + 1, argv + argc);
   int rank = 0;
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);
@@ -113,7 +117,10 @@ int main(int argc, char** argv) {
     rc = RunReportingErrors(
         "analyze", [&] { return AnalyzeCommand(rest, &comm); }, who);
   }
-  if (rc != 0) MPI_Abort(MPI_COMM_WORLD, rc);  // ends every rank: a failure never hangs the job
+  if (rc != 0) {
+    meshreuse::RemoveTemporaries();  // MPI_Abort ends the ranks without unwinding
+    MPI_Abort(MPI_COMM_WORLD, rc);   // ends every rank: a failure never hangs the job
+  }
   MPI_Finalize();
   return 0;
 }

@@ -1,6 +1,7 @@
 // Outputs; see output_file.h.
 #include "core/output_file.h"
 
+#include <dirent.h>
 #include <fcntl.h>
 #include <limits.h>
 #include <signal.h>
@@ -39,8 +40,7 @@ void Unregister(int slot) {
 }
 
 extern "C" void CleanupAndReraise(int sig) {
-  for (int i = 0; i < kSlots; ++i)
-    if (g_used[i].load()) ::unlink(g_tmp[i]);
+  RemoveTemporaries();
   ::signal(sig, SIG_DFL);
   ::raise(sig);
 }
@@ -96,6 +96,38 @@ bool SameFile(const std::string& a, const std::string& b) {
 }
 
 }  // namespace
+
+int RegisterTemporary(const std::string& path) { return Register(path); }
+void UnregisterTemporary(int slot) { Unregister(slot); }
+
+void RemoveTemporaries() {
+  for (int i = 0; i < kSlots; ++i)
+    if (g_used[i].load()) ::unlink(g_tmp[i]);
+}
+
+std::vector<std::string> StaleTemporaries(const std::string& path) {
+  std::vector<std::string> stale;
+  std::string target;
+  try {
+    target = ResolveLinks(path);
+  } catch (const UsageError&) {
+    return stale;
+  }
+  const std::string dir = Dir(target), prefix = Base(target) + ".tmp.";
+  DIR* d = ::opendir(dir.c_str());
+  if (!d) return stale;
+  while (const dirent* e = ::readdir(d)) {
+    const std::string name = e->d_name;
+    if (name.compare(0, prefix.size(), prefix) != 0) continue;
+    const std::string pid = name.substr(prefix.size());
+    if (pid.empty() || pid.size() > 9 || pid.find_first_not_of("0123456789") != std::string::npos)
+      continue;
+    if (::kill(static_cast<pid_t>(std::stol(pid)), 0) != 0 && errno == ESRCH)
+      stale.push_back(dir + "/" + name);
+  }
+  ::closedir(d);
+  return stale;
+}
 
 void CheckOutputPath(const std::string& path, const std::string& option,
                      const std::vector<std::string>& inputs) {

@@ -70,5 +70,16 @@ void WriteAtomicallyAll(
 
 // Arms the removal of temporaries on SIGINT and SIGTERM (idempotent).
 void InstallOutputCleanup();
+// A temporary another process made that this one must remove too when it ends by a signal or
+// aborts (the shared temporary every rank of a job writes): registered with the signal handler's
+// list (-1 when the list is full), unregistered once committed.
+int RegisterTemporary(const std::string& path);
+void UnregisterTemporary(int slot);
+// Removes every registered temporary now (the abort path: MPI_Abort ends this process without
+// unwinding); async-signal-safe.
+void RemoveTemporaries();
+// Temporaries of `path` (PATH.tmp.PID beside its target) whose process is gone: what an earlier run
+// that was killed left behind.
+std::vector<std::string> StaleTemporaries(const std::string& path);
 
 }  // namespace meshreuse

@@ -18,6 +18,10 @@
 namespace meshreuse {
 
 void CheckMeshPartitionConfig(const MeshPartitionConfig& cfg) {
+  // As many parts as ranks may be (--ranks), checked before any per-part work (the split set's
+  // file names are checked one by one).
+  if (cfg.parts < 1 || cfg.parts > 65536)
+    throw UsageError("--parts must be 1..65536, found " + std::to_string(cfg.parts));
   const std::string& m = cfg.method;
   if (m != "hilbert" && m != "metis" && m != "scotch" && m != "ranges" && m != "gmsh")
     throw UsageError("--method must be hilbert, metis, scotch, ranges or gmsh, not '" + m + "'");

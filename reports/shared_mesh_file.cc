@@ -1,6 +1,8 @@
 // SharedMeshFileOutput (shared_mesh_file.h).
 #include "reports/shared_mesh_file.h"
 
+#include <unistd.h>
+
 #include <cstring>
 #include <vector>
 
@@ -14,6 +16,12 @@ SharedMeshFileOutput::SharedMeshFileOutput(const std::string& path, Communicator
     tmp_ = out_->temporary();
   }
   tmp_ = tx.AllGather(tmp_)[0];
+  if (!out_ && !tmp_.empty()) slot_ = RegisterTemporary(tmp_);
+}
+
+SharedMeshFileOutput::~SharedMeshFileOutput() {
+  if (!finished_ && !out_ && !tmp_.empty()) ::unlink(tmp_.c_str());
+  UnregisterTemporary(slot_);
 }
 
 uint64_t SharedMeshFileOutput::Finish(int64_t blocks) {
@@ -22,7 +30,10 @@ uint64_t SharedMeshFileOutput::Finish(int64_t blocks) {
   const std::vector<uint64_t> mine = HashMeshFileBlocks(tmp_, blocks * r / P, blocks * (r + 1) / P);
   const std::vector<std::string> all =
       tx_.Gather(std::string(reinterpret_cast<const char*>(mine.data()), 8 * mine.size()));
-  if (r != 0) return 0;
+  if (r != 0) {
+    finished_ = true;  // rank 0 finishes the file (or, failing, its output removes it)
+    return 0;
+  }
   std::vector<uint64_t> hashes;
   for (const std::string& b : all) {
     const size_t at = hashes.size();

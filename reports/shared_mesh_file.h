@@ -2,8 +2,9 @@
 // distributed smoother's -o FILE.mrm and meshreuse-mpi refine): rank 0 opens the output through
 // AtomicOutput (a temporary beside it) and every rank learns where the temporary is; once every
 // rank has written its part, Finish has each rank hash a share of the blocks anew and rank 0
-// write the tables and header and rename the temporary into place. Destroyed unfinished, rank 0's
-// temporary is removed and the target untouched.
+// write the tables and header and rename the temporary into place. Destroyed unfinished, the
+// temporary is removed and the target untouched; every rank registers it for removal on SIGINT,
+// SIGTERM and the abort path (core/output_file.h), so a cancelled or failed job leaves none.
 #pragma once
 
 #include <cstdint>
@@ -25,11 +26,16 @@ class SharedMeshFileOutput {
   // share per rank (blocks past them keep their hashes); rank 0 finishes and renames the file and
   // gets its content id (the other ranks 0).
   uint64_t Finish(int64_t blocks);
+  // Unfinished (an error on this rank): every rank removes the temporary, so that a failure
+  // anywhere leaves none (rank 0's own is removed by its output).
+  ~SharedMeshFileOutput();
 
  private:
   Communicator& tx_;
   std::unique_ptr<AtomicOutput> out_;  // rank 0's
   std::string tmp_;
+  int slot_ = -1;  // the temporary in this rank's signal-cleanup list (core/output_file.h)
+  bool finished_ = false;
 };
 
 }  // namespace meshreuse

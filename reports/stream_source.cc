@@ -110,6 +110,7 @@ void StreamMeshInput(const StreamSource& src, StreamJob job, StreamConsumer& c, 
 
 void ForEachStream(const StreamSource& src, StreamConsumer& c, const Log& log) {
   const TraceFormat* fmt = src.Format();
+  if (!fmt) CheckTraceSets(src.inputs);
   for (const std::string& in : src.inputs) {
     StreamJob job;
     job.input = in;

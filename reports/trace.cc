@@ -5,6 +5,7 @@
 
 #include <chrono>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <functional>
 #include <limits>
@@ -12,6 +13,7 @@
 
 #include "core/error.h"
 #include "core/mesh_io.h"
+#include "core/mix.h"
 #include "core/orderings/registry.h"
 #include "core/output_file.h"
 #include "core/schedule.h"
@@ -29,6 +31,32 @@ std::vector<std::string> TraceOutputs(const TraceConfig& cfg) {
   std::vector<std::string> out;
   for (int32_t r = 0; r < cfg.ranks; ++r) out.push_back(cfg.output + ".rank" + std::to_string(r));
   return out;
+}
+
+// A tag of the set `trace --ranks` writes: a hash of the mesh file's bytes and of every option that
+// shapes the streams, so two runs of one configuration write the same files (mixing them is
+// harmless) and files of runs that differ carry different tags.
+std::string TraceSetTag(const TraceConfig& cfg) {
+  uint64_t h = 0x6d657368736574ull;  // "meshset"
+  std::FILE* f = std::fopen(cfg.mesh.c_str(), "rb");
+  if (f) {
+    char b[1 << 16];
+    for (size_t n; (n = std::fread(b, 1, sizeof b, f)) > 0;) {
+      size_t i = 0;
+      for (uint64_t w; i + 8 <= n; i += 8) std::memcpy(&w, b + i, 8), h = Mix64(h ^ w) + n;
+      for (; i < n; ++i) h = Mix64(h ^ static_cast<unsigned char>(b[i]));
+    }
+    std::fclose(f);
+  }
+  const std::string what = cfg.ordering + "|" + std::to_string(cfg.seed) + "|" +
+                           std::to_string(cfg.ranks) + "|" + cfg.partition + "|" +
+                           CutPlacementName(cfg.cut_placement) + "|" +
+                           std::to_string(cfg.iterations) + "|" + UpdateModeName(cfg.mode) + "|" +
+                           std::to_string(cfg.element_bytes);
+  for (char c : what) h = Mix64(h ^ static_cast<unsigned char>(c));
+  char tag[20];
+  std::snprintf(tag, sizeof tag, "%016llx", static_cast<unsigned long long>(h));
+  return tag;
 }
 
 void CheckTraceConfig(const TraceConfig& cfg) {
@@ -99,25 +127,33 @@ TraceRunResult RunTrace(const TraceConfig& cfg, const Log& log) {
     rc.ordering = cfg.ordering, rc.seed = cfg.seed, rc.sweeps = so;
     rc.placement = cfg.cut_placement;
     const std::vector<std::string> outputs = TraceOutputs(cfg);
+    // The files are a set: each closed complete under its temporary name, then all renamed into
+    // place at the end, so a failure (a full disk) leaves every old file as it was. Each header
+    // names the set (a run's nonce beside the rank), so that files of two runs read together are
+    // told apart (access_stream.h).
+    const std::string set = TraceSetTag(cfg);
+    std::vector<std::unique_ptr<AtomicOutput>> closed;
     std::unique_ptr<TraceWriter> w;
-    int32_t open_rank = -1;
     auto finish = [&] {
       if (!w) return;
-      w->Close();
+      closed.push_back(w->CloseForSet());
       r.records += w->records();
       r.elements += w->elements();
       w.reset();
-      log.Say("wrote " + outputs[open_rank]);
     };
     StreamRankParts(rc, log, [&](int32_t rank) -> AccessConsumer& {
       finish();
       TraceHeader hr = h;
-      hr.mesh += " [rank " + std::to_string(rank) + " of " + std::to_string(cfg.ranks) + "]";
+      hr.mesh += " [rank " + std::to_string(rank) + " of " + std::to_string(cfg.ranks) + ", set " +
+                 set + "]";
       w = std::make_unique<TraceWriter>(outputs[rank], hr, cfg.iterations);
-      open_rank = rank;
       return *w;
     });
     finish();
+    for (size_t k = 0; k < closed.size(); ++k) {
+      closed[k]->Rename();
+      log.Say("wrote " + outputs[k]);
+    }
     r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     return r;
   }

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <map>
 
 #include "core/error.h"
 #include "core/input_file.h"
@@ -249,6 +250,33 @@ InputKind ClassifyInput(const std::string& path) {
   return back.size() == sizeof magic && std::memcmp(back.data(), kTraceMagic, 8) == 0
              ? InputKind::kTrace
              : InputKind::kText;
+}
+
+void CheckTraceSets(const std::vector<std::string>& inputs) {
+  std::map<std::string, std::pair<std::string, std::string>> seen;  // mesh and P -> (tag, file)
+  for (const std::string& in : inputs) {
+    if (in == "-" || ClassifyInput(in) != InputKind::kTrace) continue;
+    std::string label;
+    try {
+      label = TraceReader(in).header().mesh;
+    } catch (const std::exception&) {
+      continue;  // the analysis reports it
+    }
+    const size_t at = label.rfind(" [rank ");
+    const size_t set = label.rfind(", set ");
+    if (at == std::string::npos || set == std::string::npos || set < at || label.back() != ']')
+      continue;
+    const size_t of = label.find(" of ", at);
+    if (of == std::string::npos || of > set) continue;
+    const std::string key = label.substr(0, at) + label.substr(of, set - of);
+    const std::string tag = label.substr(set + 6, label.size() - set - 7);
+    const auto [it, fresh] = seen.emplace(key, std::make_pair(tag, in));
+    if (!fresh && it->second.first != tag)
+      throw InputError(in, 0,
+                       "a rank of another `trace --ranks` run than " + it->second.second +
+                           " (set " + tag + ", not " + it->second.first +
+                           "): write the set again, all ranks at once");
+  }
 }
 
 }  // namespace meshreuse

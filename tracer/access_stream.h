@@ -115,5 +115,9 @@ void StreamForeignTrace(const std::string& path, const TraceFormat& format, bool
 // prefix P with P.node), standard input ("-": a text trace of ids), or else a meshreuse trace.
 enum class InputKind { kMesh, kTrace, kText };
 InputKind ClassifyInput(const std::string& path);
+// Among `inputs`, the meshreuse traces that are ranks of a `trace --ranks` set ("MESH [rank r of
+// P, set TAG]" in their headers) must come from one run: two files naming the same mesh and P
+// with different tags are refused (InputError naming the second), a set written over in part.
+void CheckTraceSets(const std::vector<std::string>& inputs);
 
 }  // namespace meshreuse

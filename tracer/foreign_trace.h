@@ -208,6 +208,11 @@ ForeignTraceCounts ReadForeignTrace(const std::string& path, const TraceFormat& 
       // Every chunk refuses a file that ends in part of a record, as a reader from the start
       // does at its end (a chunk reads whole records only).
       const int64_t size = in.size();
+      if (size >= 0 && static_cast<uint64_t>(size) % w != 0 && in.size_from_table())
+        throw InputError(path, 0,
+                         "the zstd seek table does not match the frames: its frames add up to " +
+                             std::to_string(size) + " content bytes, not a whole number of " +
+                             std::to_string(w) + "-byte records");
       if (size >= 0 && static_cast<uint64_t>(size) % w != 0)
         throw foreign_detail::StrayBytes(path, static_cast<uint64_t>(size), w);
       in.SeekTo(first * w);

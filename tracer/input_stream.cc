@@ -225,8 +225,8 @@ InputStream::InputStream(const std::string& path) : file_(path) {
     ZSTD_DCtx_setParameter(zstd_->ds, ZSTD_d_windowLogMax, kWindowLogMax);
     if (file_.size() >= 0) {
       ZstdWalk w;
-      if (!ReadSeekTable(file_.get(), file_.size(), &w))
-        w = WalkZstdFrames(file_.get(), file_.size());
+      size_from_table_ = ReadSeekTable(file_.get(), file_.size(), &w);
+      if (!size_from_table_) w = WalkZstdFrames(file_.get(), file_.size());
       size_ = w.size;
       zstd_->complete = w.complete;
       // A damaged file (the walk stopped short) is entered only at its start: the decompressor,

@@ -41,6 +41,9 @@ class InputStream {
   // frame headers record (every frame must: `trace --compress` and `zstd FILE` do, pzstd does
   // not); -1 otherwise. Several frames and skippable frames (pzstd) read as `zstd -d` reads them.
   int64_t size() const { return size_; }
+  // Whether size() is a seek table's sum, a claim checked only as the decompressor passes its
+  // places: a size that cannot be right (part of a record) then blames the table, not the file.
+  bool size_from_table() const { return size_from_table_; }
   // Whether SeekTo works: a plain regular file, or a compressed regular file that ends in a seek
   // table or whose frames all record their sizes.
   bool seekable() const;
@@ -72,6 +75,7 @@ class InputStream {
   std::vector<char> peek_;  // bytes read to look for the magic, served first
   size_t peek_at_ = 0;
   int64_t size_ = -1;
+  bool size_from_table_ = false;
   uint64_t limit_ = ~uint64_t{0};  // bytes Read may still return
   std::unique_ptr<Zstd> zstd_;
 };

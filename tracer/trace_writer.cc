@@ -97,7 +97,9 @@ void TraceWriter::Flush() {
   buf_.clear();
 }
 
-void TraceWriter::Close() {
+void TraceWriter::Close() { CloseForSet()->Rename(); }
+
+std::unique_ptr<AtomicOutput> TraceWriter::CloseForSet() {
   Flush();
   header_.records = records_;
   if (!out_->in_place()) {  // a regular file: the final header over the placeholder
@@ -106,7 +108,8 @@ void TraceWriter::Close() {
         std::fwrite(h.data(), 1, h.size(), out_->file()) != h.size())
       throw EnvironmentError(path_, "write failed (disk full?)");
   }
-  out_->Commit();
+  out_->Commit(/*defer_rename=*/true);
+  return std::move(out_);
 }
 
 }  // namespace meshreuse

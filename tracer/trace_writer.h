@@ -32,6 +32,9 @@ class TraceWriter : public AccessConsumer {
   void BeginSweep(int sweep) override;
   void Consume(const Access* a, size_t n) override;
   void Close();  // throws EnvironmentError on an I/O failure
+  // Closes the file complete but leaves it under its temporary name: the caller renames it with
+  // the other files of a set (AtomicOutput::Rename), all or none (a rank per file).
+  std::unique_ptr<AtomicOutput> CloseForSet();
   uint64_t records() const { return records_ + buf_.size(); }
   uint64_t elements() const {  // element touches among the records (of the marked sweeps)
     uint64_t n = 0;

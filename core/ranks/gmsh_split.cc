@@ -75,9 +75,30 @@ GmshSplit ReadGmshSplit(const std::string& path) {
   if (!SplitName(path, &prefix, &k))
     throw InputError(path, 0, "not a part of a Gmsh split set (expected PREFIX_K.msh, K >= 1)");
   GmshSplit s;
-  for (int64_t i = 1; Exists(prefix + std::to_string(i) + ".msh"); ++i) {
-    if (i > INT32_MAX) throw InputError(path, 0, "too many part files");
-    s.files.push_back(prefix + std::to_string(i) + ".msh");
+  // The parts the named file declares ($PartitionedEntities) are the set: each must exist, and a
+  // file past them (an older run's) is left out, said in a warning. Without a declaration the set
+  // is the files PREFIX_1.msh, PREFIX_2.msh, ... that exist in a row.
+  const int64_t declared = DeclaredParts(path);
+  if (declared > INT32_MAX) throw InputError(path, 0, "$PartitionedEntities: too many parts");
+  if (declared >= 1) {
+    for (int64_t i = 1; i <= declared; ++i) {
+      const std::string f = prefix + std::to_string(i) + ".msh";
+      if (!Exists(f))
+        throw InputError(f, 0,
+                         "cannot open: part " + std::to_string(i) + " of the " +
+                             std::to_string(declared) + " that " + path +
+                             " declares ($PartitionedEntities) is missing");
+      s.files.push_back(f);
+    }
+    for (int64_t i = declared + 1; Exists(prefix + std::to_string(i) + ".msh"); ++i)
+      s.raw.warnings.push_back(prefix + std::to_string(i) + ".msh: left out: " + path +
+                               " declares " + std::to_string(declared) +
+                               " parts (a file of an older split?)");
+  } else {
+    for (int64_t i = 1; Exists(prefix + std::to_string(i) + ".msh"); ++i) {
+      if (i > INT32_MAX) throw InputError(path, 0, "too many part files");
+      s.files.push_back(prefix + std::to_string(i) + ".msh");
+    }
   }
   if (s.files.empty() || k > static_cast<int64_t>(s.files.size()))
     throw InputError(prefix + std::to_string(s.files.size() + 1) + ".msh", 0,
@@ -85,12 +106,14 @@ GmshSplit ReadGmshSplit(const std::string& path) {
                          std::to_string(s.files.size() + 1));
   s.parts = static_cast<int32_t>(s.files.size());
   for (const std::string& f : s.files) {
-    const int64_t declared = DeclaredParts(f);
-    if (declared >= 0 && declared != s.parts)
-      throw InputError(f, 0,
-                       "$PartitionedEntities declares " + std::to_string(declared) +
-                           " parts, but " + std::to_string(s.parts) + " part files " + prefix +
-                           "1.msh.." + std::to_string(s.parts) + ".msh exist");
+    const int64_t d = DeclaredParts(f);
+    if (d >= 0 && d != s.parts)
+      throw InputError(
+          f, 0,
+          "$PartitionedEntities declares " + std::to_string(d) + " parts, but " +
+              (declared >= 1 ? path + " declares " + std::to_string(s.parts)
+                             : std::to_string(s.parts) + " part files " + prefix + "1.msh.." +
+                                   std::to_string(s.parts) + ".msh exist"));
   }
   // Every part's nodes by tag; coordinates must agree where parts share a node.
   struct Node {

@@ -2,9 +2,14 @@
 // (thread_communicator.h).
 #include "core/ranks/thread_communicator.h"
 
+#include <omp.h>
+
 #include <exception>
 #include <stdexcept>
+#include <system_error>
 #include <thread>
+
+#include "core/error.h"
 
 namespace meshreuse {
 
@@ -17,6 +22,9 @@ void RunRankThreads(int32_t size, const std::function<void(int32_t rank)>& body,
   std::vector<std::thread> threads;
   auto run = [&](int32_t r) {
     try {
+      // A rank is one thread: its OpenMP regions (reading, building its mesh) run on it alone, not
+      // a team per rank (4096 ranks x a team's threads exhaust the process's limits).
+      omp_set_num_threads(1);
       body(r);
     } catch (...) {
       error[r] = std::current_exception();
@@ -25,7 +33,14 @@ void RunRankThreads(int32_t size, const std::function<void(int32_t rank)>& body,
   };
   try {
     for (int32_t r = 0; r < size; ++r) threads.emplace_back(run, r);
-  } catch (...) {  // no thread to be had: stop those started
+  } catch (const std::system_error& e) {  // no thread to be had: stop those started
+    fail();
+    for (std::thread& t : threads) t.join();
+    throw EnvironmentError("ranks as threads",
+                           "could start " + std::to_string(threads.size()) + " of " +
+                               std::to_string(size) + " rank threads (" + e.what() +
+                               "): this process's limits allow fewer (--ranks)");
+  } catch (...) {
     fail();
     for (std::thread& t : threads) t.join();
     throw;

@@ -145,6 +145,7 @@ class Reader {
     return v;
   }
   bool done() const { return at_ == n_; }
+  size_t at() const { return at_; }  // payload bytes consumed
   // Streamed: reads what the parse left (after a failure) so the checksum covers the payload;
   // short only when the file is.
   void Drain() {
@@ -169,8 +170,11 @@ class Reader {
     if (!f_) {
       std::memcpy(dst, p_ + at_, k);
     } else {
-      if (f_->Read(dst, k) != k) Fail("truncated summary: the file ends inside its payload");
-      sum_.Add(static_cast<const char*>(dst), k);
+      const size_t got = f_->Read(dst, k);
+      sum_.Add(static_cast<const char*>(dst), got);
+      at_ += got;
+      if (got != k) Fail("truncated summary: the file ends inside its payload");
+      return;
     }
     at_ += k;
   }
@@ -221,6 +225,15 @@ StreamInfo GetInfo(Reader& r) {
 }  // namespace
 
 uint64_t SummaryChecksum(const char* payload, size_t n) { return Checksum(payload, n); }
+
+struct SummaryHasher::State {
+  explicit State(uint64_t n) : c(n) {}
+  ChecksumStream c;
+};
+SummaryHasher::SummaryHasher(uint64_t n) : s_(std::make_unique<State>(n)) {}
+SummaryHasher::~SummaryHasher() = default;
+void SummaryHasher::Add(const char* p, size_t n) { s_->c.Add(p, n); }
+uint64_t SummaryHasher::Finish() const { return s_->c.Finish(); }
 
 bool SummaryIdentity::operator==(const SummaryIdentity& o) const {
   return format == o.format && input_bytes == o.input_bytes && fingerprint == o.fingerprint &&
@@ -451,38 +464,37 @@ SummaryFile ParsePayload(Reader& r, bool from_rank) {
 }  // namespace
 
 SummaryFile ReadSummary(const std::string& path) {
-  // A regular file is streamed: parsed as it is read, never held whole beside what it decodes to;
-  // the checksum, computed on the way, is compared once the parse is done (and, when the parse
-  // fails, over the rest of the payload first, so a damaged file is reported as damaged). Its
-  // size, checked against the header first, bounds every count. A pipe has no size to check: it
-  // is read whole, so a header's claim never sizes an allocation beyond the bytes that came.
+  // Streamed, a regular file or a pipe alike: the header first (a wrong magic or version is
+  // refused at once, before anything else is read), then the payload parsed as it is read, never
+  // held whole beside what it decodes to, at most the announced bytes taken; the checksum,
+  // computed on the way, is compared once the parse is done (and, when the parse fails, over the
+  // rest of the payload first, so a damaged file is reported as damaged). A regular file's size is
+  // checked against the header before the payload; a pipe must end where the payload does.
   InputFile f(path);
   if (f.size() > (int64_t{1} << 40)) throw InputError(path, 0, "not a chunk summary: too large");
-  if (f.size() < 0) {
-    std::string b;
-    char buf[1 << 16];
-    for (size_t n; (n = f.Read(buf, sizeof buf)) > 0;) {
-      b.append(buf, n);
-      if (b.size() > (size_t{1} << 40)) throw InputError(path, 0, "not a chunk summary: too large");
-    }
-    return DecodeSummary(path, b);
-  }
   char head[kHeaderBytes];
   const size_t got = f.Read(head, kHeaderBytes);
   uint64_t bytes = 0, sum = 0;
   CheckHeader(path, head, got, &bytes, &sum);
-  if (bytes != static_cast<uint64_t>(f.size()) - kHeaderBytes)
+  if (f.size() >= 0 && bytes != static_cast<uint64_t>(f.size()) - kHeaderBytes)
     SizeMismatch(path, bytes, static_cast<uint64_t>(f.size()) - kHeaderBytes);
+  if (bytes > (uint64_t{1} << 40)) throw InputError(path, 0, "not a chunk summary: too large");
   Reader r(path, &f, bytes);
   SummaryFile s;
   try {
     s = ParsePayload(r, false);
   } catch (const InputError&) {
     r.Drain();
+    if (!r.done() && f.size() < 0) SizeMismatch(path, bytes, r.at());  // a pipe that ended early
     if (r.done() && r.Checksum() != sum) ChecksumMismatch(path);
     throw;
   }
   if (r.Checksum() != sum) ChecksumMismatch(path);
+  char extra;
+  if (f.size() < 0 && f.Read(&extra, 1) == 1)
+    throw InputError(path, 0,
+                     "truncated or extended summary: bytes follow the " + std::to_string(bytes) +
+                         " payload bytes the header announces");
   return s;
 }
 

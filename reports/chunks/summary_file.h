@@ -9,6 +9,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <utility>
 #include <vector>
@@ -72,6 +73,18 @@ SummaryFile DecodeSummary(const std::string& name, const std::string& bytes,
 void WriteSummary(const std::string& path, const SummaryFile& s);
 // The checksum the header holds, of the payload bytes (for tests that edit a payload).
 uint64_t SummaryChecksum(const char* payload, size_t n);
+// The same hash, of bytes given in pieces (n in all): what ties a summary to its input's bytes.
+class SummaryHasher {
+ public:
+  explicit SummaryHasher(uint64_t n);
+  ~SummaryHasher();
+  void Add(const char* p, size_t n);
+  uint64_t Finish() const;
+
+ private:
+  struct State;
+  std::unique_ptr<State> s_;
+};
 SummaryFile ReadSummary(const std::string& path);  // InputError naming the file and the problem
 
 // "3/8": how messages name chunk r of P.

@@ -56,6 +56,38 @@ ln -s /dev/zero "$tmp/zero.node"
 ln -s /dev/zero "$tmp/zero.ele"
 /usr/bin/python3 "$data/broken/make_traces.py" "$tmp" --sparse
 /usr/bin/python3 "$data/broken/make_meshes.py" "$tmp" 100000
+# Issue 38's (round 4): a machine file of 1-byte lines in a GiB level and one whose name holds a
+# control byte; a file where a folder must be; a u64 trace in zstd frames whose seek table claims
+# 2^32 - 1 content bytes a frame; two u64 traces of one size and the same ends, edited inside.
+printf 'name tiny\nsockets 1\ncores 1\nline 1\nmemory 100 100\nprivate L1=1G/1@4\n' >"$tmp/huge.machine"
+printf 'name bad\001name\nsockets 1\ncores 1\nline 64\nmemory 100 100\nprivate L1=32K/8@4\n' >"$tmp/ctrl.machine"
+touch "$tmp/afile"
+/usr/bin/python3 - "$tmp" <<'PY'
+import random, struct, sys
+d = sys.argv[1]
+r = random.Random(1)
+v = [r.randrange(3000) for _ in range(30000)]
+open(f"{d}/a.u64", "wb").write(b"".join(struct.pack("<Q", x) for x in v))
+for i in list(range(8500, 9500)) + list(range(14000, 16000)):
+    v[i] = (v[i] + 1) % 3000
+open(f"{d}/b.u64", "wb").write(b"".join(struct.pack("<Q", x) for x in v))
+PY
+"$bin" compress "$tmp/a.u64" -o "$tmp/a.zst" --frame-kib 16 --quiet >/dev/null
+/usr/bin/python3 - "$tmp" <<'PY'
+import struct, sys
+d = sys.argv[1]
+b = bytearray(open(f"{d}/a.zst", "rb").read())
+n, desc, magic = struct.unpack("<IBI", b[-9:])
+assert magic == 0x8F92EAB1
+width = 12 if desc & 0x80 else 8
+for i in range(n):  # every frame's content size: 2^32 - 1
+    struct.pack_into("<I", b, len(b) - 9 - n * width + i * width + 4, 0xFFFFFFFF)
+open(f"{d}/lie.zst", "wb").write(b)
+PY
+for i in 0 1 2; do
+  "$bin" analyze "$tmp/a.u64" --format u64 --chunk $i/3 --summary-out "$tmp/sa$i" --quiet
+  "$bin" analyze "$tmp/b.u64" --format u64 --chunk $i/3 --summary-out "$tmp/sb$i" --quiet
+done
 hostile=(
   "2|$tmp/d.msh: is a directory, not a file|mesh info $tmp/d.msh"
   "2|$tmp/zero.node: is a character device, not a file|mesh info $tmp/zero.node"
@@ -85,6 +117,24 @@ hostile=(
   "0||smooth $tmp/fan_100000.node --max-iters 3"
   "0||mesh info $tmp/blocks_100000.msh"
   "0||mesh info $tmp/blocks_ascii_100000.msh"
+  # Issue 38 (round 4): each refused at once, naming what is wrong.
+  "2|usage: --parts must be 1..65536, found 2147483647|mesh partition $data/two_interior.node --parts 2147483647 --split $tmp/P_"
+  "2|usage: --vertices must be 100..1073741824, found 100000000000|mesh generate --shape lake --vertices 100000000000 -o $tmp/g"
+  "2|usage: -o '$tmp/afile/x': $tmp/afile is not a folder|mesh generate --shape lake -o $tmp/afile/x"
+  "2|usage: --seed takes a whole number|mesh refine $data/two_interior.node --seed -1 -o $tmp/r.node"
+  "2|usage: --seed takes a whole number|mesh partition $data/two_interior.node --seed -1"
+  "2|usage: --merge: --iterations was the chunk runs' to choose|analyze --merge $tmp/sa0 $tmp/sa1 $tmp/sa2 -k 5"
+  "2|usage: --merge: --threads was the chunk runs' to choose|analyze --merge $tmp/sa0 $tmp/sa1 $tmp/sa2 --threads 2"
+  "2|$tmp/sb1: a summary of another analysis|analyze --merge $tmp/sa0 $tmp/sb1 $tmp/sa2"
+  "0||analyze --merge $tmp/sa0 $tmp/sa1 $tmp/sa2"
+  "2|$tmp/huge.machine: level L1: 1073741824 lines of 1 B; a level holds at most 67108864 lines|simulate $data/two_interior.node --machine $tmp/huge.machine"
+  "2|$tmp/ctrl.machine:1: the name holds a control character|simulate $data/two_interior.node --machine $tmp/ctrl.machine"
+  "2|usage: cache level L1: 1073741824 lines of 1 B|simulate $data/two_interior.node --cache L1=1G/1 --line-bytes 1"
+  "2|$tmp/lie.zst: the zstd seek table does not match the frames|analyze $tmp/lie.zst --format u64"
+  "2|$tmp/lie.zst: the zstd seek table does not match the frames|analyze $tmp/lie.zst --format u64 --threads 3"
+  "2|$tmp/lie.zst: the zstd seek table does not match the frames|analyze $tmp/lie.zst --format u64 --chunk 1/3 --summary-out $tmp/lie.sum"
+  "2|usage: -o '$tmp/same.vtk' is the file --pi-out writes too|smooth-ranks $data/two_interior.node --ranks 2 -o $tmp/same.vtk --pi-out $tmp/same.vtk"
+  "2|usage: --mrc-csv '$tmp/h.csv' is the file --histogram-csv writes too|analyze $data/two_interior.node --histogram-csv $tmp/h.csv --mrc-csv $tmp/h.csv"
 )
 for h in "${hostile[@]}"; do
   IFS='|' read -r want msg cmd <<<"$h"
@@ -94,10 +144,54 @@ for h in "${hostile[@]}"; do
   err=$(cat /tmp/meshreuse-cli-err.$$)
   if [[ $rc -ne $want ]]; then echo "FAIL $cmd: exit $rc, expected $want ($err)"; fail=$((fail + 1)); continue; fi
   if [[ $msg == usage:* ]]; then  # an option's error: "meshreuse COMMAND: MESSAGE (see --help)"
-    if [[ $err != "meshreuse ${cmd%% *}: ${msg#usage: }"* ]]; then echo "FAIL $cmd: stderr was: $err"; fail=$((fail + 1)); continue; fi
+    sub=${cmd%% *}
+    [[ $sub == mesh ]] && sub="mesh $(cut -d' ' -f2 <<<"$cmd")"
+    if [[ $err != "meshreuse $sub: ${msg#usage: }"* ]]; then echo "FAIL $cmd: stderr was: $err"; fail=$((fail + 1)); continue; fi
   elif [[ -n $msg && $err != "meshreuse: error: $msg"* ]]; then echo "FAIL $cmd: stderr was: $err"; fail=$((fail + 1)); continue; fi
   if [[ -n $timer ]] && (($(tail -n 1 "$rssfile") > 102400)); then echo "FAIL $cmd: $(tail -n 1 "$rssfile") KB"; fail=$((fail + 1)); fi
 done
+# A summary read from a pipe of zeros is refused at its magic, at once and in bounded memory.
+mkfifo "$tmp/zeros"
+(timeout 20 cat /dev/zero >"$tmp/zeros" 2>/dev/null &)
+n=$((n + 1))
+err=$($timer timeout 20 "$bin" analyze --merge "$tmp/sa0" "$tmp/zeros" "$tmp/sa2" --quiet 2>&1 >/dev/null)
+rc=$?
+(exec 3<>"$tmp/zeros") 2>/dev/null
+if [[ $rc -ne 2 || $err != "meshreuse: error: $tmp/zeros: not a chunk summary"* ]]; then
+  echo "FAIL a pipe of zeros as a summary: exit $rc: $err"; fail=$((fail + 1))
+elif [[ -n $timer ]] && (($(tail -n 1 "$rssfile") > 102400)); then
+  echo "FAIL a pipe of zeros as a summary: $(tail -n 1 "$rssfile") KB"; fail=$((fail + 1))
+fi
+# A Gmsh split set with a part missing names it; a stray part of an older split is left out.
+cp "$data/plate_split_1.msh" "$tmp/s_1.msh" && cp "$data/plate_split_3.msh" "$tmp/s_3.msh"
+n=$((n + 1))
+err=$("$bin" mesh partition "$tmp/s_1.msh" --method gmsh --parts 3 --quiet 2>&1 >/dev/null)
+[[ $? -eq 2 && $err == *"$tmp/s_2.msh: cannot open: part 2 of the 3 that $tmp/s_1.msh declares"* ]] ||
+  { echo "FAIL split set without part 2: $err"; fail=$((fail + 1)); }
+cp "$data/plate_split_2.msh" "$tmp/s_2.msh" && cp "$data/plate_split_3.msh" "$tmp/s_4.msh"
+n=$((n + 1))
+err=$("$bin" mesh partition "$tmp/s_1.msh" --method gmsh --parts 3 --quiet 2>&1 >/dev/null)
+[[ $? -eq 0 && $err == *"$tmp/s_4.msh: left out: $tmp/s_1.msh declares 3 parts"* ]] ||
+  { echo "FAIL split set with a stray part 4: $err"; fail=$((fail + 1)); }
+# A trace set written again in part (a rank's file of another run) is refused when read together.
+"$bin" trace "$data/plate41.msh" --ranks 2 -o "$tmp/set" --quiet >/dev/null 2>&1
+"$bin" trace "$data/plate41.msh" --ranks 2 --ordering bfs -o "$tmp/other" --quiet >/dev/null 2>&1
+n=$((n + 1))
+"$bin" analyze "$tmp/set.rank0" "$tmp/set.rank1" --quiet >/dev/null 2>&1 || { echo "FAIL a trace set"; fail=$((fail + 1)); }
+cp "$tmp/other.rank0" "$tmp/set.rank0"
+n=$((n + 1))
+err=$("$bin" analyze "$tmp/set.rank0" "$tmp/set.rank1" --quiet 2>&1 >/dev/null)
+[[ $? -eq 2 && $err == *"$tmp/set.rank1: a rank of another \`trace --ranks\` run than $tmp/set.rank0"* ]] ||
+  { echo "FAIL a mixed trace set: $err"; fail=$((fail + 1)); }
+# Ranks as threads beyond what the process may create: exit 3 naming --ranks, no temporary left.
+n=$((n + 1))
+err=$( (ulimit -v 3000000; "$bin" mesh refine "$data/plate41.msh" --levels 1 --layout pieces --ranks 4096 \
+  -o "$tmp/r4096.mrm" --quiet) 2>&1 >/dev/null)
+rc=$?
+if [[ -z $timer ]]; then :  # under AddressSanitizer the address-space limit is meaningless
+elif [[ $rc -ne 3 || $err != *"allow fewer (--ranks)"* ]] || ls "$tmp" | grep -q 'r4096.mrm'; then
+  echo "FAIL 4096 ranks under 3 GB: exit $rc: $err"; fail=$((fail + 1))
+fi
 [[ $(wc -l <"$tmp/p.csv") -eq 101 ]] || { echo "FAIL sparse trace: its profile should have 100 steps"; fail=$((fail + 1)); }
 # 256 streams, one record each in sweep 1: one profile step each (a sweep of one access).
 [[ $(wc -l <"$tmp/p256.csv") -eq 257 ]] || { echo "FAIL streams_256: its profile should have 256 steps, has $(($(wc -l <"$tmp/p256.csv") - 1))"; fail=$((fail + 1)); }

@@ -2,7 +2,7 @@
 # Option values and output paths, fuzzed: seeded random commands on the tiny mesh, each with one
 # to three options set to hostile values (negative, zero, huge, 1e400, nan, empty, lists with
 # holes, junk) and outputs pointed at hostile paths (empty, too long, a folder, a missing folder,
-# a FIFO, a symbolic link to the input, a link loop). Every run must end with exit 0, 2 or 3 (never
+# a FIFO, a symbolic link to the input, a link loop, two outputs on one path). Every run must end with exit 0, 2 or 3 (never
 # 1, a bug, nor a signal), within 60 s, in bounded memory, with one error line for exit 2, and
 # never change the input. Usage: fuzz_options.sh MESHREUSE DATA [CASES] [SEED]
 # (scripts/fuzz.sh runs it for as long as the harnesses; ctest runs 300 cases, seed 1).
@@ -41,7 +41,7 @@ pick() { local -n a=$1; printf '%s' "${a[RANDOM % ${#a[@]}]}"; }
 
 fail=0
 for ((i = 0; i < cases; i++)); do
-  case $((RANDOM % 10)) in
+  case $((RANDOM % 13)) in
     0) cmd=(analyze "$mesh" -k "$(pick values)" -t "$(pick values)" --line-bytes "$(pick values)") ;;
     1) cmd=(analyze "$mesh" --quantiles "$(pick values)" --sample-rate "$(pick values)" --seed "$(pick values)" --orderings "$(pick orderings)") ;;
     2) cmd=(simulate "$mesh" --cache "$(pick caches)" -k "$(pick values)" --orderings "$(pick orderings)") ;;
@@ -52,6 +52,15 @@ for ((i = 0; i < cases; i++)); do
     7) cmd=(analyze "$mesh" --element-bytes "$(pick values)" --cache "$(pick caches)" --out "$(pick paths)") ;;
     8) cmd=(mesh convert "$mesh" -o "$(pick paths)") ;;
     9) cmd=(compress "$mesh" --level "$(pick counts)" --frame-kib "$(pick counts)" -o "$(pick paths)") ;;
+    # Unsigned options given negative and huge values, and two outputs on one path (issue 38).
+    10) cmd=(mesh refine "$mesh" --seed "$(pick values)" --levels "$(pick counts)" -o "$(pick paths)") ;;
+    11) cmd=(mesh partition "$mesh" --parts "$(pick values)" --seed "$(pick values)" -o "$(pick paths)" --split "$(pick paths)") ;;
+    12) o=$(pick paths)
+        case $((RANDOM % 3)) in
+          0) cmd=(smooth-ranks "$mesh" --ranks "$(pick values)" -o "$o" --pi-out "$o") ;;
+          1) cmd=(analyze "$mesh" --histogram-csv "$o" --mrc-csv "$(pick paths)" --profile-csv "$o") ;;
+          2) cmd=(smooth "$mesh" --max-iters 2 -o "$o" --out "$(pick paths)") ;;
+        esac ;;
   esac
   # A FIFO output needs a reader, or the writer waits for one.
   (timeout 70 cat "$tmp/fifo" >/dev/null 2>&1 &)

@@ -1,14 +1,17 @@
 // libFuzzer harness: a chunk summary's payload (reports/chunks/summary_file.h) behind a header
 // whose size and checksum are made to match, so the fuzzer reaches the parser instead of the
 // checksum; an accepted summary of one chunk is then merged into a whole analysis and its tables
-// built. The same bytes are also read back as a file (ReadSummary parses as it streams): the
-// verdict and message must be those of the in-memory decoder, or the harness aborts.
+// built. The same bytes are also read back as a file and through a pipe (ReadSummary parses as it
+// streams, a pipe without a size to check): the verdict and message must be those of the
+// in-memory decoder, or the harness aborts.
 #include <unistd.h>
 
+#include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <string>
+#include <thread>
 
 #include "core/error.h"
 #include "reports/analyze.h"
@@ -51,6 +54,31 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   }
   if (streamed != whole) {
     std::fprintf(stderr, "streamed read: %s\nin memory: %s\n", streamed.c_str(), whole.c_str());
+    std::abort();
+  }
+  // Through a pipe: the writer is a thread; a reader that stops early closes its end (EPIPE).
+  static const bool no_sigpipe = (std::signal(SIGPIPE, SIG_IGN), true);
+  (void)no_sigpipe;
+  int fds[2];
+  if (::pipe(fds) != 0) std::abort();
+  std::thread writer([&] {
+    for (size_t at = 0; at < file.size();) {
+      const ssize_t n = ::write(fds[1], file.data() + at, file.size() - at);
+      if (n <= 0) break;
+      at += static_cast<size_t>(n);
+    }
+    ::close(fds[1]);
+  });
+  std::string piped = "read";
+  try {
+    meshreuse::ReadSummary("/proc/self/fd/" + std::to_string(fds[0]));
+  } catch (const meshreuse::InputError& e) {
+    piped = e.problem();
+  }
+  ::close(fds[0]);
+  writer.join();
+  if (piped != whole) {
+    std::fprintf(stderr, "through a pipe: %s\nin memory: %s\n", piped.c_str(), whole.c_str());
     std::abort();
   }
   try {

@@ -277,5 +277,41 @@ check "pi needs ordered" 2 run 1 "$mpi" smooth "$fine" --mode jacobi --pi-out "$
 check "serial visit order of another mesh" 2 "$bin" smooth "$plate" --visit-order "$tmp/pi" --quiet
 contains "serial visit order of another mesh" "$tmp/pi:"
 
+# Cancelled writers leave no temporary (issue 38): SIGTERM and SIGINT to mpirun (what SLURM's
+# scancel sends) and SIGKILL to one rank, while every rank writes the refined mesh file (-np 2 and
+# 3) or a smoothed one in ranges, at several moments; a temporary a killed run left is named by the
+# next run.
+
+check "mrm for cancelling" 0 run 2 "$mpi" refine "$plate" --levels 5 -o "$tmp/c5.mrm" --quiet
+left() { ls "$tmp" | grep -q '\.tmp\.'; }
+for np in 2 3; do
+  for how in TERM INT KILL; do
+    for delay in 0.3 1.2; do
+      timeout 60 "$mpiexec" --oversubscribe -np $np "$mpi" refine "$plate" --levels 6 \
+        -o "$tmp/cancel.mrm" --quiet >/dev/null 2>&1 &
+      job=$!
+      sleep $delay
+      if [[ $how == KILL ]]; then pkill -KILL -n -f "meshreuse-mpi refine $plate --levels 6"; else kill -$how $job 2>/dev/null; fi
+      wait $job
+      if left; then fail=$((fail + 1)); echo "FAIL refine -np $np, SIG$how after $delay s: $(ls "$tmp" | grep '\.tmp\.')"
+        rm -f "$tmp"/*.tmp.*; else pass=$((pass + 1)); fi
+      rm -f "$tmp/cancel.mrm"
+      timeout 60 "$mpiexec" --oversubscribe -np $np "$mpi" smooth "$tmp/c5.mrm" --max-iters 5 --tol -1 \
+        -o "$tmp/cancel.mrm" --quiet >/dev/null 2>&1 &
+      job=$!
+      sleep $delay
+      if [[ $how == KILL ]]; then pkill -KILL -n -f "meshreuse-mpi smooth $tmp/c5.mrm"; else kill -$how $job 2>/dev/null; fi
+      wait $job
+      if left; then fail=$((fail + 1)); echo "FAIL smooth -np $np, SIG$how after $delay s: $(ls "$tmp" | grep '\.tmp\.')"
+        rm -f "$tmp"/*.tmp.*; else pass=$((pass + 1)); fi
+      rm -f "$tmp/cancel.mrm"
+    done
+  done
+done
+touch "$tmp/cancel.mrm.tmp.999999999"  # no such process
+check "stale temporary named" 0 run 2 "$mpi" refine "$plate" --levels 1 -o "$tmp/cancel.mrm"
+contains "stale temporary named" "$tmp/cancel.mrm.tmp.999999999: a temporary an earlier run left"
+rm -f "$tmp"/cancel.mrm*
+
 echo "mpi_smooth: $pass passed, $fail failed"
 ((fail == 0))
