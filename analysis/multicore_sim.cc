@@ -379,12 +379,28 @@ ThreadStats MulticoreSimulation::SweepStats(int thread, size_t s) const {
 }
 
 std::vector<std::string> MulticoreSimulation::Columns() {
-  return {"input",      "ordering",      "machine",     "placement",
-          "threads",    "thread",        "core",        "socket",
-          "sweep",      "level",         "accesses",    "hits",
-          "misses",     "cold",          "coherence",   "inclusion_victims",
-          "prefetches", "prefetch_hits", "read_misses", "write_misses",
-          "cycles_low", "cycles_high"};
+  return {"input",
+          "ordering",
+          "machine",
+          "placement",
+          "threads",
+          "thread",
+          "core",
+          "socket",
+          "sweep",
+          "level",
+          "accesses",
+          "hits",
+          "misses",
+          "cold",
+          "coherence",
+          "inclusion_victims",
+          "prefetches",
+          "prefetch_hits",
+          "read_misses",
+          "write_misses",
+          "cycles_at_low_latency",
+          "cycles_at_high_latency"};
 }
 
 void MulticoreSimulation::AppendRows(Table* t, bool last_sweep_only) const {

@@ -111,7 +111,7 @@ void AddAnalyzeOptions(po::options_description& desc, AnalyzeConfig* cfg, Analyz
 }
 
 // The configuration the options give (UsageError for what they cannot).
-void AnalyzeConfigOf(const AnalyzeOptionText& t, const po::variables_map& vm, AnalyzeConfig* cfg) {
+void AnalyzeConfigOf(AnalyzeOptionText& t, const po::variables_map& vm, AnalyzeConfig* cfg) {
   SourceOf(t.source, vm, cfg);
   if (!t.granularity.empty()) cfg->granularity = ParseGranularity(t.granularity);
   cfg->quantiles = ParseQuantiles(t.quantiles);

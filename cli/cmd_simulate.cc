@@ -24,6 +24,9 @@ int SimulateCommand(const Args& args) {
       TraceFormatHelp();
   SourceHelp help;
   help.iterations = "for meshes: sweeps to simulate";
+  help.thread_list = true;
+  help.threads =
+      "for meshes: streams (static schedule); with --machine a list, a run per count (1,4,32)";
   help.format = format_help;
   help.instructions =
       "lackey: simulate instruction fetches (I lines) too: through a level named I1 "
@@ -49,13 +52,16 @@ int SimulateCommand(const Args& args) {
       "levels, inclusion, coherence, NUMA; --threads up to its cores) instead of --cache")(
       "placement", po::value(&placement)->default_value(placement),
       "with --machine: compact (fill socket 0 first, OpenMP proc_bind(close)) or scatter "
-      "(thread t on socket t % sockets, proc_bind(spread))")(
+      "(thread t on socket t % sockets, proc_bind(spread)), or both: compact,scatter")(
       "interleave", po::value(&interleave)->default_value(interleave),
       "with --machine: how the threads' streams meet: serial (whole shares in turn), access "
       "(a visit each per turn, accesses dealt one at a time) or N vertex visits per turn")(
       "prefetch", po::value(&cfg.prefetch),
       "with --machine: levels with a next-line prefetcher, e.g. L1,L2 (none: off)")(
-      "warm", "with --machine: rows of the last sweep only (caches warm from those before)")(
+      "warm",
+      "with --machine: per-thread rows of the last sweep only (caches warm from those "
+      "before; the summary is always the last sweep's)")(
+      "per-thread", "with --machine: print each thread's rows instead of the summary")(
       "out", po::value(&out_dir), "write simulate.{csv,json} and run.json here")(
       "quiet,q", "no progress on stderr");
   AddFormatOptions(desc);
@@ -74,7 +80,11 @@ int SimulateCommand(const Args& args) {
   SourceOf(source, vm, &cfg);
   cfg.line_bytes = static_cast<uint32_t>(ParseCount(line_bytes, "--line-bytes", 1, 1 << 20));
   cfg.cache = ParseCacheSpec(cache);
-  cfg.placement = ParsePlacement(placement);
+  cfg.placements.clear();
+  for (const std::string& pl : SplitList(placement)) cfg.placements.push_back(ParsePlacement(pl));
+  if (source.thread_list.size() > 1) cfg.machine_threads = source.thread_list;
+  cfg.warm = vm.count("warm") > 0;
+  cfg.per_thread = vm.count("per-thread") > 0;
   if (!cfg.machine.empty()) cfg.interleave = ParseInterleave(interleave);
   cfg.by_array = vm.count("by-array") > 0;
   if (!cfg.machine.empty() && !vm["cache"].defaulted())
@@ -82,14 +92,13 @@ int SimulateCommand(const Args& args) {
   if (cfg.machine.empty())
     for (const char* o : {"placement", "interleave"})
       if (!vm[o].defaulted()) throw UsageError(std::string("--") + o + " needs --machine");
-  if (cfg.machine.empty() && (!cfg.prefetch.empty() || vm.count("warm")))
-    throw UsageError("--prefetch and --warm need --machine");
+  if (cfg.machine.empty() && (!cfg.prefetch.empty() || cfg.warm || cfg.per_thread))
+    throw UsageError("--prefetch, --warm and --per-thread need --machine");
   CheckSimulateConfig(cfg);
   if (!out_dir.empty()) PrepareOutDir(out_dir);
   const Progress progress(vm.count("quiet") > 0);
   if (!cfg.machine.empty())
-    Emit(MachineOutput(RunMachineSimulate(cfg, MakeLog(progress)), cfg, vm.count("warm") > 0), fmt,
-         out_dir, progress);
+    Emit(MachineOutput(RunMachineSimulate(cfg, MakeLog(progress)), cfg), fmt, out_dir, progress);
   else
     Emit(SimulateOutput(RunSimulate(cfg, MakeLog(progress)), cfg, vm.count("per-sweep") > 0), fmt,
          out_dir, progress);

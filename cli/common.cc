@@ -158,10 +158,14 @@ void AddSourceOptions(po::options_description& desc, StreamSource* src, SourceOp
                       const SourceHelp& help) {
   desc.add_options()("orderings", po::value(&text->orderings)->default_value(text->orderings),
                      help.orderings)("seed", po::value(&text->seed)->default_value("1"), help.seed)(
-      "iterations,k", po::value(&src->iterations)->default_value(src->iterations), help.iterations)(
-      "threads,t", po::value(&src->threads)->default_value(1), help.threads)(
-      "mode", po::value(&text->mode)->default_value("gauss-seidel"),
-      "for meshes: gauss-seidel or jacobi");
+      "iterations,k", po::value(&src->iterations)->default_value(src->iterations), help.iterations);
+  text->threads_as_text = help.thread_list;
+  if (help.thread_list)
+    desc.add_options()("threads,t", po::value(&text->threads)->default_value("1"), help.threads);
+  else
+    desc.add_options()("threads,t", po::value(&src->threads)->default_value(1), help.threads);
+  desc.add_options()("mode", po::value(&text->mode)->default_value("gauss-seidel"),
+                     "for meshes: gauss-seidel or jacobi");
   if (!help.format.empty())
     desc.add_options()("format", po::value(&src->format), help.format.c_str())("instructions",
                                                                                help.instructions);
@@ -169,7 +173,11 @@ void AddSourceOptions(po::options_description& desc, StreamSource* src, SourceOp
   AddTriangleOrderOption(desc, &text->triangle_order);
 }
 
-void SourceOf(const SourceOptionText& text, const po::variables_map& vm, StreamSource* src) {
+void SourceOf(SourceOptionText& text, const po::variables_map& vm, StreamSource* src) {
+  if (text.threads_as_text) {
+    text.thread_list = ParseThreadList(text.threads);
+    src->threads = text.thread_list[0];
+  }
   src->orderings = ParseOrderingSpecs(SplitList(text.orderings));
   src->seed = ParseCount(text.seed, "--seed", 0, UINT64_MAX >> 1);
   src->mode = ParseUpdateMode(text.mode);

@@ -65,14 +65,18 @@ struct SourceHelp {
   std::string format;             // "" : no --format (nor --instructions)
   const char* instructions = "";  // --instructions' help
   const char* ranks = nullptr;    // --ranks' help; nullptr: no rank options
+  bool thread_list = false;       // --threads takes a list (SourceOptionText::threads)
 };
 struct SourceOptionText {
   std::string orderings = "ori", seed = "1", mode = "gauss-seidel", triangle_order;
   RankOptionText ranks;
+  std::string threads = "1";     // with SourceHelp::thread_list
+  std::vector<int> thread_list;  // what SourceOf read from it
+  bool threads_as_text = false;  // AddSourceOptions declared --threads as a list
 };
 void AddSourceOptions(po::options_description& desc, StreamSource* src, SourceOptionText* text,
                       const SourceHelp& help);
-void SourceOf(const SourceOptionText& text, const po::variables_map& vm, StreamSource* src);
+void SourceOf(SourceOptionText& text, const po::variables_map& vm, StreamSource* src);
 
 // Two outputs of one run on one file (`-o same.vtk --pi-out same.vtk`; links and relative paths
 // resolved): UsageError naming both options, before any work. Empty paths are not given outputs.

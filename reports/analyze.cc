@@ -232,7 +232,8 @@ Table AnalyzeTable(const AnalyzeResult& r, const AnalyzeConfig& cfg, bool human)
             "cold",  "distinct", "sum",    "mean"};
     for (double q : qs) head.push_back(QuantileName(q));
     for (const CacheLevel& l : levels) head.push_back(l.name + "_misses");
-    if (cost) head.insert(head.end(), {"cost_cycles_low", "cost_cycles_high"});
+    if (cost)
+      head.insert(head.end(), {"cost_cycles_at_low_latency", "cost_cycles_at_high_latency"});
     for (const CacheLevel& l : cfg.inverse)
       head.push_back(l.name + "_capacity_for_" + std::to_string(l.bytes));
   }

@@ -165,23 +165,6 @@ void MeasureReuse(const ReportConfig& cfg, const ReportMesh& mr, const Mesh& bas
   }
 }
 
-// The warm (last) sweep of a many-core simulation as a MachineRun.
-MachineRun Collect(const MulticoreSimulation& sim, const std::string& mesh,
-                   const std::string& ordering, bool prefetch) {
-  MachineRun r;
-  r.mesh = mesh, r.ordering = ordering, r.prefetch = prefetch;
-  r.placement = PlacementName(sim.placement());
-  r.threads = sim.threads();
-  for (const MachineLevel& l : sim.machine().levels) r.level_names.push_back(l.cache.name);
-  for (int t = 0; t < sim.threads(); ++t) {
-    const ThreadStats s = sim.SweepStats(t, sim.sweeps() - 1);
-    r.total += s;
-    r.cycles_low = std::max(r.cycles_low, s.CyclesLow(sim.machine()));
-    r.cycles_high = std::max(r.cycles_high, s.CyclesHigh(sim.machine()));
-  }
-  return r;
-}
-
 // The many-core part for one mesh: every ordering at every thread count, both placements fed
 // from one stream; at one thread also with the prefetcher. The thread counts of an ordering run
 // side by side on the host's cores (each its own stream and simulators, results kept in job
@@ -216,10 +199,10 @@ void MeasureMachine(const ReportConfig& cfg, const ReportMesh& mr, const Mesh& b
         FanOut all(to);
         Mesh m = laid.Clone();
         StreamMesh(m, o, mr.name, label, all);
-        runs[j].push_back(Collect(compact, mr.name, label, false));
-        if (threads > 1) runs[j].push_back(Collect(scatter, mr.name, label, false));
+        runs[j].push_back(CollectMachineRun(compact, mr.name, label, false));
+        if (threads > 1) runs[j].push_back(CollectMachineRun(scatter, mr.name, label, false));
         if (threads == 1 && !cfg.prefetch_levels.empty())
-          runs[j].push_back(Collect(pre, mr.name, label, true));
+          runs[j].push_back(CollectMachineRun(pre, mr.name, label, true));
 #pragma omp critical(meshreuse_report_steps)
         steps.Done(mr.weight * Steps::kMachine * cfg.machine_sweeps *
                    static_cast<double>(to.size()));

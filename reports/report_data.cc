@@ -11,11 +11,7 @@ namespace meshreuse {
 const MachineRun* ReportData::Machine(const std::string& mesh, const std::string& ordering,
                                       const std::string& placement, int threads,
                                       bool prefetch) const {
-  for (const MachineRun& r : machine)
-    if (r.mesh == mesh && r.ordering == ordering && r.threads == threads &&
-        r.prefetch == prefetch && (r.placement == placement || r.threads == 1))
-      return &r;
-  return nullptr;
+  return FindMachineRun(machine, mesh, ordering, placement, threads, prefetch);
 }
 
 const CompareRow* ReportData::Time(const std::string& mesh, const std::string& ordering,

@@ -12,6 +12,7 @@
 #include "analysis/reuse_histogram.h"
 #include "core/table.h"
 #include "reports/compare.h"
+#include "reports/machine_runs.h"
 #include "reports/report.h"
 #include "reports/speedup.h"
 #include "reports/validation.h"
@@ -35,18 +36,6 @@ struct Figure1Data {
   uint64_t accesses = 0, cold = 0;
   double mean = 0, model_l1_rate = 0;
   std::vector<std::vector<uint64_t>> bins;  // [time bin][distance bin]; the last: cold
-};
-
-// One simulated run on the many-core machine: a mesh x ordering x placement x thread count (and
-// prefetcher on or off), the warm sweep's counts summed over the threads, and the cost model's
-// cycles of the slowest thread (time(p)).
-struct MachineRun {
-  std::string mesh, ordering, placement;
-  int threads = 1;
-  bool prefetch = false;
-  ThreadStats total;                       // summed over threads
-  double cycles_low = 0, cycles_high = 0;  // the slowest thread's
-  std::vector<std::string> level_names;
 };
 
 struct ReportData {

@@ -25,10 +25,16 @@ void CheckSimulateConfig(const SimulateConfig& cfg) {
     if (c.ways == 0)
       throw UsageError("cache level " + c.name + " needs its associativity for simulation, e.g. " +
                        c.name + "=32K/8");
+  if (cfg.machine.empty() && (cfg.machine_threads.size() > 1 || cfg.placements.size() > 1))
+    throw UsageError(
+        "--threads and --placement take one value without --machine (lists: a machine run per "
+        "thread count and placement)");
   if (!cfg.machine.empty()) {
     Machine m = ParseMachine(cfg.machine);
     SetPrefetch(&m, cfg.prefetch);
-    PlaceThreads(m, cfg.threads, cfg.placement);
+    if (cfg.placements.empty()) throw UsageError("--placement: no placement given");
+    for (int p : cfg.machine_threads.empty() ? std::vector<int>{cfg.threads} : cfg.machine_threads)
+      for (Placement pl : cfg.placements) PlaceThreads(m, p, pl);
     return;
   }
   CacheSimulation check(cfg.cache, cfg.line_bytes);  // the geometry
@@ -79,16 +85,61 @@ std::vector<std::unique_ptr<Sim>> Simulate(const StreamSource& src, std::string 
 
 }  // namespace
 
-std::vector<std::unique_ptr<MulticoreSimulation>> RunMachineSimulate(const SimulateConfig& cfg,
-                                                                     const Log& log) {
+namespace {
+
+// A machine's simulators for one stream, a placement each, and their runs at the stream's end.
+class MachineStreams : public StreamConsumer {
+ public:
+  MachineStreams(const Machine& m, const std::vector<Placement>& placements, int threads,
+                 MachineSimulations* out)
+      : m_(m), placements_(placements), threads_(threads), out_(*out) {}
+  std::string Verb() const override { return "simulating"; }
+  std::string Where() const override {
+    std::string w = " on " + m_.name + ", " + std::to_string(threads_) + " thread(s)";
+    for (size_t i = 0; i < placements_.size() && (i == 0 || threads_ > 1); ++i)
+      w += std::string(i ? "," : " ") + PlacementName(placements_[i]);
+    return w;
+  }
+  AccessConsumer& Start(const StreamJob& job) override {
+    first_ = out_.sims.size();
+    std::vector<AccessConsumer*> to;
+    for (size_t i = 0; i < placements_.size() && (i == 0 || threads_ > 1); ++i) {
+      out_.sims.push_back(std::make_unique<MulticoreSimulation>(m_, placements_[i]));
+      to.push_back(out_.sims.back().get());
+    }
+    label_ = job.ordering ? job.ordering->label : "";
+    all_ = std::make_unique<FanOut>(to);
+    return *all_;
+  }
+  void Finish(const StreamJob& job) override {
+    for (size_t i = first_; i < out_.sims.size(); ++i)
+      out_.runs.push_back(CollectMachineRun(*out_.sims[i], job.input, label_, false));
+  }
+
+ private:
+  const Machine& m_;
+  const std::vector<Placement>& placements_;
+  int threads_;
+  MachineSimulations& out_;
+  size_t first_ = 0;
+  std::string label_;
+  std::unique_ptr<FanOut> all_;
+};
+
+}  // namespace
+
+MachineSimulations RunMachineSimulate(const SimulateConfig& cfg, const Log& log) {
   CheckSimulateConfig(cfg);
   Machine machine = ParseMachine(cfg.machine);
   SetPrefetch(&machine, cfg.prefetch);
-  return Simulate<MulticoreSimulation>(
-      cfg,
-      " on " + machine.name + ", " + std::to_string(cfg.threads) + " thread(s) " +
-          PlacementName(cfg.placement),
-      [&] { return std::make_unique<MulticoreSimulation>(machine, cfg.placement); }, log);
+  MachineSimulations out;
+  for (int p : cfg.machine_threads.empty() ? std::vector<int>{cfg.threads} : cfg.machine_threads) {
+    StreamSource src = cfg;
+    src.threads = p;
+    MachineStreams c(machine, cfg.placements, p, &out);
+    ForEachStream(src, c, log);
+  }
+  return out;
 }
 
 Table MachineTable(const std::vector<std::unique_ptr<MulticoreSimulation>>& runs, bool warm) {
@@ -130,7 +181,11 @@ Json SimulateConfigJson(const SimulateConfig& cfg) {
     j["by_array"] = cfg.by_array;
   } else {
     j["machine"] = cfg.machine;
-    j["placement"] = PlacementName(cfg.placement);
+    j["machine_threads"] =
+        cfg.machine_threads.empty() ? std::vector<int>{cfg.threads} : cfg.machine_threads;
+    std::vector<std::string> placements;
+    for (Placement p : cfg.placements) placements.push_back(PlacementName(p));
+    j["placement"] = placements;
     j["interleave"] = InterleaveName(cfg.interleave);
     j["prefetch"] = cfg.prefetch;
   }
@@ -160,24 +215,36 @@ RunOutput SimulateOutput(const std::vector<std::unique_ptr<CacheSimulation>>& ru
   return o;
 }
 
-RunOutput MachineOutput(const std::vector<std::unique_ptr<MulticoreSimulation>>& runs,
-                        const SimulateConfig& cfg, bool warm) {
+RunOutput MachineOutput(const MachineSimulations& m, const SimulateConfig& cfg) {
   RunOutput o;
   o.tool = "meshreuse simulate";
-  o.csv = RunOutput::Share(MachineTable(runs, warm));
+  o.csv = RunOutput::Share(MachineTable(m.sims, cfg.warm));
   o.json = o.csv;
-  o.text.emplace_back(o.csv);
-  if (!runs.empty()) {
-    const Machine& m = runs[0]->machine();
+  const RunOutput::TablePtr summary = RunOutput::Share(MachineSummaryTable(m.runs));
+  if (cfg.per_thread) {
+    o.text.emplace_back(o.csv);
+  } else {
+    o.text.emplace_back(summary);
+    o.text.emplace_back("");
+    for (const std::string& s : MachineSentences(m.runs)) o.text.emplace_back(s);
+  }
+  if (!m.sims.empty()) {
+    const Machine& mc = m.sims[0]->machine();
     o.text.emplace_back(
-        "(simulated on " + m.name + ": " + std::to_string(m.sockets) + " socket(s) x " +
-        std::to_string(m.cores_per_socket) + " cores, " + PlacementName(cfg.placement) +
-        " placement, interleave " + InterleaveName(cfg.interleave) +
-        "; per thread: accesses per level, memory local/remote (NUMA " +
-        (m.numa == Numa::kFirstTouch ? "first-touch: pages on socket 0" : "interleaved") +
-        "), and on 'total' the cost model's cycles)");
+        "(simulated on " + mc.name + ": " + std::to_string(mc.sockets) + " socket(s) x " +
+        std::to_string(mc.cores_per_socket) + " cores, interleave " +
+        InterleaveName(cfg.interleave) + "; NUMA " +
+        (mc.numa == Numa::kFirstTouch ? "first-touch: pages on socket 0" : "interleaved") +
+        (cfg.per_thread
+             ? "; per thread: accesses per level, memory local/remote, and on 'total' the cost "
+               "model's cycles)"
+             : "; per run, its last sweep: C(p) the cost model's cycles of the slowest thread at "
+               "the low and high ends of the machine's latency ranges, Speedup(p) = C_ori(1) / "
+               "C_ord(p), self = C_ord(1) / C_ord(p), Gain(p) = 1 - C_ord(p) / C_ref(p); misses "
+               "summed over the threads; --per-thread for each thread's rows)"));
   }
   o.tables.push_back({"simulate", o.csv, {"csv", "json"}});
+  o.tables.push_back({"summary", summary, {"csv"}});
   o.configuration = SimulateConfigJson(cfg);
   return o;
 }

@@ -16,6 +16,7 @@
 #include "core/smoother.h"
 #include "core/table.h"
 #include "reports/log.h"
+#include "reports/machine_runs.h"
 #include "reports/output.h"
 #include "reports/run_info.h"
 #include "reports/stream_source.h"
@@ -30,9 +31,15 @@ struct SimulateConfig : StreamSource {
   uint32_t line_bytes = 64;
   // A machine ("" : private caches per stream, `cache`): the many-core simulator.
   std::string machine;
-  Placement placement = Placement::kCompact;
-  std::string prefetch;   // levels with a next-line prefetcher ("" : the machine's; "none")
-  bool by_array = false;  // private caches: lookups and misses per array too (SimulateArrayTable)
+  // With a machine: a run per thread count (empty: `threads` alone) and placement, every
+  // placement of a count fed from one stream (one thread: the first placement only, as any
+  // placement puts it on socket 0's first core).
+  std::vector<int> machine_threads;
+  std::vector<Placement> placements = {Placement::kCompact};
+  bool warm = false;        // per-thread rows of the last sweep only
+  bool per_thread = false;  // print the per-thread rows, not the summary
+  std::string prefetch;     // levels with a next-line prefetcher ("" : the machine's; "none")
+  bool by_array = false;    // private caches: lookups and misses per array too (SimulateArrayTable)
 };
 
 // UsageError for what cannot run (levels without ways, a size that is no multiple of ways x line).
@@ -42,10 +49,14 @@ std::vector<std::unique_ptr<CacheSimulation>> RunSimulate(const SimulateConfig& 
 Table SimulateTable(const std::vector<std::unique_ptr<CacheSimulation>>& runs, bool per_sweep);
 // With cfg.by_array: each level's lookups and misses per array (CacheSimulation::ArrayColumns).
 Table SimulateArrayTable(const std::vector<std::unique_ptr<CacheSimulation>>& runs);
-// With cfg.machine: one MulticoreSimulation per mesh x ordering (or input), and its rows
-// (MulticoreSimulation::Columns; `warm`: the last sweep's counts only).
-std::vector<std::unique_ptr<MulticoreSimulation>> RunMachineSimulate(const SimulateConfig& cfg,
-                                                                     const Log& log);
+// With cfg.machine: one MulticoreSimulation per input (x ordering for meshes) x thread count x
+// placement, each with its run's summary (reports/machine_runs.h: the last sweep).
+struct MachineSimulations {
+  std::vector<std::unique_ptr<MulticoreSimulation>> sims;
+  std::vector<MachineRun> runs;  // sims[i]'s
+};
+MachineSimulations RunMachineSimulate(const SimulateConfig& cfg, const Log& log);
+// Their per-thread rows (MulticoreSimulation::Columns; `warm`: the last sweep's counts only).
 Table MachineTable(const std::vector<std::unique_ptr<MulticoreSimulation>>& runs, bool warm);
 // "serial", "access" or a number of vertex visits per turn (SmoothOptions::interleave).
 int ParseInterleave(const std::string& s);
@@ -55,7 +66,9 @@ Json SimulateConfigJson(const SimulateConfig& cfg);
 // what was simulated; under --out simulate.{csv,json} (and simulate-arrays), run.json.
 RunOutput SimulateOutput(const std::vector<std::unique_ptr<CacheSimulation>>& runs,
                          const SimulateConfig& cfg, bool per_sweep);
-RunOutput MachineOutput(const std::vector<std::unique_ptr<MulticoreSimulation>>& runs,
-                        const SimulateConfig& cfg, bool warm);
+// With a machine: the summary (MachineSummaryTable) and a sentence per ordering, or with
+// cfg.per_thread the per-thread rows; --csv and --json the per-thread rows; under --out
+// simulate.{csv,json} (per thread), summary.csv and run.json.
+RunOutput MachineOutput(const MachineSimulations& m, const SimulateConfig& cfg);
 
 }  // namespace meshreuse

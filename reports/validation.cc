@@ -245,8 +245,9 @@ Table Table3(const std::vector<OrderingValidation>& r) {
 }
 
 Table ValidationCostTable(const std::vector<OrderingValidation>& r) {
-  Table t({"mesh", "ordering", "accesses", "element_accesses", "cost_model_low", "cost_model_high",
-           "cost_simulated_low", "cost_simulated_high", "counters"});
+  Table t({"mesh", "ordering", "accesses", "element_accesses", "cost_model_at_low_latency",
+           "cost_model_at_high_latency", "cost_simulated_at_low_latency",
+           "cost_simulated_at_high_latency", "counters"});
   auto cell = [](const std::optional<CostRange>& c, bool high) {
     return c ? Fixed(high ? c->high : c->low, 0) : std::string();
   };

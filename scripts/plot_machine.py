@@ -108,8 +108,8 @@ def speedup(path, out):
     axes = list(axes[0])
     for ax, pl in zip(axes, ("compact", "scatter")):
         for o in ords:
-            xs, lo = _line(rows, {"ordering": o, "placement": pl}, "speedup_low")
-            _, hi = _line(rows, {"ordering": o, "placement": pl}, "speedup_high")
+            xs, lo = _line(rows, {"ordering": o, "placement": pl}, "speedup_at_low_latency")
+            _, hi = _line(rows, {"ordering": o, "placement": pl}, "speedup_at_high_latency")
             if not xs:
                 continue
             ax.fill_between(xs, lo, hi, color=colour(o), alpha=0.25, lw=0)

@@ -11,8 +11,8 @@ ReportPart ReportMachineData(const ReportData& d) {
   using namespace report;
   if (d.machine.empty()) return {Table({}), "", "", true};
   Table t({"mesh", "ordering", "placement", "threads", "prefetch", "level", "accesses", "served",
-           "misses", "coherence", "inclusion_victims", "prefetches", "prefetch_hits", "cycles_low",
-           "cycles_high"});
+           "misses", "coherence", "inclusion_victims", "prefetches", "prefetch_hits",
+           "cycles_at_low_latency", "cycles_at_high_latency"});
   for (const MachineRun& r : d.machine) {
     const std::vector<std::string> key = {r.mesh, r.ordering, r.placement, Int(r.threads),
                                           r.prefetch ? "on" : "off"};

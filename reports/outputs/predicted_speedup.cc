@@ -15,19 +15,14 @@
 
 namespace meshreuse {
 
-namespace {
-double Cycles(const MachineRun* r, bool high) {
-  return r == nullptr ? NAN : high ? r->cycles_high : r->cycles_low;
-}
-}  // namespace
-
 ReportPart ReportPredictedSpeedup(const ReportData& d) {
   using namespace report;
   if (d.machine.empty()) return {Table({}), "", "", true};
-  Table t({"ordering", "placement", "threads", "speedup_low", "speedup_high", "self_speedup_low",
-           "self_speedup_high", "gain_vs_ori_pct_low", "gain_vs_ori_pct_high",
-           "gain_vs_bfs_pct_low", "gain_vs_bfs_pct_high", "measured_speedup", "paper_speedup",
-           "paper_gain_vs_ori_pct", "paper_gain_vs_bfs_pct"});
+  Table t({"ordering", "placement", "threads", "speedup_at_low_latency", "speedup_at_high_latency",
+           "self_speedup_at_low_latency", "self_speedup_at_high_latency",
+           "gain_vs_ori_pct_at_low_latency", "gain_vs_ori_pct_at_high_latency",
+           "gain_vs_bfs_pct_at_low_latency", "gain_vs_bfs_pct_at_high_latency", "measured_speedup",
+           "paper_speedup", "paper_gain_vs_ori_pct", "paper_gain_vs_bfs_pct"});
   // [ordering][placement][threads] -> mean self speedup (low, high), for the note.
   std::map<std::string, std::map<std::string, std::map<int, std::pair<double, double>>>> self;
   for (const std::string& ord : d.orderings)
@@ -35,18 +30,13 @@ ReportPart ReportPredictedSpeedup(const ReportData& d) {
       for (int p : d.cfg.machine_threads) {
         std::vector<double> sp[2], ss[2], go[2], gb[2];
         for (const ReportMesh& m : d.meshes) {
-          const MachineRun* r = d.Machine(m.name, ord, placement, p);
-          if (!r) continue;
+          if (!d.Machine(m.name, ord, placement, p)) continue;
+          const PredictedRatios r = Predict(d.machine, m.name, ord, placement, p);
           for (int h = 0; h < 2; ++h) {
-            const double c = Cycles(r, h);
-            sp[h].push_back(Ratio(Cycles(d.Machine(m.name, "ori", placement, 1), h), c));
-            ss[h].push_back(Ratio(Cycles(d.Machine(m.name, ord, placement, 1), h), c));
-            if (ord != "ori")
-              go[h].push_back(100 *
-                              (1 - Ratio(c, Cycles(d.Machine(m.name, "ori", placement, p), h))));
-            if (ord != "bfs")
-              gb[h].push_back(100 *
-                              (1 - Ratio(c, Cycles(d.Machine(m.name, "bfs", placement, p), h))));
+            sp[h].push_back(r.speedup[h]);
+            ss[h].push_back(r.self_speedup[h]);
+            if (ord != "ori") go[h].push_back(r.gain_vs_ori_pct[h]);
+            if (ord != "bfs") gb[h].push_back(r.gain_vs_bfs_pct[h]);
           }
         }
         if (sp[0].empty()) continue;

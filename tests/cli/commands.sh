@@ -218,7 +218,7 @@ rows = json.load(open(sys.argv[1]))
 e = [r for r in rows if r["granularity"] == "element"][0]
 assert e["accesses"] == 88 and e["cold"] == 8 and e["distinct"] == 8, e
 assert e["q100"] >= e["q90"] >= e["q75"] >= e["q50"], e
-assert e["L1_misses"] == 8 and "cost_cycles_low" in e and "L1_capacity_for_5" in e, e
+assert e["L1_misses"] == 8 and "cost_cycles_at_low_latency" in e and "L1_capacity_for_5" in e, e
 PY
 [[ $(wc -l <"$tmp/p.csv") -eq 289 ]] && pass=$((pass + 1)) || { fail=$((fail + 1)); echo "FAIL profile csv: want 2 sweeps x (44 element + 100 line steps) + header"; }
 grep -q '^input,ordering,thread,granularity,lo,hi,count' "$tmp/h.csv" && pass=$((pass + 1)) || { fail=$((fail + 1)); echo "FAIL histogram csv"; }
@@ -510,6 +510,35 @@ contains "trace on stdin, extra bytes" "more bytes after the 165 records"
 "$bin" trace "$data/two_interior.node" -t 256 -o "$tmp/t256.trace" --quiet
 # (not under AddressSanitizer, whose shadow memory alone needs terabytes of address space)
 ldd "$bin" 2>/dev/null | grep -q libasan || check "256 streams in 4 GB" 0 bash -c "ulimit -v 4000000; '$bin' analyze '$tmp/t256.trace' -t 16 --quiet && '$bin' simulate '$tmp/t256.trace' --quiet && '$bin' smooth '$data/two_interior.node' -t 256 --max-iters 2 --quiet"
+
+# simulate --machine answers the question (issue 39): with thread and placement lists its summary
+# holds Speedup(p) and Gain(p) per ordering and placement, equal to the report's predicted_speedup
+# for the same runs (one mesh, two sweeps, the last counted), and a sentence per ordering.
+check "simulate machine summary" 0 "$bin" simulate "$data/plate41.msh" --machine westmere-ex \
+  --orderings ori,bfs,rdr --threads 1,4 --placement compact,scatter -k 2 --out "$tmp/msum" --quiet
+contains "simulate machine summary" "rdr at 4 thread(s), scatter"
+contains "simulate machine summary" "speedup_at_low_latency"
+check "report predicted" 0 "$bin" report "$data/plate41.msh" --no-timing --machine-threads 1,4 \
+  --orderings ori,bfs,rdr --out "$tmp/mrep" --quiet
+check "summary equals the report" 0 /usr/bin/python3 - "$tmp/mrep/tables/predicted_speedup.csv" "$tmp/msum/summary.csv" <<'PY'
+import csv, sys
+rep = list(csv.DictReader(open(sys.argv[1])))
+sim = {(r["ordering"], r["placement"], r["threads"]): r for r in csv.DictReader(open(sys.argv[2]))}
+cols = [f"{q}_at_{e}_latency" for q in ("speedup", "self_speedup", "gain_vs_ori_pct", "gain_vs_bfs_pct")
+        for e in ("low", "high")]
+n = 0
+for r in rep:
+    k = (r["ordering"], r["placement"], r["threads"])
+    if k not in sim:
+        assert r["threads"] == "1", k  # one thread: the first placement only
+        continue
+    for c in cols:
+        assert r[c] == sim[k][c], (k, c, r[c], sim[k][c])
+    n += 1
+assert n == 9, n  # 3 orderings x (1 thread + 2 placements at 4)
+PY
+check "one thread count without a machine" 2 "$bin" simulate "$data/plate41.msh" --threads 1,4 --quiet
+contains "one thread count without a machine" "--threads and --placement take one value without --machine"
 
 echo "cli commands: $pass passed, $fail failed"
 [[ $fail -eq 0 ]]
