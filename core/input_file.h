@@ -32,7 +32,8 @@ class InputFile {
   const std::string& path() const { return path_; }
   // Bytes in the file when it is a regular file, -1 for pipes and standard input.
   int64_t size() const { return size_; }
-  // fread that turns a read error into InputError(path, 0, "read error: ...").
+  // fread that turns a read error into InputError(path, 0, "read error: ..."), retrying reads
+  // a signal interrupted: short only at the end of the file.
   size_t Read(void* buf, size_t n);
 
  private:
@@ -86,9 +87,18 @@ inline size_t InputFile::Read(void* buf, size_t n) {
     back.erase(0, k);
     return k;
   }
-  const size_t got = std::fread(buf, 1, n, f_);
-  if (got < n && std::ferror(f_))
-    throw InputError(path_, 0, std::string("read error: ") + std::strerror(errno));
+  // A signal caught without SA_RESTART (libFuzzer's timer, a host's handler) interrupts a read
+  // that waits on a pipe: EINTR is not the file's fault, so the read goes on where it stopped.
+  size_t got = 0;
+  while (got < n) {
+    errno = 0;
+    got += std::fread(static_cast<char*>(buf) + got, 1, n - got, f_);
+    if (got == n || std::feof(f_)) break;
+    if (!std::ferror(f_)) break;
+    if (errno != EINTR)
+      throw InputError(path_, 0, std::string("read error: ") + std::strerror(errno));
+    std::clearerr(f_);
+  }
   return got;
 }
 
