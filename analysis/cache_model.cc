@@ -41,7 +41,8 @@ LatencyRange ParseLatency(const std::string& s, const std::string& part) {
 CacheSpec ParseCacheSpec(const std::string& text) {
   CacheSpec spec;
   spec.text = text;
-  if (text == "westmere-ex" || text == "westmere") {
+  if (text == "westmere-ex" || text == "westmere") {  // the alias is listed in every --help
+    spec.text = "westmere-ex";
     spec.levels = {{"L1", 32 << 10, 8, Replacement::kLru, {4, 4}},
                    {"L2", 256 << 10, 8, Replacement::kLru, {10, 10}},
                    {"L3", 24 << 20, 24, Replacement::kLru, {38, 170}}};

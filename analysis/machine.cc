@@ -62,10 +62,16 @@ void Check(const Machine& m, const std::function<void(const std::string&)>& fail
 
 }  // namespace
 
+std::string CanonicalMachine(const std::string& spec) {
+  return spec == "westmere" ? "westmere-ex" : spec;
+}
+
 Machine ParseMachine(const std::string& spec) {
   if (spec == "westmere-ex" || spec == "westmere") return WestmereEx();
   if (spec.find('/') == std::string::npos && spec.find('.') == std::string::npos)
-    throw UsageError("--machine: '" + spec + "' is neither westmere-ex nor a machine file");
+    throw UsageError(
+        "--machine: '" + spec +
+        "' is neither westmere-ex (alias westmere) nor a machine file (a path with a / or a .)");
   TextFile f(spec);
   Machine m;
   m.name = spec, m.text = spec;

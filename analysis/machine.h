@@ -36,7 +36,7 @@
 namespace meshreuse {
 
 struct MachineLevel {
-  CacheLevel cache;  // name, bytes, ways, policy, latency of a hit here
+  CacheLevel cache;        // name, bytes, ways, policy, latency of a hit here
   bool shared = false;     // by the cores of a socket; else private to a core
   bool inclusive = false;  // shared levels only: evicting a line removes it above
   bool prefetch = false;   // next-line prefetcher: a miss of line L brings L+1 into this level
@@ -58,9 +58,11 @@ struct Machine {
   size_t private_levels() const;
 };
 
-// "westmere-ex", or a machine file as above. Throws UsageError (a preset or option) or
-// InputError (a file, naming the line).
+// "westmere-ex" (alias "westmere"), or a machine file as above. Throws UsageError (a preset or
+// option) or InputError (a file, naming the line).
 Machine ParseMachine(const std::string& name_or_file);
+// The name a built-in machine goes by ("westmere" -> "westmere-ex"); a file's path as given.
+std::string CanonicalMachine(const std::string& name_or_file);
 // Turns the prefetcher on at the named levels ("L1,L2"; "" leaves the machine's own).
 void SetPrefetch(Machine* m, const std::string& levels);
 

@@ -66,8 +66,9 @@ std::unique_ptr<StreamAnalysis> ReuseAnalysis::NewStream(int t, Granularity g) {
       records += sweep[t];
     }
   const uint64_t dense = element ? static_cast<uint64_t>(std::max<int64_t>(info_.vertices, 0)) : 0;
-  auto s =
-      std::make_unique<StreamAnalysis>(dense, opt_.exact, opt_.sample ? &opt_.shards : nullptr);
+  ShardsOptions shards = opt_.shards;
+  shards.watch = element ? opt_.watch_element : opt_.watch_line;
+  auto s = std::make_unique<StreamAnalysis>(dense, opt_.exact, opt_.sample ? &shards : nullptr);
   if (opt_.exact && dense && opt_.reserve)
     s->hist.Reserve(per_sweep.empty() ? dense : std::min(dense, records));
   bool any = false;

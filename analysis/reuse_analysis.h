@@ -118,6 +118,9 @@ struct ReuseOptions {
   bool exact = true;
   bool sample = false;
   ShardsOptions shards;
+  // The capacities (element and line ids) whose sampled miss estimates get a bound
+  // (ShardsOptions::watch): the cache levels', set by the caller.
+  std::vector<uint64_t> watch_element, watch_line;
   // Histograms of vertex ids reserved up front from the input's vertex and sweep counts; off
   // where those counts are a file's claims that no data backs yet (a summary merge).
   bool reserve = true;

@@ -1,7 +1,9 @@
 // Shards; see shards.h.
 #include "analysis/shards.h"
 
+#include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <stdexcept>
 
 namespace meshreuse {
@@ -16,14 +18,31 @@ Shards::Shards(const ShardsOptions& o)
     exact_ = std::make_unique<BoundedStackDistance>(o.exact_below);
     small_.assign(o.exact_below, 0);
   }
+  per_id_ = !o.watch.empty();
 }
 
-void Shards::Sampled(uint64_t id, uint64_t h) {
+void Shards::Sampled(uint64_t id, uint64_t h, bool small) {
   ++samples_;
   const double r = rate();
   const uint64_t d = sd_.Access(id);
   const double w = 1.0 / r;
   total_ += w;
+  if (d == StackDistance::kCold) ++sampled_ids_;
+  const uint64_t scaled =
+      d == StackDistance::kCold
+          ? UINT64_MAX
+          : std::max<uint64_t>(opt_.exact_below,
+                               static_cast<uint64_t>(std::llround(static_cast<double>(d) / r)));
+  if (!opt_.watch.empty()) {
+    const size_t n = opt_.watch.size() + 1;
+    const auto [it, fresh] = id_slot_.try_emplace(id, static_cast<uint32_t>(id_counts_.size() / n));
+    if (fresh) id_counts_.resize(id_counts_.size() + n, 0);
+    uint32_t* c = &id_counts_[static_cast<size_t>(it->second) * n];
+    if (!small) {
+      for (size_t i = 0; i < opt_.watch.size(); ++i) c[i] += scaled >= opt_.watch[i];
+      ++c[n - 1];
+    }
+  }
   if (d == StackDistance::kCold) {
     cold_ += w;
     distinct_ += w;
@@ -39,7 +58,7 @@ void Shards::Sampled(uint64_t id, uint64_t h) {
     }
     return;
   }
-  weight_[static_cast<uint64_t>(std::llround(static_cast<double>(d) / r))] += w;
+  if (!small) weight_[scaled] += w;  // a small one is in the exact counts
 }
 
 Shards Shards::FromSampled(const ShardsOptions& o, uint64_t accesses,
@@ -50,6 +69,7 @@ Shards Shards::FromSampled(const ShardsOptions& o, uint64_t accesses,
   Shards s(o);
   s.accesses_ = accesses;
   s.samples_ = sampled.accesses();
+  s.sampled_ids_ = sampled.cold();  // each sampled id's first access is its one cold one
   const double w = 1.0 / s.rate();
   for (uint64_t k = 0; k < s.samples_; ++k) s.total_ += w;
   for (uint64_t k = 0; k < sampled.cold(); ++k) s.cold_ += w, s.distinct_ += w;
@@ -71,12 +91,12 @@ void Shards::Finish() {
     total_ += diff;
   }
   if (!exact_) return;
-  // Below K the exact counts; at K and beyond (and cold) the sampled shape, scaled to carry the
-  // accesses the exact counts leave.
+  // Below K the exact counts; the tail (every weight is at K or beyond: see Sampled) and the cold
+  // weight scaled to carry the accesses the exact counts leave.
   const uint64_t k = opt_.exact_below;
   uint64_t small = 0;
   for (uint64_t c : small_) small += c;
-  weight_.erase(weight_.begin(), weight_.lower_bound(k));
+  weight_.erase(weight_.begin(), weight_.lower_bound(k));  // SHARDS_adj's distance 0
   double rest = cold_;
   for (const auto& kv : weight_) rest += kv.second;
   const double target = static_cast<double>(accesses_ - small);
@@ -91,6 +111,39 @@ void Shards::Finish() {
     if (small_[d]) weight_[d] = static_cast<double>(small_[d]);
   total_ = static_cast<double>(accesses_);
   exact_.reset();  // its memory is not needed any more
+}
+
+double Shards::MissBound(size_t i) const {
+  if (!per_id_ || i >= opt_.watch.size()) return NAN;
+  if (opt_.watch[i] < opt_.exact_below) return 0.0;  // counted exactly
+  const double r = rate();
+  const size_t n = opt_.watch.size() + 1;
+  double var = 0;
+  if (!opt_.s_max && !opt_.exact_below) {
+    // A Horvitz-Thompson total: the misses are the sampled ids' own, each counted 1/R times.
+    for (size_t k = 0; k < id_counts_.size(); k += n) {
+      const double y = id_counts_[k + i];
+      var += (1 - r) / (r * r) * y * y;
+    }
+  } else {
+    // A ratio, the tail's share of the accesses it carries (all of them, or those the exact
+    // counts leave): A x sum(y) / sum(z), linearised. At a fixed size R is the final rate (it fell
+    // during the run, so the bound is approximate).
+    double y = 0, z = 0;
+    for (size_t k = 0; k < id_counts_.size(); k += n)
+      y += id_counts_[k + i], z += id_counts_[k + n - 1];
+    if (z <= 0) return 0.0;
+    const double ratio = y / z;
+    for (size_t k = 0; k < id_counts_.size(); k += n) {
+      const double e = id_counts_[k + i] - ratio * id_counts_[k + n - 1];
+      var += (1 - r) * e * e;
+    }
+    uint64_t small = 0;
+    for (uint64_t c : small_) small += c;
+    const double a = static_cast<double>(accesses_ - small);
+    var *= a * a / (z * z);
+  }
+  return 1.959964 * std::sqrt(var);
 }
 
 double Shards::MissRatio(uint64_t capacity) const {

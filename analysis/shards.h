@@ -14,15 +14,19 @@
 // Small distances (exact_below = K > 0): scaling by 1/R puts every sampled distance below 1/R at
 // 0 or 1/R, so the curve is coarsest where caches are small. With K, every access also goes
 // through an exact LRU stack of depth K (bounded_stack.h: memory O(K), not O(ids)); distances
-// below K are then counted exactly and replace the sampled weights below K, and the sampled
-// weights at K and beyond (and the cold ones) are scaled to carry exactly the remaining accesses.
-// The miss ratio at every capacity up to K is then exact. Serial streams only (not FromSampled).
+// below K are then counted exactly. A sampled access whose true distance is below K adds no
+// weight (it is counted already), and one whose true distance is K or more lands at K at least:
+// so the sample's tail holds only accesses truly beyond K, and no small distance leaks across K
+// through the scaling (an earlier version let them: -15% at 4 K on a mesh-like trace). The tail
+// (and the cold weight) is then scaled to carry exactly the accesses the exact counts leave. The
+// miss ratio at every capacity up to K is exact. Serial streams only (not FromSampled).
 #pragma once
 
 #include <cstdint>
 #include <map>
 #include <memory>
 #include <queue>
+#include <unordered_map>
 #include <utility>
 #include <vector>
 
@@ -38,6 +42,9 @@ struct ShardsOptions {
   uint64_t seed = 1;
   bool adjust = true;        // SHARDS_adj (fixed rate only)
   uint32_t exact_below = 0;  // K: distances below K counted exactly (0: off)
+  // Capacities (in the stream's ids) whose miss estimates get a sampling error bound (MissBound):
+  // each sampled id keeps, per capacity, its accesses that miss there.
+  std::vector<uint64_t> watch;
 };
 
 class Shards {
@@ -45,13 +52,14 @@ class Shards {
   explicit Shards(const ShardsOptions& o);
   void Access(uint64_t id) {
     ++accesses_;
+    bool small = false;
     if (exact_) {
       const uint64_t d = exact_->Access(id);
-      if (d != BoundedStackDistance::kFar) ++small_[d];
+      if (d != BoundedStackDistance::kFar) ++small_[d], small = true;
     }
     const uint64_t h = Hash(id);
     if (h >= threshold_) return;
-    Sampled(id, h);
+    Sampled(id, h, small);
   }
   void Finish();  // applies SHARDS_adj; call once at the end
   // Whether `id` is sampled (fixed rate: the threshold never moves).
@@ -72,8 +80,17 @@ class Shards {
   double distinct_estimate() const { return distinct_; }
   const std::map<uint64_t, double>& weights() const { return weight_; }  // scaled d -> weight
   double MissRatio(uint64_t capacity) const;  // distances >= capacity, and cold, over total
-  double Mean() const;                        // of the finite scaled distances
-  uint64_t Quantile(double x) const;          // as ReuseHistogram::Quantile, weighted
+  // The 95% sampling bound (half-width, in accesses) of the misses estimated at watch[i]
+  // (accesses x MissRatio): from the spread of the sampled ids' own misses, as for any Poisson
+  // sample of ids (Horvitz-Thompson at a fixed rate; a ratio estimator, linearised, where the
+  // estimate is scaled to a known total: with exact_below, or at a fixed size). 0 below
+  // exact_below (exact); NaN without per-id counts (FromSampled). What it leaves out: the error
+  // of scaling each distance by 1/R, which --sample-error measures against the exact analysis.
+  // Call after Finish.
+  double MissBound(size_t i) const;
+  uint64_t sampled_ids() const { return sampled_ids_; }  // ids the sample held (first touches)
+  double Mean() const;                                   // of the finite scaled distances
+  uint64_t Quantile(double x) const;                     // as ReuseHistogram::Quantile, weighted
   size_t MemoryBytes() const {
     return sd_.MemoryBytes() + heap_.size() * 16 + weight_.size() * 48 +
            (exact_ ? exact_->depth() * size_t{80} : 0);
@@ -90,7 +107,8 @@ class Shards {
     x *= 0x94D049BB133111EBull;
     return (x ^ (x >> 31)) >> 8;
   }
-  void Sampled(uint64_t id, uint64_t h);
+  // `small`: the access's distance is below exact_below, counted exactly already.
+  void Sampled(uint64_t id, uint64_t h, bool small = false);
 
   ShardsOptions opt_;
   uint64_t seed_mix_;
@@ -103,6 +121,12 @@ class Shards {
   bool finished_ = false;
   std::unique_ptr<BoundedStackDistance> exact_;  // with exact_below
   std::vector<uint64_t> small_;
+  uint64_t sampled_ids_ = 0;
+  // Per sampled id (index from id_slot_), watch.size() + 1 counters: its accesses missing at
+  // each watched capacity, then those the tail holds (all its samples without exact_below).
+  std::unordered_map<uint64_t, uint32_t> id_slot_;
+  std::vector<uint32_t> id_counts_;
+  bool per_id_ = false;
 };
 
 // The exact miss ratio at every capacity 1..max distance + 1 against the estimate: the mean

@@ -1,5 +1,6 @@
 // meshreuse analyze: reuse distances, quantiles, histograms, profiles and modelled misses of
 // meshes (streamed, no file), trace files or other tools' traces (reports/analyze.h).
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <string>
@@ -59,7 +60,7 @@ void AddAnalyzeOptions(po::options_description& desc, AnalyzeConfig* cfg, Analyz
       "quantiles", po::value(&t.quantiles)->default_value("50,75,90,100"),
       "percentages to report, each in 0..100")(
       "cache", po::value(&t.cache)->default_value("westmere-ex"),
-      "westmere-ex or NAME=SIZE[/WAYS[/POLICY]][@CYCLES],... and mem@CYCLES")(
+      "westmere-ex (alias westmere) or NAME=SIZE[/WAYS[/POLICY]][@CYCLES],... and mem@CYCLES")(
       "element-bytes", po::value(&t.element_bytes)->default_value("66"),
       "element size for the element miss model")("line-bytes",
                                                  po::value(&t.line_bytes)->default_value("64"),
@@ -72,8 +73,10 @@ void AddAnalyzeOptions(po::options_description& desc, AnalyzeConfig* cfg, Analyz
       "approximate instead: SHARDS tracking at most this many ids (fixed size)")(
       "sample-exact-below", po::value(&t.sample_exact_below),
       "with --sample-*: count the distances below K exactly (every access through an exact LRU "
-      "stack of depth K, memory O(K)); the miss ratio at every capacity up to K is then exact, "
-      "where SHARDS' scaling is coarsest (e.g. the L1 or L2 capacity in elements or lines)")(
+      "stack of depth K, memory O(K)); the miss ratio at every capacity up to K and every "
+      "quantile below K are then exact, where SHARDS' scaling is coarsest. Default: the first "
+      "cache level's capacity in lines or elements, whichever is more (512 for westmere-ex); 0 "
+      "turns it off; chunks and ranks sample every distance")(
       "sample-error",
       "with --sample-*: run the exact analysis too and report the miss-ratio curve's mean "
       "absolute error")("histogram-csv", po::value(&t.hist_csv),
@@ -82,8 +85,10 @@ void AddAnalyzeOptions(po::options_description& desc, AnalyzeConfig* cfg, Analyz
       "write the profiles (each sweep in 100 steps; fewer, at least 1, beyond 2,621 sweeps x "
       "streams)")(
       "vtk", po::value(&cfg->vtk),
-      "one mesh, one ordering: write the laid-out mesh as VTK with each vertex's rank, original "
-      "id and the reuse distances of its touches (mean, max, cold), for ParaView")(
+      "one mesh, one ordering: write the laid-out mesh for ParaView (PATH.vtu: VTK XML, "
+      "compressed; "
+      "any other name: legacy VTK) with each vertex's rank, original id and the reuse distances "
+      "of its touches (mean, max, cold)")(
       "mrc-csv", po::value(&t.mrc_csv),
       "write the miss-ratio curves (capacity -> misses, miss ratio; exact, or the estimate when "
       "sampling)")("out", po::value(&t.out_dir),
@@ -136,8 +141,13 @@ void AnalyzeConfigOf(AnalyzeOptionText& t, const po::variables_map& vm, AnalyzeC
   if (!t.sample_exact_below.empty()) {
     if (!cfg->sample) throw UsageError("--sample-exact-below needs --sample-rate or --sample-size");
     cfg->shards.exact_below = static_cast<uint32_t>(
-        ParseCount(t.sample_exact_below, "--sample-exact-below", 1, uint64_t{1} << 26));
+        ParseCount(t.sample_exact_below, "--sample-exact-below", 0, uint64_t{1} << 26));
   }
+  if (cfg->sample)
+    for (const CacheLevel& l : cfg->cache.levels) {
+      cfg->watch_element.push_back(l.bytes / cfg->element_bytes);
+      cfg->watch_line.push_back(l.bytes / cfg->line_bytes);
+    }
   if (cfg->sample_error && !cfg->sample)
     throw UsageError("--sample-error needs --sample-rate or --sample-size");
   if (!t.chunk.empty()) cfg->chunk = ParseChunk(t.chunk);
@@ -175,6 +185,13 @@ int AnalyzeCommand(const Args& args, Communicator* transport) {
   const std::string &hist_csv = t.hist_csv, &prof_csv = t.prof_csv, &mrc_csv = t.mrc_csv,
                     &out_dir = t.out_dir, &rank_stats = t.rank_stats;
   cfg.transport = transport;
+  // Sampling counts the distances below the first cache level's capacity exactly unless told
+  // (--sample-exact-below N, 0: off), where the whole stream passes in order: not in chunks.
+  if (cfg.sample && t.sample_exact_below.empty() && !transport && !cfg.chunk && !cfg.merge &&
+      !cfg.cache.levels.empty())
+    cfg.shards.exact_below = static_cast<uint32_t>(std::min<uint64_t>(
+        uint64_t{1} << 26,
+        cfg.cache.levels[0].bytes / std::min(cfg.element_bytes, cfg.line_bytes)));
   // A distributed run: every rank analyses its chunk; rank 0 alone prints and writes.
   const bool writer = !transport || transport->rank() == 0;
   const OutputFormat fmt = FormatOption(vm);
@@ -246,6 +263,8 @@ int AnalyzeCommand(const Args& args, Communicator* transport) {
   if (!hist_csv.empty()) WriteCsvFile(hist_csv, HistogramTable(r));
   if (!prof_csv.empty() && !no_profile) WriteCsvFile(prof_csv, prof);
   if (!mrc_csv.empty()) WriteCsvFile(mrc_csv, MrcTable(r));
+  for (const std::string& w : SampleWarnings(r, cfg))  // warnings: --quiet keeps them
+    std::fprintf(stderr, "meshreuse: warning: %s\n", w.c_str());
   Emit(AnalyzeOutput(r, cfg), fmt, out_dir, progress);
   return 0;
 }

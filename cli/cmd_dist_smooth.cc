@@ -27,11 +27,14 @@ struct DistSmoothOptions {
   DistSmoothConfig cfg;
   std::string out_dir;
   bool quiet = false;
+  int32_t ranks = 0;
 };
 
-// Parses `args` into `o` (false: --help was printed). `ranks`, when given, takes --ranks too.
-bool ParseDistSmooth(const Args& args, DistSmoothOptions* o, const char* usage,
-                     std::string* ranks = nullptr) {
+// Parses `args` into `o` (false: --help was printed). `job_ranks`: the MPI job's size; 0: ranks
+// as threads, whose number --ranks gives.
+bool ParseDistSmooth(const Args& args, DistSmoothOptions* o, const char* usage, int32_t job_ranks) {
+  std::string ranks_text;
+  std::string* ranks = job_ranks == 0 ? &ranks_text : nullptr;
   po::options_description desc("options");
   DistSmoothConfig& cfg = o->cfg;
   std::string& out_dir = o->out_dir;
@@ -43,7 +46,9 @@ bool ParseDistSmooth(const Args& args, DistSmoothOptions* o, const char* usage,
       "together (meshreuse-mpi built with libptscotch-dev), seeded; gmsh: Gmsh's own, MESH being "
       "any file PREFIX_K.msh "
       "of a split set (`gmsh -part P -part_split`; P ranks); ranges: contiguous ranges of the "
-      "stored ids. For a mesh file (FILE.mrm, written by `meshreuse mesh convert MESH -o "
+      "stored ids; file:PATH: a partition file, one part per line (`mesh partition -o` writes one; "
+      "METIS's and Scotch's outputs too), checked against the mesh. For a mesh file (FILE.mrm, "
+      "written by `meshreuse mesh convert MESH -o "
       "FILE.mrm` in Hilbert order) the default is ranges, and each rank then reads only its "
       "range and ghost ring; with ptscotch its range's rows, then only its part and ghost ring "
       "(the other methods read the whole file on every rank)")(
@@ -63,11 +68,13 @@ bool ParseDistSmooth(const Args& args, DistSmoothOptions* o, const char* usage,
       "max-iters", po::value(&cfg.smooth.max_iters)->default_value(100),
       "at most this many sweeps")(
       "output,o", po::value(&cfg.output),
-      "write the smoothed mesh (PATH.vtk, PATH.mrm or a .node/.ele prefix), gathered on rank 0; "
-      "a mesh file read in ranges or parts and written as PATH.mrm is written by every rank at "
-      "once")("pi-out", po::value(&cfg.pi_out),
-              "write the serial visit order this run equals (ordered mode): `meshreuse smooth MESH "
-              "--visit-order FILE` reproduces the run bit for bit")(
+      "write the smoothed mesh: PATH.pvtu for ParaView, one compressed .vtu piece per rank "
+      "(PATH_RANK.vtu, written by each rank, ghost cells marked); or gathered on rank 0 as "
+      "PATH.vtu, PATH.vtk, PATH.msh (Gmsh 4.1), PATH.mrm or a .node/.ele prefix (a mesh file "
+      "read in ranges or parts and written as PATH.mrm is written by every rank at once)")(
+      "pi-out", po::value(&cfg.pi_out),
+      "write the serial visit order this run equals (ordered mode): `meshreuse smooth MESH "
+      "--visit-order FILE` reproduces the run bit for bit")(
       "out", po::value(&out_dir), "write sweeps.csv, ranks.csv and run.json here")(
       "quiet,q", "no progress on stderr");
   if (ranks)
@@ -86,8 +93,9 @@ bool ParseDistSmooth(const Args& args, DistSmoothOptions* o, const char* usage,
               "Laplacian smoothing across the ranks of an MPI job: each rank reads MESH (of a "
               "mesh file FILE.mrm, only its range and ghost ring), keeps its part and one ring of "
               "ghosts, and smooths it; rank 0 gathers the result. "
-              "The global quality is summed exactly, so it and the number of sweeps are the "
-              "same for any number of ranks.",
+              "The global quality is summed exactly: in Jacobi mode it and the number of sweeps "
+              "are the same for any number of ranks; in ordered mode they are those of the serial "
+              "sweep along pi, which depends on the partition.",
           desc, pos, vm))
     return false;
   if (vm["partition"].defaulted() && IsMeshFilePath(cfg.mesh)) cfg.partition = "ranges";
@@ -95,14 +103,21 @@ bool ParseDistSmooth(const Args& args, DistSmoothOptions* o, const char* usage,
   cfg.smooth.mode = ParseHaloMode(mode);
   cfg.placement = ParseCutPlacement(placement);
   o->quiet = vm.count("quiet") > 0;
+  o->ranks = job_ranks;
+  if (ranks) {
+    if (ranks_text.empty()) throw UsageError("--ranks P is required (the number of ranks)");
+    // Every rank holds a copy of the mesh; a thread per rank beyond a few thousand is a mistake.
+    o->ranks = static_cast<int32_t>(ParseCount(ranks_text, "--ranks", 1, 4096));
+  }
   CheckDistSmoothConfig(cfg);
   if (!cfg.output.empty())
-    for (const std::string& f : MeshOutputFiles(cfg.output))
+    for (const std::string& f : MeshOutputFiles(cfg.output, o->ranks))
       CheckOutputPath(f, "-o", InputFiles({cfg.mesh}));
   if (!cfg.pi_out.empty()) CheckOutputPath(cfg.pi_out, "--pi-out", InputFiles({cfg.mesh}));
   std::vector<std::pair<std::string, std::string>> outputs = {{"--pi-out", cfg.pi_out}};
   if (!cfg.output.empty())
-    for (const std::string& f : MeshOutputFiles(cfg.output)) outputs.emplace_back("-o", f);
+    for (const std::string& f : MeshOutputFiles(cfg.output, o->ranks))
+      outputs.emplace_back("-o", f);
   if (!out_dir.empty())
     for (const char* f : {"sweeps.csv", "ranks.csv", "run.json"})
       outputs.emplace_back("--out", out_dir + "/" + f);
@@ -117,7 +132,7 @@ void RunDistSmooth(const DistSmoothOptions& o, Communicator& tx) {
   const bool writer = tx.rank() == 0;
   if (!o.out_dir.empty() && writer) PrepareOutDir(o.out_dir);
   if (writer && !cfg.output.empty())
-    for (const std::string& f : MeshOutputFiles(cfg.output)) WarnStaleTemporaries(f);
+    for (const std::string& f : MeshOutputFiles(cfg.output, o.ranks)) WarnStaleTemporaries(f);
   const Progress progress(o.quiet || !writer);
   auto on_setup = [&](const DistSmoothResult& r) {
     if (!writer) return;
@@ -137,7 +152,17 @@ void RunDistSmooth(const DistSmoothOptions& o, Communicator& tx) {
     std::fflush(stdout);
   };
   const DistSmoothResult r = RunDistributedSmooth(cfg, tx, MakeLog(progress), on_setup, on_sweep);
-  if (writer) Emit(DistSmoothOutput(r, cfg), OutputFormat::kText, o.out_dir, progress);
+  if (!writer) return;
+  // Warnings are not progress: --quiet keeps them, as compare does.
+  const std::vector<std::string> why = r.noise.Reasons();
+  std::string reasons;
+  for (const std::string& w : why) reasons += (reasons.empty() ? "" : "; ") + w;
+  if (!why.empty())
+    std::fprintf(stderr,
+                 "meshreuse: warning: timings taken on a busy machine, the sweep times are not "
+                 "this code's speed: %s\n",
+                 reasons.c_str());
+  Emit(DistSmoothOutput(r, cfg), OutputFormat::kText, o.out_dir, progress);
 }
 
 }  // namespace
@@ -145,9 +170,11 @@ void RunDistSmooth(const DistSmoothOptions& o, Communicator& tx) {
 int DistSmoothCommand(const Args& args, Communicator& tx, const JobPartition& job_partition) {
   DistSmoothOptions o;
   o.cfg.job_partition = job_partition;
-  if (!ParseDistSmooth(args, &o,
-                       "smooth MESH [--partition hilbert|metis|scotch|ptscotch|ranges|gmsh] "
-                       "[--ordering NAME] [--mode ordered|jacobi|hybrid] [-o OUT] [--pi-out FILE]"))
+  if (!ParseDistSmooth(
+          args, &o,
+          "smooth MESH [--partition hilbert|metis|scotch|ptscotch|ranges|gmsh|file:PATH] "
+          "[--ordering NAME] [--mode ordered|jacobi|hybrid] [-o OUT] [--pi-out FILE]",
+          tx.size()))
     return 0;
   RunDistSmooth(o, tx);
   return 0;
@@ -155,16 +182,13 @@ int DistSmoothCommand(const Args& args, Communicator& tx, const JobPartition& jo
 
 int DistSmoothThreads(const Args& args) {
   DistSmoothOptions o;
-  std::string ranks_text;
   if (!ParseDistSmooth(args, &o,
-                       "smooth-ranks MESH --ranks P [--partition hilbert|metis|scotch|ranges|gmsh] "
-                       "[--ordering NAME] [--mode ordered|jacobi|hybrid] [-o OUT] [--pi-out FILE]",
-                       &ranks_text))
+                       "smooth-ranks MESH --ranks P [--partition hilbert|metis|scotch|ranges|gmsh|"
+                       "file:PATH] [--ordering NAME] [--mode ordered|jacobi|hybrid] [-o OUT] "
+                       "[--pi-out FILE]",
+                       0))
     return 0;
-  if (ranks_text.empty()) throw UsageError("--ranks P is required (the number of ranks)");
-  // Every rank holds a copy of the mesh; a thread per rank beyond a few thousand is a mistake.
-  const auto ranks = static_cast<int32_t>(ParseCount(ranks_text, "--ranks", 1, 4096));
-  ThreadCommunicator::Run(ranks, [&](Communicator& tx) { RunDistSmooth(o, tx); });
+  ThreadCommunicator::Run(o.ranks, [&](Communicator& tx) { RunDistSmooth(o, tx); });
   return 0;
 }
 

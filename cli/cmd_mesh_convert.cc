@@ -17,15 +17,16 @@ int MeshConvert(const Args& args) {
   std::string in, out;
   desc.add_options()("mesh", po::value(&in)->required(), "input mesh")(
       "output,o", po::value(&out)->required(),
-      "PATH.vtk, PATH.mrm (the distributed mesh file, in Hilbert order), or a prefix for "
-      ".node/.ele")("quiet,q", "no progress on stderr");
+      (std::string(kMeshOutputFormats) + " (a .mrm is stored in Hilbert order)").c_str())(
+      "quiet,q", "no progress on stderr");
   po::positional_options_description pos;
   pos.add("mesh", 1);
   po::variables_map vm;
   if (!ParseOptions(
           args, "mesh convert MESH -o OUT",
           "Reads any supported mesh (Triangle .node/.ele, Gmsh .msh 2.2/4.1) and writes "
-          "Triangle files, VTK legacy (with vertex and triangle quality, for ParaView) or the "
+          "Triangle files, VTK XML or legacy (with vertex and triangle quality, for ParaView), "
+          "Gmsh 4.1 or the "
           "distributed mesh file FILE.mrm that MPI ranks read in ranges (vertices in Hilbert "
           "order).",
           desc, pos, vm))
@@ -34,7 +35,8 @@ int MeshConvert(const Args& args) {
   const Progress progress(vm.count("quiet") > 0);
   Mesh m = LoadMesh(in, MakeLog(progress));
   if (IsMeshFilePath(out)) LayOutForRanks(&m);  // ranges of ids are then Hilbert ranges
-  for (const std::string& f : WriteMesh(m, out)) std::printf("wrote %s\n", f.c_str());
+  for (const std::string& f : SaveMesh(m, out, MakeLog(progress)))
+    std::printf("wrote %s\n", f.c_str());
   return 0;
 }
 

@@ -78,8 +78,7 @@ int MeshRefine(const Args& args) {
   po::options_description desc("options");
   MeshRefineConfig cfg;
   std::string seed;
-  AddRefineOptions(desc, &cfg.mesh, &cfg.output, &cfg.refine, &seed,
-                   "PATH.vtk, PATH.mrm (the distributed mesh file), or a prefix for .node/.ele");
+  AddRefineOptions(desc, &cfg.mesh, &cfg.output, &cfg.refine, &seed, kMeshOutputFormats);
   desc.add_options()("layout", po::value(&cfg.layout),
                      (std::string("vertex order: refinement (the ids above; the default, except "
                                   "for .mrm), hilbert (the default for .mrm), or ") +

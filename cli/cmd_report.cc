@@ -1,10 +1,15 @@
 // meshreuse report: the paper's experiment as one run (reports/report.h), behind
 // scripts/reproduce.sh. Options are checked and the output folder made before any work.
+#include <fcntl.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <thread>
 
+#include "analysis/machine.h"
 #include "cli/common.h"
 #include "core/error.h"
 #include "core/orderings/registry.h"
@@ -13,6 +18,36 @@
 #include "tracer/access_stream.h"
 
 namespace meshreuse::cli {
+
+namespace {
+
+// Draws the report's figures: Debian's python3 (where matplotlib is) on scripts/plot_report.py
+// DIR, its lines on stderr (none when quiet). Returns "" once drawn, else why not.
+std::string DrawFigures(const std::string& out_dir, bool quiet) {
+  const std::string python = "/usr/bin/python3",
+                    script = std::string(MESHREUSE_SOURCE_DIR) + "/scripts/plot_report.py";
+  if (::access(python.c_str(), X_OK) != 0) return "there is no " + python;
+  if (::access(script.c_str(), R_OK) != 0) return "there is no " + script;
+  std::fflush(stdout);
+  std::fflush(stderr);
+  const pid_t pid = ::fork();
+  if (pid < 0) return "fork failed";
+  if (pid == 0) {
+    const int out = quiet ? ::open("/dev/null", O_WRONLY) : ::dup(2);
+    if (out >= 0) ::dup2(out, 1);
+    const char* argv[] = {python.c_str(), script.c_str(), out_dir.c_str(), nullptr};
+    ::execv(argv[0], const_cast<char* const*>(argv));
+    ::_exit(127);
+  }
+  int status = 0;
+  while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+  }
+  if (WIFEXITED(status) && WEXITSTATUS(status) == 0) return "";
+  return WIFEXITED(status) ? "plot_report.py exited " + std::to_string(WEXITSTATUS(status))
+                           : "plot_report.py was killed";
+}
+
+}  // namespace
 
 int ReportCommand(const Args& args) {
   po::options_description desc("options");
@@ -48,7 +83,8 @@ int ReportCommand(const Args& args) {
       "profile-mesh", po::value(&cfg.profile_mesh)->default_value(cfg.profile_mesh),
       "mesh (short name) of the profile figure; none: no figure")(
       "machine", po::value(&machine)->default_value(machine),
-      "the many-core part: westmere-ex (the paper's 4 x 8 cores) or a machine file (README, "
+      "the many-core part: westmere-ex (alias westmere; the paper's 4 x 8 cores) or a machine file "
+      "(README, "
       "\"Many cores\"); none: no many-core part")(
       "machine-threads", po::value(&machine_threads)->default_value(machine_threads),
       "thread counts simulated on the machine (compact and scatter placement)")(
@@ -58,7 +94,14 @@ int ReportCommand(const Args& args) {
       "levels with a next-line prefetcher in the one-thread prefetch table; none: no table")(
       "no-timing", "skip the timed runs (tables 1-3, misses and figure data only)")(
       "label", po::value(&cfg.label), "a name for the run (README title, run.json)")(
-      "out", po::value(&out_dir)->required(), "the result folder (created; must be empty)")(
+      "measured", po::value(&cfg.measured),
+      "a compare.csv from `meshreuse compare --out DIR` run on another machine (a 16-core "
+      "node, say): its speedups drawn beside the many-core prediction (the machine named from "
+      "the run.json beside it)")(
+      "no-figures",
+      "do not draw the figures (otherwise drawn at the end by scripts/plot_report.py under "
+      "Debian's /usr/bin/python3 with matplotlib)")("out", po::value(&out_dir)->required(),
+                                                    "the result folder (created; must be empty)")(
       "quiet,q", "no progress on stderr");
   AddTriangleOrderOption(desc, &triangle_order);
   po::positional_options_description pos;
@@ -67,7 +110,8 @@ int ReportCommand(const Args& args) {
   if (!ParseOptions(args, "report MESH... --out DIR [--orderings ori,bfs,rdr] [--threads 1,2]",
                     "Runs the paper's experiment on the meshes and writes every table (CSV, "
                     "Markdown, LaTeX; the paper's values beside ours), the data of every figure "
-                    "(plotted by scripts/plot_report.py), run.json, manifest.json and a README.md "
+                    "(drawn at the end by scripts/plot_report.py where Debian's matplotlib is), "
+                    "run.json, manifest.json and a README.md "
                     "to DIR. scripts/reproduce.sh runs it on the nine meshes.",
                     desc, pos, vm))
     return 0;
@@ -86,7 +130,7 @@ int ReportCommand(const Args& args) {
   cfg.cache = ParseCacheSpec(cache);
   cfg.counter_events = counters == "none" ? std::vector<std::string>{} : SplitList(counters);
   cfg.timing = vm.count("no-timing") == 0;
-  cfg.machine = machine == "none" ? "" : machine;
+  cfg.machine = machine == "none" ? "" : CanonicalMachine(machine);
   cfg.machine_threads = ParseThreadList(machine_threads);
   cfg.prefetch_levels = prefetch == "none" ? "" : prefetch;
   cfg.triangle_order = ParseTriangleOrder(triangle_order);
@@ -110,6 +154,16 @@ int ReportCommand(const Args& args) {
         std::filesystem::remove_all(e.path(), ec);
     }
     throw;
+  }
+  if (vm.count("no-figures") == 0) {
+    progress.Say("drawing the figures (scripts/plot_report.py)");
+    const std::string why = DrawFigures(out_dir, vm.count("quiet") > 0);
+    if (!why.empty())
+      std::fprintf(stderr,
+                   "meshreuse: note: the figures were not drawn (%s): draw them with "
+                   "/usr/bin/python3 scripts/plot_report.py %s once Debian's python3-matplotlib "
+                   "is installed (scripts/setup.sh --with-plots)\n",
+                   why.c_str(), out_dir.c_str());
   }
   return 0;
 }

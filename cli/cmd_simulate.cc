@@ -3,9 +3,11 @@
 #include <cstdio>
 #include <string>
 
+#include "analysis/machine.h"
 #include "cli/common.h"
 #include "core/error.h"
 #include "reports/simulate.h"
+#include "tracer/access_stream.h"
 #include "tracer/trace_formats.h"
 
 namespace meshreuse::cli {
@@ -36,19 +38,20 @@ int SimulateCommand(const Args& args) {
       "meshes, private caches: simulate each of P ranks' parts as the distributed smoother lays it "
       "out and sweeps it (--orderings inside each part): one row per rank and level";
   AddSourceOptions(desc, &cfg, &source, help);
-  desc.add_options()(
-      "cache", po::value(&cache)->default_value("westmere-ex"),
-      "westmere-ex (L1=32K/8,L2=256K/8,L3=24M/24) or NAME=SIZE/WAYS[/lru|fifo|random],... "
-      "(cachegrind's: I1=32K/8,D1=32K/8,LL=8M/16)")("line-bytes",
-                                                    po::value(&line_bytes)->default_value("64"),
-                                                    "cache line size (a power of two)")(
-      "per-sweep", "one row per sweep as well (meshes and trace files)")(
+  desc.add_options()("cache", po::value(&cache)->default_value("westmere-ex"),
+                     "westmere-ex (alias westmere: L1=32K/8,L2=256K/8,L3=24M/24) or "
+                     "NAME=SIZE/WAYS[/lru|fifo|random],... "
+                     "(cachegrind's: I1=32K/8,D1=32K/8,LL=8M/16)")(
+      "line-bytes", po::value(&line_bytes)->default_value("64"),
+      "cache line size (a power of two)")("per-sweep",
+                                          "one row per sweep as well (meshes and trace files)")(
       "by-array",
       "print each level's lookups and misses per array instead (the smoother's arrays: xy, "
       "v2v.idx, ..., a rank's send.buf and recv.buf; 'trace' for other tools' traces); with "
       "--out also simulate-arrays.{csv,json}")(
       "machine", po::value(&cfg.machine),
-      "westmere-ex or a machine file: the many-core simulator (sockets, private and shared "
+      "westmere-ex (alias westmere) or a machine file: the many-core simulator (sockets, private "
+      "and shared "
       "levels, inclusion, coherence, NUMA; --threads up to its cores) instead of --cache")(
       "placement", po::value(&placement)->default_value(placement),
       "with --machine: compact (fill socket 0 first, OpenMP proc_bind(close)) or scatter "
@@ -85,6 +88,7 @@ int SimulateCommand(const Args& args) {
   if (source.thread_list.size() > 1) cfg.machine_threads = source.thread_list;
   cfg.warm = vm.count("warm") > 0;
   cfg.per_thread = vm.count("per-thread") > 0;
+  cfg.machine = CanonicalMachine(cfg.machine);
   if (!cfg.machine.empty()) cfg.interleave = ParseInterleave(interleave);
   cfg.by_array = vm.count("by-array") > 0;
   if (!cfg.machine.empty() && !vm["cache"].defaulted())
@@ -92,6 +96,22 @@ int SimulateCommand(const Args& args) {
   if (cfg.machine.empty())
     for (const char* o : {"placement", "interleave"})
       if (!vm[o].defaulted()) throw UsageError(std::string("--") + o + " needs --machine");
+  // A trace file holds its streams one after another, so only the serial meeting can be
+  // simulated from it (and is, said so); a mesh's streams are generated side by side, at any
+  // interleaving.
+  if (!cfg.machine.empty()) {
+    bool traces = !cfg.inputs.empty();
+    for (const std::string& in : cfg.inputs) {
+      const bool trace = !cfg.format.empty() || ClassifyInput(in) != InputKind::kMesh;
+      if (trace && !vm["interleave"].defaulted() && cfg.interleave != kSerialShares)
+        throw UsageError("--interleave " + interleave + ": " + in +
+                         " is a trace file, whose streams follow one another: it can only be "
+                         "simulated serially (--interleave serial); give the mesh to interleave "
+                         "its streams");
+      traces = traces && trace;
+    }
+    if (traces) cfg.interleave = kSerialShares;
+  }
   if (cfg.machine.empty() && (!cfg.prefetch.empty() || cfg.warm || cfg.per_thread))
     throw UsageError("--prefetch, --warm and --per-thread need --machine");
   CheckSimulateConfig(cfg);

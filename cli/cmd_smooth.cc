@@ -34,7 +34,7 @@ int SmoothCommand(const Args& args) {
       "per-move: the global quality updated after every move (the paper's Algorithm 1); "
       "per-sweep: once per sweep by one pass over the triangles (the lean sweep)")(
       "output,o", po::value(&cfg.output),
-      "write the smoothed mesh (PATH.vtk or a .node/.ele prefix)")(
+      (std::string("write the smoothed mesh: ") + kMeshOutputFormats).c_str())(
       "visit-order", po::value(&cfg.visit_order),
       "visit the interior vertices in this file's order (one 0-based id per line, every interior "
       "vertex once), storage unchanged: the serial sweep `meshreuse-mpi smooth --pi-out` "

@@ -16,8 +16,8 @@ namespace meshreuse::cli {
 
 int ValidateCommand(const Args& args) {
   po::options_description desc("options");
-  std::string mesh, cache = "westmere-ex",
-                    counters = "PAPI_L1_DCM,PAPI_L2_DCM,PAPI_L3_TCM", out_dir;
+  std::string mesh, cache = "westmere-ex", counters = "PAPI_L1_DCM,PAPI_L2_DCM,PAPI_L3_TCM",
+                    out_dir;
   ValidationConfig cfg;
   SourceOptionText source;
   source.orderings = "ori,bfs,rdr";
@@ -27,9 +27,9 @@ int ValidateCommand(const Args& args) {
   help.iterations = "sweeps";
   help.threads = "streams (static schedule)";
   AddSourceOptions(desc, &cfg, &source, help);
-  desc.add_options()(
-      "cache", po::value(&cache)->default_value("westmere-ex"),
-      "westmere-ex (L1=32K/8,L2=256K/8,L3=24M/24) or NAME=SIZE/WAYS[@CYCLES],...,mem@CYCLES")(
+  desc.add_options()("cache", po::value(&cache)->default_value("westmere-ex"),
+                     "westmere-ex (alias westmere: L1=32K/8,L2=256K/8,L3=24M/24) or "
+                     "NAME=SIZE/WAYS[@CYCLES],...,mem@CYCLES")(
       "element-bytes", po::value(&cfg.element_bytes)->default_value(66),
       "element size of the element model (the paper's 66-byte nodes)")(
       "line-bytes", po::value(&cfg.line_bytes)->default_value(64), "cache line size")(

@@ -192,7 +192,8 @@ void SourceOf(SourceOptionText& text, const po::variables_map& vm, StreamSource*
 void AddRankOptions(po::options_description& desc, RankOptionText* text, const char* ranks) {
   desc.add_options()("ranks", po::value(&text->ranks), ranks)(
       "partition", po::value(&text->partition)->default_value("hilbert"),
-      "with --ranks: hilbert, metis, scotch, ranges or gmsh (a Gmsh split set's own)")(
+      "with --ranks: hilbert, metis, scotch, ranges, gmsh (a Gmsh split set's own) or file:PATH "
+      "(one part per line: `mesh partition -o`'s, METIS's or Scotch's)")(
       "cut-placement", po::value(&text->placement)->default_value("last"),
       "with --ranks: where each part keeps its cut vertices: last, first or interleaved "
       "(meshreuse-mpi smooth --help)");

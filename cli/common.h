@@ -37,6 +37,12 @@ uint64_t ParseCount(const std::string& text, const std::string& option, uint64_t
 void PrepareOutDir(const std::string& dir, bool must_be_empty = false);
 
 // --triangle-order sorted|file, the same text on every command that lays a mesh out.
+// The mesh formats -o writes, for every command's help (core/mesh_io.h WriteMesh).
+inline constexpr const char* kMeshOutputFormats =
+    "PATH.vtu (VTK XML, binary and compressed: ParaView's own), PATH.vtk (legacy VTK, ASCII), "
+    "PATH.msh (Gmsh 4.1), PATH.mrm (the distributed mesh file) or a prefix for Triangle's "
+    ".node/.ele";
+
 void AddTriangleOrderOption(po::options_description& desc, std::string* value);
 
 // --ranks P, --partition and --cut-placement of the per-rank runs (reports/rank_locality.h);

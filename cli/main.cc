@@ -28,7 +28,8 @@ struct Command {
 const Command kCommands[] = {
     {"mesh info", "vertices, triangles, boundary and quality of a mesh", MeshInfo},
     {"mesh generate", "mesh one of the nine shapes (or a .poly) with Triangle", MeshGenerate},
-    {"mesh convert", "read any supported mesh, write .node/.ele or .vtk", MeshConvert},
+    {"mesh convert", "read any supported mesh, write .vtu, .vtk, .msh, .mrm or .node/.ele",
+     MeshConvert},
     {"mesh refine", "each triangle into 4^K, ids computable anywhere", MeshRefine},
     {"mesh partition", "parts for smoothing across ranks, and what they cost", MeshPartition},
     {"orderings", "list the vertex orderings", OrderingsCommand},

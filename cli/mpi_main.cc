@@ -119,7 +119,14 @@ int main(int argc, char** argv) {
   }
   if (rc != 0) {
     meshreuse::RemoveTemporaries();  // MPI_Abort ends the ranks without unwinding
-    MPI_Abort(MPI_COMM_WORLD, rc);   // ends every rank: a failure never hangs the job
+    // What follows is Open MPI's own report of the abort (its banner, ORTE_ERROR_LOG lines):
+    // said, so that a user reads the line above as the cause.
+    std::fprintf(stderr,
+                 "%s: ending the job with exit status %d; the lines that follow, if any, are "
+                 "Open MPI's own report of the abort\n",
+                 who.c_str(), rc);
+    std::fflush(stderr);
+    MPI_Abort(MPI_COMM_WORLD, rc);  // ends every rank: a failure never hangs the job
   }
   MPI_Finalize();
   return 0;

@@ -22,6 +22,7 @@
 #include "core/error.h"
 #include "core/input_file.h"
 #include "core/mesh_io.h"
+#include "core/progress.h"
 
 namespace meshreuse {
 
@@ -92,6 +93,8 @@ class GmshBinaryReader {
       const size_t got = f_.Read(buf_.data() + end_, buf_.size() - end_);
       if (got == 0) return false;
       end_ += got;
+      read_ += got;
+      ReportProgress(read_, f_.size() > 0 ? static_cast<uint64_t>(f_.size()) : 0);
     }
     return true;
   }
@@ -297,6 +300,7 @@ class GmshBinaryReader {
   InputFile f_;
   std::string buf_;
   size_t pos_ = 0, end_ = 0;
+  uint64_t read_ = 0;  // bytes of the file read so far (progress)
   int64_t offset_ = 0;
   char last_ = '\n';
   RawMesh raw_;

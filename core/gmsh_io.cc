@@ -6,13 +6,18 @@
 // mapped to 0-based ids in file order; z (and 4.1's parametric coordinates) must be numbers and are
 // then ignored, as are element tags and physical tags, which must be integers. Counts are checked
 // against the bytes that follow before anything is reserved for them, and all arithmetic on them is
-// overflow-free, so memory follows the file.
+// overflow-free, so memory follows the file. WriteGmsh writes 4.1 ASCII, which Gmsh, meshio and
+// this reader read back to the same bits.
+#include <algorithm>
+#include <cstdio>
 #include <string>
 #include <unordered_map>
 
 #include "core/error.h"
 #include "core/input_file.h"
 #include "core/mesh_io.h"
+#include "core/output_file.h"
+#include "core/progress.h"
 #include "core/text_file.h"
 
 namespace meshreuse {
@@ -283,6 +288,40 @@ RawMesh ReadGmsh(const std::string& path) {
       if (h.rfind(start, 0) == 0) return ReadGmshBinary(path);
   }
   return GmshReader(path).Read();
+}
+
+void WriteGmsh(const Mesh& m, const std::string& path) {
+  const int32_t nv = m.NumVertices(), nt = m.NumTriangles();
+  double lo[2] = {0, 0}, hi[2] = {0, 0};
+  for (int32_t v = 0; v < nv; ++v)
+    for (int d = 0; d < 2; ++d) {
+      const double c = m.xy[2 * int64_t{v} + d];
+      lo[d] = v == 0 ? c : std::min(lo[d], c);
+      hi[d] = v == 0 ? c : std::max(hi[d], c);
+    }
+  const uint64_t total = 2 * static_cast<uint64_t>(nv) + static_cast<uint64_t>(nt);
+  WriteAtomically(path, [&](std::FILE* f) {
+    std::fprintf(f, "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n");
+    // One surface (tag 1), its bounding box, no physical tags and no bounding curves.
+    std::fprintf(f, "$Entities\n0 0 1 0\n1 %.17g %.17g 0 %.17g %.17g 0 0 0\n$EndEntities\n", lo[0],
+                 lo[1], hi[0], hi[1]);
+    std::fprintf(f, "$Nodes\n1 %d 1 %d\n2 1 0 %d\n", nv, nv, nv);
+    for (int32_t v = 0; v < nv; ++v) {
+      std::fprintf(f, "%d\n", v + 1);
+      if ((v & 0xffff) == 0) ReportProgress(static_cast<uint64_t>(v), total);
+    }
+    for (int32_t v = 0; v < nv; ++v) {
+      std::fprintf(f, "%.17g %.17g 0\n", m.xy[2 * int64_t{v}], m.xy[2 * int64_t{v} + 1]);
+      if ((v & 0xffff) == 0) ReportProgress(static_cast<uint64_t>(nv) + v, total);
+    }
+    std::fprintf(f, "$EndNodes\n$Elements\n1 %d 1 %d\n2 1 2 %d\n", nt, nt, nt);
+    for (int32_t t = 0; t < nt; ++t) {
+      std::fprintf(f, "%d %d %d %d\n", t + 1, m.tri[3 * int64_t{t}] + 1,
+                   m.tri[3 * int64_t{t} + 1] + 1, m.tri[3 * int64_t{t} + 2] + 1);
+      if ((t & 0xffff) == 0) ReportProgress(2 * static_cast<uint64_t>(nv) + t, total);
+    }
+    std::fprintf(f, "$EndElements\n");
+  });
 }
 
 }  // namespace meshreuse

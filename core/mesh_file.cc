@@ -15,6 +15,7 @@
 #include "core/orderings/registry.h"
 #include "core/output_file.h"
 #include "core/permutation.h"
+#include "core/progress.h"
 
 #if !defined(__BYTE_ORDER__) || __BYTE_ORDER__ != __ORDER_LITTLE_ENDIAN__
 #error "mesh_file.cc writes and reads its integers as stored: little-endian hosts only"
@@ -401,6 +402,7 @@ void MeshFile::PreadAll(char* out, int64_t n, int64_t at) {
     if (r <= 0)
       Fail(at + got, std::string("read error: ") + (r < 0 ? std::strerror(errno) : "end of file"));
     got += r;
+    ReportProgress(bytes_read_ + static_cast<uint64_t>(got), static_cast<uint64_t>(file_bytes_));
   }
   bytes_read_ += static_cast<uint64_t>(n);
 }

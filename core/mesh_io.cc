@@ -4,13 +4,17 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <climits>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <stdexcept>
 
 #include "core/error.h"
 #include "core/mesh_file.h"
+#include "core/progress.h"
 #include "core/quality.h"
+#include "core/vtu_io.h"
 
 namespace meshreuse {
 
@@ -57,12 +61,17 @@ void WriteVtk(const Mesh& m, const std::string& path, const std::vector<VtkField
     std::fprintf(f,
                  "# vtk DataFile Version 3.0\nmeshreuse mesh\nASCII\nDATASET UNSTRUCTURED_GRID\n");
     std::fprintf(f, "POINTS %d double\n", nv);
-    for (int32_t v = 0; v < nv; ++v)
+    const uint64_t total = static_cast<uint64_t>(nv) + static_cast<uint64_t>(nt);
+    for (int32_t v = 0; v < nv; ++v) {
       std::fprintf(f, "%.17g %.17g 0\n", m.xy[2 * int64_t{v}], m.xy[2 * int64_t{v} + 1]);
+      if ((v & 0xffff) == 0) ReportProgress(static_cast<uint64_t>(v), total);
+    }
     std::fprintf(f, "CELLS %d %lld\n", nt, 4LL * nt);
-    for (int32_t t = 0; t < nt; ++t)
+    for (int32_t t = 0; t < nt; ++t) {
       std::fprintf(f, "3 %d %d %d\n", m.tri[3 * int64_t{t}], m.tri[3 * int64_t{t} + 1],
                    m.tri[3 * int64_t{t} + 2]);
+      if ((t & 0xffff) == 0) ReportProgress(static_cast<uint64_t>(nv) + t, total);
+    }
     std::fprintf(f, "CELL_TYPES %d\n", nt);
     for (int32_t t = 0; t < nt; ++t) std::fputs("5\n", f);
     std::fprintf(f, "CELL_DATA %d\nSCALARS triangle_quality double 1\nLOOKUP_TABLE default\n", nt);
@@ -80,6 +89,44 @@ void WriteVtk(const Mesh& m, const std::string& path, const std::vector<VtkField
   });
 }
 
+void WriteVtu(const Mesh& m, const std::string& path, const std::vector<VtkField>& fields) {
+  const int32_t nv = m.NumVertices(), nt = m.NumTriangles();
+  // VertexQualities' sums (in the same order, so the same doubles) rounded once to Float32,
+  // without its two double arrays (24 B a vertex at the peak).
+  std::vector<float> vq(static_cast<size_t>(nv)), tq(static_cast<size_t>(nt));
+#pragma omp parallel for schedule(static, 4096)
+  for (int32_t t = 0; t < nt; ++t)
+    tq[t] = static_cast<float>(TriangleQuality(m.xy.data(), &m.tri[3 * int64_t{t}]));
+#pragma omp parallel for schedule(static, 4096)
+  for (int32_t v = 0; v < nv; ++v) {
+    double sum = 0.0;
+    for (const int32_t* p = m.v2t.RowBegin(v); p != m.v2t.RowEnd(v); ++p)
+      sum += TriangleQuality(m.xy.data(), &m.tri[3 * int64_t{*p}]);
+    const int64_t n = m.v2t.RowSize(v);
+    vq[v] = n > 0 ? static_cast<float>(sum / static_cast<double>(n)) : 0.0f;
+  }
+  VtuGrid g;
+  g.points = nv, g.xy = m.xy.data(), g.cells = nt, g.tri = m.tri.data();
+  g.point_data.push_back(VtuArrayOf("vertex_quality", vq.data(), nv));
+  g.point_data.push_back(VtuArrayOf("boundary", m.boundary.data(), nv));
+  std::vector<std::vector<int32_t>> whole;
+  for (const VtkField& field : fields) {
+    if (field.values.size() != static_cast<size_t>(nv))
+      throw std::logic_error("VTK field " + field.name + " has the wrong length");
+    bool integral = true;
+    for (double x : field.values)
+      integral = integral && x == std::floor(x) && x >= INT32_MIN && x <= INT32_MAX;
+    if (integral) {
+      whole.emplace_back(field.values.begin(), field.values.end());
+      g.point_data.push_back(VtuArrayOf(field.name, whole.back().data(), nv));
+    } else {
+      g.point_data.push_back(VtuArrayOf(field.name, field.values.data(), nv));
+    }
+  }
+  g.cell_data.push_back(VtuArrayOf("triangle_quality", tq.data(), nt));
+  WriteVtu(g, path);
+}
+
 void WritePermutation(const std::vector<int32_t>& new_to_old, const std::string& path,
                       const std::string& comment) {
   WriteAtomically(path, [&](std::FILE* f) {
@@ -90,8 +137,24 @@ void WritePermutation(const std::vector<int32_t>& new_to_old, const std::string&
   });
 }
 
-std::vector<std::string> MeshOutputFiles(const std::string& target) {
-  if (EndsWith(target, ".vtk") || EndsWith(target, ".mrm")) return {target};
+bool IsPvtuPath(const std::string& target) { return EndsWith(target, ".pvtu"); }
+
+std::string PvtuPiece(const std::string& target, int32_t rank) {
+  return target.substr(0, target.size() - 5) + "_" + std::to_string(rank) + ".vtu";
+}
+
+std::vector<std::string> MeshOutputFiles(const std::string& target, int32_t pieces) {
+  if (IsPvtuPath(target)) {
+    if (pieces == 0)
+      throw UsageError("-o '" + target +
+                       "': a .pvtu (one .vtu piece per rank) is written by the distributed "
+                       "smoother (meshreuse-mpi smooth, smooth-ranks); write one grid as .vtu");
+    std::vector<std::string> out = {target};
+    for (int32_t r = 0; r < pieces; ++r) out.push_back(PvtuPiece(target, r));
+    return out;
+  }
+  for (const char* ext : {".vtk", ".vtu", ".msh", ".mrm"})
+    if (EndsWith(target, ext)) return {target};
   const std::string prefix =
       EndsWith(target, ".node") ? target.substr(0, target.size() - 5) : target;
   // "" or "dir/" would write the hidden files ".node" and ".ele": a prefix must name a file.
@@ -121,11 +184,21 @@ std::vector<std::string> InputFiles(const std::vector<std::string>& inputs) {
   return out;
 }
 
-std::vector<std::string> WriteMesh(const Mesh& m, const std::string& target) {
+std::vector<std::string> WriteMesh(const Mesh& m, const std::string& target,
+                                   const std::vector<VtkField>& fields) {
   if (EndsWith(target, ".vtk")) {
-    WriteVtk(m, target);
+    WriteVtk(m, target, fields);
     return {target};
   }
+  if (EndsWith(target, ".vtu")) {
+    WriteVtu(m, target, fields);
+    return {target};
+  }
+  if (EndsWith(target, ".msh")) {
+    WriteGmsh(m, target);
+    return {target};
+  }
+  if (IsPvtuPath(target)) MeshOutputFiles(target);  // refused
   if (EndsWith(target, ".mrm")) {
     WriteMeshFile(m, target);
     return {target};

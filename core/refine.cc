@@ -10,6 +10,7 @@
 
 #include "core/error.h"
 #include "core/mix.h"
+#include "core/progress.h"
 
 namespace meshreuse {
 
@@ -234,14 +235,20 @@ RawMesh RefineMesh(const Mesh& coarse, const RefineOptions& o) {
   RawMesh r;
   r.vertex_file = r.triangle_file = "<refined>";
   r.xy.resize(2 * static_cast<size_t>(l.vertices()));
-  for (int64_t v = 0; v < l.vertices(); ++v)
+  // Progress in fine vertices, then fine triangles (each counted as one unit of the total).
+  const uint64_t total = static_cast<uint64_t>(l.vertices()) + l.triangles();
+  for (int64_t v = 0; v < l.vertices(); ++v) {
     l.Coord(static_cast<int32_t>(v), &r.xy[2 * v], &r.xy[2 * v + 1]);
+    if ((v & 0xffff) == 0) ReportProgress(static_cast<uint64_t>(v), total);
+  }
   r.tri.resize(3 * static_cast<size_t>(l.triangles()));
   size_t at = 0;
-  for (int32_t t = 0; t < coarse.NumTriangles(); ++t)
+  for (int32_t t = 0; t < coarse.NumTriangles(); ++t) {
     l.Triangles(t, [&](int32_t a, int32_t b, int32_t c) {
       r.tri[at++] = a, r.tri[at++] = b, r.tri[at++] = c;
     });
+    if ((t & 0xff) == 0) ReportProgress(static_cast<uint64_t>(l.vertices()) + at / 3, total);
+  }
   return r;
 }
 
@@ -353,7 +360,10 @@ RefinedRange RefineRange(const Mesh& coarse, const RefineOptions& o, const Piece
   r.boundary.reserve(static_cast<size_t>(count));
   double x, y;
   auto put = [&](uint8_t b) { r.xy.push_back(x), r.xy.push_back(y), r.boundary.push_back(b); };
+  // Progress in blocks: the coordinates, then the triangles (the listener's halves).
+  const uint64_t blocks = 2 * static_cast<uint64_t>(tri_end - tri_begin);
   for (int32_t t = tri_begin; t < tri_end; ++t) {
+    if (((t - tri_begin) & 0xff) == 0) ReportProgress(static_cast<uint64_t>(t - tri_begin), blocks);
     const int32_t* c = &coarse.tri[3 * int64_t{t}];
     for (int i = 0; i < 3; ++i)
       if (L.vertex_owner_[c[i]] == t) l.Coord(c[i], &x, &y), put(coarse.boundary[c[i]]);
@@ -372,6 +382,8 @@ RefinedRange RefineRange(const Mesh& coarse, const RefineOptions& o, const Piece
     return (q[0] - p[0]) * (s[1] - p[1]) - (s[0] - p[0]) * (q[1] - p[1]);
   };
   for (int32_t t = tri_begin; t < tri_end; ++t) {
+    if (((t - tri_begin) & 0xff) == 0)
+      ReportProgress(blocks / 2 + static_cast<uint64_t>(t - tri_begin), blocks);
     const int32_t* corner = &coarse.tri[3 * int64_t{t}];
     const double sign =
         area2(&coarse.xy[2 * int64_t{corner[0]}], &coarse.xy[2 * int64_t{corner[1]}],

@@ -9,6 +9,7 @@
 #include <memory>
 
 #include "core/error.h"
+#include "core/progress.h"
 
 namespace meshreuse {
 
@@ -39,6 +40,8 @@ bool TextFile::Fill() {
   const size_t got = in_->Read(buf_.data() + old, kBlock);
   buf_.resize(old + got);
   if (got == 0) eof_ = true;
+  ReportProgress(static_cast<uint64_t>(consumed_) + old + got,
+                 in_->size() > 0 ? static_cast<uint64_t>(in_->size()) : 0);  // a block read
   if (first_ && consumed_ == 0 && pos_ == 0 && (buf_.size() >= 3 || eof_)) {
     if (buf_.compare(0, 3, "\xEF\xBB\xBF") == 0) pos_ = 3;  // a UTF-8 byte-order mark
     first_ = false;

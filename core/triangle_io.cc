@@ -16,6 +16,7 @@
 
 #include "core/error.h"
 #include "core/mesh_io.h"
+#include "core/progress.h"
 #include "core/text_file.h"
 
 namespace meshreuse {
@@ -232,17 +233,25 @@ void WriteTriangleFiles(const Mesh& m, const std::string& prefix) {
   WriteAtomicallyAll({{prefix + ".node",
                        [&](std::FILE* f) {
                          std::fprintf(f, "%d 2 0 1\n", nv);
-                         for (int32_t v = 0; v < nv; ++v)
+                         for (int32_t v = 0; v < nv; ++v) {
                            std::fprintf(f, "%d %.17g %.17g %d\n", v + 1, m.xy[2 * int64_t{v}],
                                         m.xy[2 * int64_t{v} + 1], int{m.boundary[v]});
+                           if ((v & 0xffff) == 0)
+                             ReportProgress(static_cast<uint64_t>(v),
+                                            static_cast<uint64_t>(nv) + static_cast<uint64_t>(nt));
+                         }
                          std::fprintf(f, "# written by meshreuse\n%s", mark);
                        }},
                       {prefix + ".ele", [&](std::FILE* f) {
                          std::fprintf(f, "%d 3 0\n", nt);
-                         for (int32_t t = 0; t < nt; ++t)
+                         for (int32_t t = 0; t < nt; ++t) {
                            std::fprintf(f, "%d %d %d %d\n", t + 1, m.tri[3 * int64_t{t}] + 1,
                                         m.tri[3 * int64_t{t} + 1] + 1,
                                         m.tri[3 * int64_t{t} + 2] + 1);
+                           if ((t & 0xffff) == 0)
+                             ReportProgress(static_cast<uint64_t>(nv) + t,
+                                            static_cast<uint64_t>(nv) + static_cast<uint64_t>(nt));
+                         }
                          std::fprintf(f, "# written by meshreuse\n%s", mark);
                        }}});
 }

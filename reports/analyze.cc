@@ -157,7 +157,10 @@ class AnalyzeStreams : public StreamConsumer {
       rank.values[v] = v, orig.values[v] = p.OldOf(v);
     std::vector<VtkField> fields = {rank, orig};
     for (VtkField& f : reuse_->Fields()) fields.push_back(std::move(f));
-    WriteVtk(*laid_, cfg_.vtk, fields);
+    if (cfg_.vtk.size() > 4 && cfg_.vtk.compare(cfg_.vtk.size() - 4, 4, ".vtu") == 0)
+      WriteVtu(*laid_, cfg_.vtk, fields);
+    else
+      WriteVtk(*laid_, cfg_.vtk, fields);
     vtk_written_ = true;
     reuse_.reset(), both_.reset(), laid_.reset();
   }
@@ -219,10 +222,11 @@ Table AnalyzeTable(const AnalyzeResult& r, const AnalyzeConfig& cfg, bool human)
   const bool cost = cfg.cache.has_latencies();
   std::vector<std::string> head;
   if (cfg.sample) {
-    head = {"input", "ordering", "thread",  "granularity", "sampling",     "rate",
-            "seed",  "accesses", "samples", "cold_est",    "distinct_est", "mean_est"};
+    head = {"input",    "ordering", "thread",      "granularity", "sampling",     "rate",    "seed",
+            "accesses", "samples",  "ids_sampled", "cold_est",    "distinct_est", "mean_est"};
     for (double q : qs) head.push_back(QuantileName(q) + "_est");
     for (const CacheLevel& l : levels) head.push_back(l.name + "_misses_est");
+    for (const CacheLevel& l : levels) head.push_back(l.name + "_misses_ci95");
     head.push_back("mrc_mae");
     // The error where it matters: at each modelled level's capacity (a mean over every capacity
     // hides a large one at the small capacities, where sampled distances are coarsest).
@@ -252,11 +256,16 @@ Table AnalyzeTable(const AnalyzeResult& r, const AnalyzeConfig& cfg, bool human)
           const bool finite = !e.weights().empty();
           row.insert(row.end(), {e.options().s_max ? "fixed-size" : "fixed-rate", num(e.rate(), 6),
                                  std::to_string(e.options().seed), std::to_string(e.accesses()),
-                                 std::to_string(e.samples()), num(e.cold_weight(), 0),
-                                 num(e.distinct_estimate(), 0), finite ? num(e.Mean(), 1) : ""});
+                                 std::to_string(e.samples()), std::to_string(e.sampled_ids()),
+                                 num(e.cold_weight(), 0), num(e.distinct_estimate(), 0),
+                                 finite ? num(e.Mean(), 1) : ""});
           for (double q : qs) row.push_back(finite ? std::to_string(e.Quantile(q)) : "");
           for (const CacheLevel& l : levels)
             row.push_back(num(e.MissRatio(l.bytes / bytes) * static_cast<double>(e.accesses()), 0));
+          for (size_t i = 0; i < levels.size(); ++i) {
+            const double b = e.MissBound(i);
+            row.push_back(std::isfinite(b) ? num(b, 0) : "");
+          }
           row.push_back(s->exact ? num(MrcMeanAbsoluteError(s->hist, e), 6) : "");
           for (const CacheLevel& l : levels) {
             if (!s->exact || !s->hist.accesses()) {
@@ -317,19 +326,48 @@ Table MrcTable(const AnalyzeResult& r) {
   return t;
 }
 
+std::vector<std::string> SampleWarnings(const AnalyzeResult& r, const AnalyzeConfig& cfg) {
+  std::vector<std::string> w;
+  if (!cfg.sample) return w;
+  for (const auto& a : r.runs)
+    for (int th = 0; th < a->threads(); ++th)
+      for (Granularity g : {Granularity::kElement, Granularity::kLine}) {
+        const StreamAnalysis* s = a->stream(th, g);
+        if (!s || !s->shards || s->shards->accesses() == 0) continue;
+        const Shards& e = *s->shards;
+        // FromSampled (merged chunks) keeps no first touches apart: judge by the samples.
+        const uint64_t ids = e.sampled_ids() ? e.sampled_ids() : e.samples();
+        if (ids >= kTrustedSampleIds) continue;
+        w.push_back(
+            a->info().input + " " + a->info().ordering + " thread " + std::to_string(th) + " " +
+            GranularityName(g) + ": the sample holds " + std::to_string(ids) + " ids (fewer than " +
+            std::to_string(kTrustedSampleIds) + "): its estimates" +
+            (cfg.shards.exact_below
+                 ? " at distances of " + std::to_string(cfg.shards.exact_below) + " and beyond"
+                 : "") +
+            " are not to be trusted; raise --sample-rate, or --sample-size " +
+            std::to_string(8 * kTrustedSampleIds));
+      }
+  return w;
+}
+
 std::vector<std::string> AnalyzeNotes(const AnalyzeResult& r, const AnalyzeConfig& cfg) {
   std::vector<std::string> n;
   if (cfg.sample)
-    n.push_back(
-        "(SHARDS estimates, seed " + std::to_string(cfg.shards.seed) +
-        ": distances scaled by 1/rate; misses = accesses x the estimated miss ratio at "
-        "each capacity; mrc_mae = mean |exact - estimated| miss ratio over every "
-        "capacity, LEVEL_miss_ratio_error = estimated - exact at the level's capacity, "
-        "with --sample-error" +
-        (cfg.shards.exact_below
-             ? "; distances below " + std::to_string(cfg.shards.exact_below) + " counted exactly"
-             : std::string()) +
-        ")");
+    n.push_back("(SHARDS estimates, seed " + std::to_string(cfg.shards.seed) +
+                ": distances scaled by 1/rate; misses = accesses x the estimated miss ratio at "
+                "each capacity; mrc_mae = mean |exact - estimated| miss ratio over every "
+                "capacity, LEVEL_miss_ratio_error = estimated - exact at the level's capacity, "
+                "with --sample-error; LEVEL_misses_ci95 = the 95% bound of the sampling of ids "
+                "(+-; 0: exact; empty: a merged or distributed run, which keeps no per-id counts), "
+                "which leaves out the scaling of distances that --sample-error measures" +
+                (cfg.shards.exact_below
+                     ? "; distances below " + std::to_string(cfg.shards.exact_below) +
+                           " counted exactly: the misses at every capacity up to it are exact, "
+                           "and the quantiles below it all but exact (the finite accesses they "
+                           "share out are estimated)"
+                     : "; no distance counted exactly (--sample-exact-below 0, or a chunked run)") +
+                ")");
   else
     n.push_back(
         "(distances in distinct elements or lines; sum exact; misses: fully associative "
@@ -372,6 +410,7 @@ RunOutput AnalyzeOutput(const AnalyzeResult& r, const AnalyzeConfig& cfg) {
   Table prof = ProfileTable(r);
   if (prof.Rows() > 0) o.tables.push_back({"profile", RunOutput::Share(std::move(prof)), {"csv"}});
   o.configuration = AnalyzeConfigJson(cfg, r);
+  if (cfg.sample) o.extra = {{"sample_warnings", SampleWarnings(r, cfg)}};
   return o;
 }
 

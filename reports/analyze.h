@@ -63,6 +63,10 @@ Table AnalyzeTable(const AnalyzeResult& r, const AnalyzeConfig& cfg, bool human)
 Table HistogramTable(const AnalyzeResult& r);  // ReuseAnalysis::HistogramColumns()
 Table ProfileTable(const AnalyzeResult& r);    // ReuseAnalysis::ProfileColumns()
 Table MrcTable(const AnalyzeResult& r);        // ReuseAnalysis::MrcColumns()
+// A sampled stream of fewer ids than this is too small to trust (SHARDS' own experiments keep
+// thousands): SampleWarnings names each.
+inline constexpr uint64_t kTrustedSampleIds = 1000;
+std::vector<std::string> SampleWarnings(const AnalyzeResult& r, const AnalyzeConfig& cfg);
 // The lines printed under the aligned table: units, the model, the seed, the default chosen.
 std::vector<std::string> AnalyzeNotes(const AnalyzeResult& r, const AnalyzeConfig& cfg);
 Json AnalyzeConfigJson(const AnalyzeConfig& cfg, const AnalyzeResult& r);

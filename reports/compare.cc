@@ -142,13 +142,22 @@ class MeshTiming {
     }
   }
 
-  // --repeat auto: every speedup against ori on one thread known within +-2%.
-  bool Settled() const {
+  // --repeat auto: every speedup against ori on one thread known within +-2%. Fills `end`
+  // with the widest interval left.
+  bool Settled(RepeatAutoEnd* end) const {
+    end->widest = NAN;
     for (size_t i = first_; i < rows_->size(); ++i) {
-      const Spread& s = (*rows_)[i].speedup_vs_ori1;
-      if (std::isfinite(s.median) && !(s.RelativeHalfWidth() <= 0.02)) return false;
+      const CompareRow& r = (*rows_)[i];
+      const Spread& s = r.speedup_vs_ori1;
+      if (!std::isfinite(s.median)) continue;
+      const double w = s.RelativeHalfWidth();
+      if (!(end->widest >= w)) {
+        end->widest = w;
+        end->widest_row = r.ordering + " x" + std::to_string(r.threads);
+      }
     }
-    return true;
+    end->settled = !(end->widest > 0.02);
+    return end->settled;
   }
 
  private:
@@ -188,17 +197,21 @@ CompareResult RunCompare(const CompareConfig& cfg,
     say("  warm-up: every ordering computed, applied and smoothed once, untimed");
     m.Round(false, 0);
     const int rounds = cfg.repeat_auto ? cfg.repeat_cap : cfg.repeat;
+    RepeatAutoEnd end;
+    end.mesh = path;
     for (int round = 0; round < rounds; ++round) {
       m.Round(true, round);
+      end.rounds = round + 1;
       if (cfg.repeat_auto && round + 1 >= 3) {
         m.Summarize();
-        if (m.Settled()) {
+        if (m.Settled(&end)) {
           say("  every speedup within +-2% after " + std::to_string(round + 1) + " rounds");
           break;
         }
       }
     }
     m.Summarize();
+    if (cfg.repeat_auto) out.repeat_auto.push_back(end);
   }
   out.noise.load_after = LoadAverage();
   for (const CompareRow& r : out.rows) {
@@ -284,16 +297,39 @@ std::string WithInterval(const Spread& s, double k, int decimals) {
 }
 }  // namespace
 
-Table CompareTextTable(const std::vector<CompareRow>& rows) {
-  Table t({"mesh", "ordering", "threads", "rounds", "sweeps", "ms/sweep [95%]", "cpu ms/sweep",
+Table CompareTextTable(const std::vector<CompareRow>& rows, TimeClock clock) {
+  const bool cpu = clock == TimeClock::kCpu;
+  Table t({"mesh", "ordering", "threads", "rounds", "sweeps",
+           cpu ? "cpu ms/sweep [95%]" : "ms/sweep [95%]", cpu ? "wall ms/sweep" : "cpu ms/sweep",
            "total s", "speedup vs ori1 [95%]", "verdict", "gain vs bfs % [95%]", "verdict"});
-  for (const CompareRow& r : rows)
+  for (const CompareRow& r : rows) {
+    const Spread& chosen = cpu ? r.sweep_cpu : r.sweep;
+    const Spread& other = cpu ? r.sweep : r.sweep_cpu;
     t.AddRow({r.mesh, r.ordering, std::to_string(r.threads), std::to_string(r.rounds.size()),
-              SweepRange(r), WithInterval(r.sweep, 1e3, 3), Fixed(1e3 * r.sweep_cpu.median, 3),
+              SweepRange(r), WithInterval(chosen, 1e3, 3), Fixed(1e3 * other.median, 3),
               Fixed(r.total.median, 3), WithInterval(r.speedup_vs_ori1, 1, 3),
               VerdictOf(r.speedup_vs_ori1), WithInterval(r.gain_vs_bfs, 100, 1),
               GainVerdictOf(r.gain_vs_bfs)});
+  }
   return t;
+}
+
+std::string RepeatAutoEnd::Sentence(int cap) const {
+  char b[300];
+  std::snprintf(b, sizeof b,
+                "%s: --repeat auto stopped at its cap of %d rounds with the speedups not yet "
+                "within +-2%%: the widest, %s's, is +-%.1f%% (a larger cap, auto:N, or a quieter "
+                "machine narrows it)",
+                mesh.c_str(), cap, widest_row.c_str(), 100 * widest);
+  return b;
+}
+
+Json RepeatAutoEnd::ToJson() const {
+  return {{"mesh", mesh},
+          {"rounds", rounds},
+          {"settled", settled},
+          {"widest_relative_half_width", std::isfinite(widest) ? Json(widest) : Json(nullptr)},
+          {"widest", widest_row}};
 }
 
 void ParseRepeat(const std::string& text, int* repeat, bool* automatic, int* cap) {
@@ -471,25 +507,31 @@ RunOutput CompareOutput(const CompareResult& result, const CompareConfig& cfg) {
   const RunOutput::TablePtr t = RunOutput::Share(CompareTable(rows)),
                             summary =
                                 RunOutput::Share(CompareSummaryTable(rows, cfg.seed, cfg.clock));
+  Json ends = Json::array();
+  for (const RepeatAutoEnd& e : result.repeat_auto) ends.push_back(e.ToJson());
   o.json = Json({{"seed", cfg.seed},
                  {"noise", result.noise.ToJson()},
+                 {"repeat_auto", ends},
                  {"rows", CompareJson(rows)},
                  {"summary", summary->JsonValue()}});
   o.csv = t;
-  o.text.emplace_back(RunOutput::Share(CompareTextTable(rows)));
+  o.text.emplace_back(RunOutput::Share(CompareTextTable(rows, cfg.clock)));
   o.text.emplace_back(
       "(seed " + std::to_string(cfg.seed) +
       "; medians over the rounds after a warm-up, [95% interval of the median]; speedup = "
       "T_ori(1)/T, gain = (T_bfs-T)/T_bfs on per-sweep medians (" +
       ClockName(cfg.clock) +
       " clock); an interval holding 1 is not distinguishable; every spread: --csv, --json, --out)");
+  for (const RepeatAutoEnd& e : result.repeat_auto)
+    if (!e.settled) o.text.emplace_back("note: " + e.Sentence(cfg.repeat_cap));
   o.text.emplace_back("");
   o.text.emplace_back("mean over " + std::to_string(cfg.meshes.size()) + " mesh(es):");
   o.text.emplace_back(RunOutput::Share(CompareSummaryTextTable(*summary)));
   o.tables = {{"compare", t, {"csv", "md"}}, {"summary", summary, {"csv", "md"}}};
   o.files.emplace_back("compare.json", Json({{"rows", CompareJson(rows)}}).dump(1) + "\n");
   o.configuration = CompareConfigJson(cfg);
-  o.extra = {{"noise", result.noise.ToJson()}, {"results", CompareJson(rows)}};
+  o.extra = {
+      {"noise", result.noise.ToJson()}, {"repeat_auto", ends}, {"results", CompareJson(rows)}};
   return o;
 }
 

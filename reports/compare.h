@@ -12,6 +12,7 @@
 // per ordering, not a reordered mesh per ordering.
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <functional>
 #include <string>
@@ -37,9 +38,22 @@ struct CompareConfig : TimingOptions {
   std::vector<std::string> counter_events;
 };
 
+// How --repeat auto ended on a mesh: settled (every speedup against ori x1 within +-2%) or at
+// its cap, with the widest interval left.
+struct RepeatAutoEnd {
+  std::string mesh;
+  int rounds = 0;
+  bool settled = false;
+  double widest = NAN;                  // the largest relative half-width of a speedup's interval
+  std::string widest_row;               // "bfs x2"
+  std::string Sentence(int cap) const;  // said when not settled
+  Json ToJson() const;
+};
+
 struct CompareResult {
   std::vector<CompareRow> rows;
   Noise noise;
+  std::vector<RepeatAutoEnd> repeat_auto;  // one per mesh under --repeat auto
 };
 
 // `progress` gets progress lines; `warn` the readers' warnings (dropped vertices, skipped
@@ -53,7 +67,9 @@ CompareResult RunCompare(const CompareConfig& cfg,
 // with their intervals and verdicts.
 Table CompareTable(const std::vector<CompareRow>& rows);
 // The same for people: medians with their intervals in brackets, the verdicts.
-Table CompareTextTable(const std::vector<CompareRow>& rows);
+// The printed table: the per-sweep time with its interval on the chosen clock, the other clock's
+// median beside it.
+Table CompareTextTable(const std::vector<CompareRow>& rows, TimeClock clock);
 // "5" -> {5, false, 15}; "auto" -> {3, true, 15}; "auto:20" -> {3, true, 20}. UsageError below 3.
 void ParseRepeat(const std::string& text, int* repeat, bool* automatic, int* cap);
 // The paper's headline numbers per ordering and thread count, averaged over the meshes (with

@@ -101,6 +101,9 @@ DistRefineResult RunDistributedRefine(const DistRefineConfig& cfg, Communicator&
   int64_t boundary = 0;
   double min_area2 = std::numeric_limits<double>::infinity();
   {
+    // Rank 0's progress stands for the job's (every rank a range of about the same size).
+    const PhaseProgress phase("refining rank " + std::to_string(r) + "'s range",
+                              PhaseListener(log, false));
     const RefinedRange range = RefineRange(coarse, cfg.refine, layout, tb, te);
     st.vertices = static_cast<int64_t>(range.boundary.size());
     st.triangles = static_cast<int64_t>(range.tri.size() / 3);

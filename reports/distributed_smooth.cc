@@ -15,11 +15,14 @@
 #include "core/orderings/registry.h"
 #include "core/output_file.h"
 #include "core/permutation.h"
+#include "core/progress.h"
 #include "core/ranks/gmsh_split.h"
 #include "core/ranks/part_directory.h"
 #include "core/ranks/partition.h"
 #include "core/ranks/rank_neighbourhood.h"
 #include "core/ranks/rank_part.h"
+#include "core/ranks/rank_piece.h"
+#include "core/vtu_io.h"
 #include "reports/inputs.h"
 #include "reports/shared_mesh_file.h"
 
@@ -136,6 +139,31 @@ bool WriteInRanges(const DistSmoothConfig& cfg, const RankPart& p, Communicator&
   return true;
 }
 
+// -o X.pvtu: every rank writes its piece X_RANK.vtu (core/ranks/rank_piece.h), then rank 0 the
+// .pvtu naming them, once every piece is complete.
+void WritePieces(const DistSmoothConfig& cfg, const RankPart& p, Communicator& tx, const Log& log,
+                 DistSmoothResult* res) {
+  const int32_t P = tx.size(), r = tx.rank();
+  log.Say("writing " + cfg.output + ": one .vtu piece from every rank");
+  const RankPiece piece = BuildRankPiece(p, tx);
+  const VtuGrid grid = PieceGrid(p, piece);
+  {
+    const PhaseProgress phase("writing " + PvtuPiece(cfg.output, r), PhaseListener(log, true));
+    WriteVtu(grid, PvtuPiece(cfg.output, r));
+  }
+  tx.Barrier();
+  if (r != 0) return;
+  std::vector<std::string> sources;
+  for (int32_t k = 0; k < P; ++k) {
+    const std::string f = PvtuPiece(cfg.output, k);
+    sources.push_back(f.substr(f.find_last_of('/') + 1));  // beside the .pvtu
+    res->written.push_back(f);
+  }
+  WritePvtu(cfg.output, sources, grid);
+  res->written.push_back(cfg.output);
+  log.Say("wrote " + cfg.output + " and its " + std::to_string(P) + " pieces");
+}
+
 }  // namespace
 
 bool ReadsRanges(const DistSmoothConfig& cfg) {
@@ -212,6 +240,8 @@ RankPart SetUpFromRanges(const DistSmoothConfig& cfg, Communicator& tx, const Lo
         GhostExchange(tx));
   } else {
     log.Say("reading rank " + std::to_string(rank) + "'s range of " + cfg.mesh);
+    const PhaseProgress phase("reading rank " + std::to_string(rank) + "'s range",
+                              PhaseListener(log, true));
     nb = ReadRankNeighbourhood(cfg.mesh, rank, parts, GhostExchange(tx));
   }
   nb.bytes_read += rows_read;
@@ -223,9 +253,14 @@ RankPart SetUpFromRanges(const DistSmoothConfig& cfg, Communicator& tx, const Lo
     shares.push_back(UnpackShare(b));
   const std::vector<std::vector<int32_t>> graph = CheckRankShares(cfg.mesh, shares);
   const std::vector<int32_t> colour = GreedyPartColouring(graph, &res->colours);
-  log.Say("laying out rank " + std::to_string(rank) + "'s part (" + cfg.ordering + ")");
+  const std::string laying =
+      "laying out rank " + std::to_string(rank) + "'s part (" + cfg.ordering + ")";
+  log.Say(laying);
   const int64_t vertices = nb.vertices, triangles = nb.triangles, bytes_read = nb.bytes_read;
-  RankPart p = BuildRankPart(std::move(nb), colour, cfg.ordering, cfg.seed, cfg.placement);
+  RankPart p = [&] {
+    const PhaseProgress phase(laying, PhaseListener(log, false));
+    return BuildRankPart(std::move(nb), colour, cfg.ordering, cfg.seed, cfg.placement);
+  }();
   res->vertices = static_cast<int32_t>(vertices);
   res->triangles = static_cast<int32_t>(triangles);
   for (const RankShare& s : shares) res->cut_edges += s.cut_edges;
@@ -252,8 +287,13 @@ RankPart SetUpWhole(const DistSmoothConfig& cfg, Communicator& tx, const Log& lo
   *m = std::move(pm.mesh);
   const std::vector<int32_t>& part = pm.part;
   const PartitionStats ps = MeasurePartition(*m, part, parts);
-  RankPart p =
-      BuildRankPart(*m, part, parts, ps.colour, rank, cfg.ordering, cfg.seed, cfg.placement);
+  const std::string laying =
+      "laying out rank " + std::to_string(rank) + "'s part (" + cfg.ordering + ")";
+  log.Say(laying);
+  RankPart p = [&] {
+    const PhaseProgress phase(laying, PhaseListener(log, false));
+    return BuildRankPart(*m, part, parts, ps.colour, rank, cfg.ordering, cfg.seed, cfg.placement);
+  }();
   res->vertices = m->NumVertices(), res->triangles = m->NumTriangles();
   res->colours = ps.colours, res->cut_edges = ps.cut_edges;
   return p;
@@ -295,7 +335,7 @@ void GatherAndWrite(const DistSmoothConfig& cfg, const RankPart& p, const Smooth
     }
   }
   if (!cfg.output.empty() && !parallel_out)
-    for (const std::string& f : WriteMesh(*m, cfg.output)) {
+    for (const std::string& f : SaveMesh(*m, cfg.output, log)) {
       log.Say("wrote " + f);
       res->written.push_back(f);
     }
@@ -337,20 +377,32 @@ DistSmoothResult RunDistributedSmooth(const DistSmoothConfig& cfg, Communicator&
   tx.AllReduceSum(FixedSum());
   if (on_setup) on_setup(res);
   log.Say("smoothing (" + std::string(HaloModeName(cfg.smooth.mode)) + ")");
+  res.noise.cores = Cores();
+  res.noise.load_before = LoadAverage();
   res.result = SmoothRankPart(p, cfg.smooth, tx, on_sweep);
+  res.noise.load_after = LoadAverage();
   for (const HaloSweep& s : res.result.sweeps) {
     st.smooth_seconds += s.seconds;
     st.cpu_seconds += s.cpu_seconds;
     st.wait_seconds += s.wait_seconds;
+    st.work_seconds += s.work_seconds;
   }
   st.messages = res.result.messages;
   st.bytes_sent = res.result.values_sent * sizeof(double);
   st.peak_rss_bytes = PeakRssBytes();
   // A mesh file read in ranges is written by every rank at once (mesh_file.h); -o in any other
   // format, or onto a device, is gathered.
-  const bool parallel_out =
+  bool parallel_out =
       ReadsRanges(cfg) && IsMeshFilePath(cfg.output) && WriteInRanges(cfg, p, tx, log, &res);
+  if (IsPvtuPath(cfg.output)) {
+    WritePieces(cfg, p, tx, log, &res);
+    parallel_out = true;
+  }
   GatherAndWrite(cfg, p, st, parallel_out, tx, log, &res, &m);
+  // Spans under 10 ms say nothing about the machine.
+  for (const SmoothRankStats& r : res.ranks)
+    if (r.work_seconds > 0.01 && !(res.noise.cpu_per_wall <= r.cpu_seconds / r.work_seconds))
+      res.noise.cpu_per_wall = r.cpu_seconds / r.work_seconds;
   return res;
 }
 
@@ -392,6 +444,7 @@ Json DistSmoothJson(const DistSmoothConfig& cfg, const DistSmoothResult& r) {
           {"quality_before", r.result.quality_before.ToDouble()},
           {"quality_after", r.result.quality_after.ToDouble()},
           {"sweeps", sweeps},
+          {"noise", r.noise.ToJson()},
           {"per_rank", RankStatsTable(r.ranks).JsonValue()}};
 }
 

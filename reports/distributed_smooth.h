@@ -24,6 +24,7 @@
 #include "reports/log.h"
 #include "reports/output.h"
 #include "reports/run_info.h"
+#include "reports/timing.h"
 
 namespace meshreuse {
 
@@ -52,6 +53,7 @@ struct SmoothRankStats {
   double smooth_seconds = 0;  // wall time of the sweeps
   double cpu_seconds = 0;     // thread CPU time moving, packing and summing quality
   double wait_seconds = 0;    // blocked receiving ghosts
+  double work_seconds = 0;    // wall time of the spans cpu_seconds measures
   uint64_t messages = 0, bytes_sent = 0, peak_rss_bytes = 0;
   uint64_t bytes_read = 0;  // of the mesh file, by a distributed read (0: the whole file read)
 };
@@ -61,6 +63,9 @@ struct DistSmoothResult {
   int64_t cut_edges = 0;
   HaloResult result;  // this rank's (sweeps and qualities are the same on every rank)
   std::vector<SmoothRankStats> ranks;  // rank 0: every rank's; others: empty
+  // Rank 0: the machine around the sweeps (rank 0's load average before and after; the lowest
+  // rank's CPU/wall over its work spans): a busy machine is said, as compare says it.
+  Noise noise;
   std::vector<std::string> written;
 };
 

@@ -133,8 +133,8 @@ std::vector<std::string> MachineSentences(const std::vector<MachineRun>& runs) {
     const std::string ref = r.ordering == "bfs" ? "ori" : "bfs";
     const MachineRun* b = FindMachineRun(runs, r.mesh, ref, r.placement, r.threads);
     const PredictedRatios p = Predict(runs, r.mesh, r.ordering, r.placement, r.threads);
-    std::string s =
-        r.ordering + " at " + Int(r.threads) + " thread(s), " + r.placement + " (" + r.mesh + "): ";
+    std::string s = (r.ordering.empty() ? "the trace" : r.ordering) + " at " + Int(r.threads) +
+                    " thread(s), " + r.placement + " (" + r.mesh + "): ";
     if (std::isfinite(p.speedup[0]))
       s += "Speedup " + Num(p.speedup[0], 1) + "-" + Num(p.speedup[1], 1) + "; ";
     else

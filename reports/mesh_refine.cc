@@ -99,7 +99,11 @@ RunOutput RunMeshRefine(const MeshRefineConfig& cfg, const Log& log) {
   const RefinedSize size = RefinedSizeOf(coarse, o);  // UsageError beyond 32-bit ids
   log.Say("refining " + Grouped(coarse.NumTriangles()) + " triangles into " +
           Grouped(size.triangles));
-  RawMesh raw = layout == "pieces" ? RefineMeshPieces(coarse, o) : RefineMesh(coarse, o);
+  RawMesh raw;
+  {
+    const PhaseProgress phase("refining", PhaseListener(log, false));
+    raw = layout == "pieces" ? RefineMeshPieces(coarse, o) : RefineMesh(coarse, o);
+  }
   const uint64_t hash = MeshContentHash(raw.xy, raw.tri);
   Mesh fine = BuildMesh(std::move(raw));
   RunOutput out;
@@ -112,7 +116,7 @@ RunOutput RunMeshRefine(const MeshRefineConfig& cfg, const Log& log) {
   // Hilbert order.
   out.text.emplace_back("hash       " + Hex(hash));
   if (layout == "hilbert") LayOutForRanks(&fine);
-  for (const std::string& f : WriteMesh(fine, cfg.output)) out.text.emplace_back("wrote " + f);
+  for (const std::string& f : SaveMesh(fine, cfg.output, log)) out.text.emplace_back("wrote " + f);
   struct stat st {};
   if (IsMeshFilePath(cfg.output) && ::stat(cfg.output.c_str(), &st) == 0 && S_ISREG(st.st_mode))
     out.text.emplace_back("content id " + Hex(MeshFile(cfg.output).content_id()));

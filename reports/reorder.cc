@@ -26,7 +26,7 @@ ReorderResult RunReorder(const ReorderConfig& cfg, const Log& log) {
   t0 = std::chrono::steady_clock::now();
   const Mesh out = ApplyPermutation(m, p, cfg.triangle_order);
   r.apply_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  r.written = WriteMesh(out, cfg.output);
+  r.written = SaveMesh(out, cfg.output, log);
   WritePermutation(p.new_to_old(), cfg.output + ".perm",
                    "meshreuse reorder " + cfg.mesh + " --ordering " + cfg.ordering +
                        (spec.info->seeded ? " --seed " + std::to_string(cfg.seed) : ""));

@@ -290,6 +290,8 @@ void MeasureTiming(const ReportConfig& cfg, ReportData* d, Steps& steps) {
                               std::to_string(d->meshes.size()) + "] " + m.name + ": ";
     CompareResult got = RunCompare(cc, [&](const std::string& s) { steps.Say(where + s); }, {});
     Absorb(got.noise, &d->noise);
+    for (const RepeatAutoEnd& e : got.repeat_auto)
+      if (!e.settled) d->notes.push_back(e.Sentence(cfg.repeat_cap));
     for (CompareRow& r : got.rows) {
       const size_t k = std::find(labels.begin(), labels.end(), r.ordering) - labels.begin();
       if (k < d->orderings.size()) r.ordering = d->orderings[k];
@@ -466,14 +468,20 @@ std::string Readme(const ReportData& d, const Json& manifest, const std::string&
   r += "Made by `meshreuse report` (" + GitRevision() + ", " + UtcTimestamp() + ") on " +
        std::to_string(d.meshes.size()) + " mesh(es), orderings ";
   for (size_t i = 0; i < d.orderings.size(); ++i) r += (i ? ", " : "") + d.orderings[i];
-  r += "; threads";
-  for (int p : cfg.threads) r += " " + std::to_string(p);
-  r += "; " +
-       (cfg.repeat_auto ? "rounds until every speedup was within +-2% (at most " +
-                              std::to_string(cfg.repeat_cap) + "; the `rounds` columns)"
-                        : std::to_string(cfg.repeat) + " rounds") +
-       " after a warm-up, speedups on the " + ClockName(cfg.clock) + " clock, seed " +
-       std::to_string(cfg.seed) +
+  if (cfg.timing) {
+    r += "; threads";
+    for (int p : cfg.threads) r += " " + std::to_string(p);
+  }
+  if (cfg.timing)
+    r += "; " +
+         (cfg.repeat_auto ? "rounds until every speedup was within +-2% (at most " +
+                                std::to_string(cfg.repeat_cap) + "; the `rounds` columns)"
+                          : std::to_string(cfg.repeat) + " rounds") +
+         " after a warm-up, speedups on the " + ClockName(cfg.clock) + " clock";
+  else
+    r += "; **nothing was timed** (`--no-timing`: the time, speedup and gain tables and figures "
+         "are absent; everything else is counted or simulated, not timed)";
+  r += ", seed " + std::to_string(cfg.seed) +
        ". Configuration, machine and build: [run.json](run.json). Caches: " +
        LevelsText(cfg.cache.levels) + "; misses are **" + d.counters +
        "**. Every table is also in `tables/` as CSV, Markdown and LaTeX (booktabs); an empty "
@@ -513,6 +521,13 @@ void CheckReportConfig(const ReportConfig& cfg) {
   for (const std::string& o : cfg.orderings)
     if (!labels.insert(ParseOrderingSpec(o).label).second)
       throw UsageError("two orderings are labelled '" + ParseOrderingSpec(o).label + "'");
+  if (!cfg.measured.empty()) {
+    if (cfg.machine.empty())
+      throw UsageError(
+          "--measured draws speedups beside the many-core prediction: not with "
+          "--machine none");
+    ReadMeasured(cfg.measured);  // a bad file refused before any work
+  }
   if (cfg.threads.empty()) throw UsageError("no thread count given");
   for (int p : cfg.threads)
     if (p < 1 || p > kMaxThreads)
@@ -572,6 +587,7 @@ std::string RunReport(const ReportConfig& in_cfg, const std::string& out_dir, co
   d.positions = OrderPositionsTable();
   d.notes = notes;
   d.histogram = Table(ReuseAnalysis::HistogramColumns());
+  if (!cfg.measured.empty()) d.measured = ReadMeasured(cfg.measured);
   for (const std::string& o : cfg.orderings) d.orderings.push_back(ParseOrderingSpec(o).label);
   for (const std::string& p : cfg.meshes) {  // read when its turn comes; sized by its file
     std::error_code ec;

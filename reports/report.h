@@ -61,6 +61,9 @@ struct ReportConfig : TimingOptions {
   std::vector<std::string> counter_events = {"PAPI_L1_DCM", "PAPI_L2_DCM", "PAPI_L3_TCM"};
   std::vector<std::string> command_line;  // for run.json
   std::string label;                      // e.g. "quick", "full", "scale": in run.json and README
+  // A compare.csv measured elsewhere (reports/measured.h), drawn beside the many-core
+  // prediction; "": none.
+  std::string measured;
 };
 
 // Throws UsageError for a configuration that cannot run (no mesh, no ordering, a bad thread

@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -13,6 +14,7 @@
 #include "core/table.h"
 #include "reports/compare.h"
 #include "reports/machine_runs.h"
+#include "reports/measured.h"
 #include "reports/report.h"
 #include "reports/speedup.h"
 #include "reports/validation.h"
@@ -49,8 +51,9 @@ struct ReportData {
   std::vector<std::string> notes;                   // said at the top of the results README
   Table histogram{{}};                              // ReuseAnalysis::HistogramColumns()
   std::vector<OrderingValidation> validation;
-  std::vector<CompareRow> timing;   // empty without timing
-  std::vector<MachineRun> machine;  // empty without the many-core part
+  std::vector<CompareRow> timing;            // empty without timing
+  std::vector<MachineRun> machine;           // empty without the many-core part
+  std::optional<MeasuredSpeedups> measured;  // --measured
   // The run of (mesh, ordering, placement, threads, prefetch), or nullptr.
   const MachineRun* Machine(const std::string& mesh, const std::string& ordering,
                             const std::string& placement, int threads, bool prefetch = false) const;

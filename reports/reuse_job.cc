@@ -10,6 +10,8 @@ ReuseOptions ReuseJob::Options(Granularity g) const {
   o.exact = !sample || sample_error;
   o.sample = sample;
   o.shards = shards;
+  o.watch_element = watch_element;
+  o.watch_line = watch_line;
   o.profile = profile;
   return o;
 }

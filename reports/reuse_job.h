@@ -25,6 +25,9 @@ struct ReuseJob : StreamSource {
   bool sample = false;        // SHARDS instead of (or with sample_error, beside) exact
   bool sample_error = false;  // the exact analysis too, and the estimate's error
   ShardsOptions shards;
+  // Sampling: the capacities (element and line ids; the cache levels') whose miss estimates get
+  // a sampling bound (ReuseOptions::watch_element, watch_line).
+  std::vector<uint64_t> watch_element, watch_line;
   bool profile = true;  // compute the profiles (the CLI asks only when it writes them)
   // From this many ranks on, a distributed run adds its histograms up by distance (a
   // reduce-scatter, each rank one slice), below up a tree of ranks (RunDistributed).

@@ -74,7 +74,7 @@ std::vector<SmoothRun> RunSmooth(const SmoothConfig& cfg, const Log& log,
       run.per_thread = papi->per_thread();
     }
     if (!cfg.output.empty())
-      for (const std::string& f : WriteMesh(m, cfg.output)) {
+      for (const std::string& f : SaveMesh(m, cfg.output, log)) {
         log.Say("wrote " + f);
         run.written.push_back(f);
       }

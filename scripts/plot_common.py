@@ -37,7 +37,7 @@ def colour(ordering, _seen={}):
 def read_csv(path):
     """Rows as dicts; raises SystemExit naming the file when it is missing or has no header."""
     if not os.path.isfile(path):
-        raise SystemExit(f"plot: {path}: no such file")
+        refuse(f"{path}: no such file")
     with open(path, newline="") as f:
         rows = list(csv.DictReader(f))
     return rows
@@ -47,7 +47,7 @@ def read_rows(path, why=""):
     """read_csv, refusing a file without rows (SystemExit naming it, and why that matters)."""
     rows = read_csv(path)
     if not rows:
-        raise SystemExit(f"plot: {path}: no rows{why}")
+        refuse(f"{path}: no rows{why}")
     return rows
 
 
@@ -56,14 +56,45 @@ def num(s):
     return None if s is None or s == "" else float(s)
 
 
+def wants_help(doc):
+    """-h or --help anywhere: the script's usage on stdout, exit 0."""
+    if any(a in ("-h", "--help") for a in sys.argv[1:]):
+        print(doc.strip())
+        sys.exit(0)
+
+
+def refuse(message):
+    """One line on stderr naming the script, exit 2 (bad input), as meshreuse does."""
+    print(f"{os.path.basename(sys.argv[0])}: {message}", file=sys.stderr)
+    sys.exit(2)
+
+
+def guarded(draw, inputs):
+    """Runs draw(); an input it cannot plot (a column missing, a cell not a number) is refused in
+    one line naming the inputs, not a traceback."""
+    try:
+        draw()
+    except KeyError as e:
+        refuse(f"{', '.join(inputs)}: no column {e}: not the table this script draws (see --help)")
+    except (ValueError, IndexError, ZeroDivisionError, TypeError) as e:
+        refuse(f"{', '.join(inputs)}: cannot be plotted: {e} (see --help)")
+
+
+def usage_error(doc):
+    """Wrong arguments: the usage lines of `doc` (those naming the script) and exit 2."""
+    lines = [ln.strip() for ln in doc.splitlines() if "scripts/" in ln]
+    refuse("wrong arguments; usage:\n  " + "\n  ".join(lines or [doc.strip()]))
+
+
 def cli(plot, doc, n_inputs):
     """The command line of a figure script: INPUT... OUT [TITLE] [VARIANT] -> plot(inputs, out,
-    title, variant)."""
+    title, variant); --help prints `doc`."""
+    wants_help(doc)
     a = sys.argv[1:]
     if not n_inputs + 1 <= len(a) <= n_inputs + 3:
-        raise SystemExit(doc)
+        usage_error(doc)
     rest = a[n_inputs + 1:] + ["", ""]
-    plot(a[:n_inputs], a[n_inputs], title=rest[0], variant=rest[1])
+    guarded(lambda: plot(a[:n_inputs], a[n_inputs], title=rest[0], variant=rest[1]), a[:n_inputs])
 
 
 def short(path):

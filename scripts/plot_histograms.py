@@ -10,7 +10,8 @@ CAPACITIES.csv (the report's data/capacities.csv: level, bytes, ways, elements, 
 """
 import sys
 
-from plot_common import colour, grid, legend_below, read_csv, read_rows, save, short, unique
+from plot_common import (colour, grid, guarded, legend_below, read_csv, read_rows, save, short,
+                         unique, usage_error, wants_help)
 
 
 def plot(inputs, out, title="", variant=""):
@@ -49,8 +50,9 @@ def plot(inputs, out, title="", variant=""):
 
 
 if __name__ == "__main__":
+    wants_help(__doc__)
     a = sys.argv[1:]
     n = 2 if len(a) >= 3 and a[1].endswith(".csv") else 1  # the capacities are optional
     if not n + 1 <= len(a) <= n + 2:
-        raise SystemExit(__doc__)
-    plot(a[:n], a[n], title=a[n + 1] if len(a) > n + 1 else "")
+        usage_error(__doc__)
+    guarded(lambda: plot(a[:n], a[n], title=a[n + 1] if len(a) > n + 1 else ""), a[:n])

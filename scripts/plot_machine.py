@@ -8,8 +8,9 @@ VARIANT:
   misses    the mean over the meshes of each level's misses against the cores, both placements
             (tables/machine_misses.csv)
   speedup   Speedup(p) = C_ori(1) / C_ord(p) predicted, a band between the low and the high
-            latencies, compact and scatter in two panels, the measured mean speedups as points and
-            the paper's claim for RDR at 32 cores (tables/predicted_speedup.csv)
+            latencies, compact and scatter in two panels, the mean speedups measured here (squares)
+            and on another machine (triangles: report --measured) as points, and the paper's claim
+            for RDR at 32 cores (tables/predicted_speedup.csv)
 
   scripts/plot_machine.py INPUT OUT TITLE VARIANT   (OUT.png, OUT.pdf)
 """
@@ -118,6 +119,10 @@ def speedup(path, out):
             mx, my = _line(rows, {"ordering": o, "placement": "compact"}, "measured_speedup")
             if mx:
                 ax.plot(mx, my, "s", color=colour(o), mfc="white", label=f"{o} measured here")
+            ex, ey = _line(rows, {"ordering": o, "placement": "compact"}, "measured_elsewhere")
+            if ex:
+                ax.plot(ex, ey, "^", color=colour(o), ms=7, ls="--", lw=0.8,
+                        label=f"{o} measured elsewhere (--measured)")
         if "rdr" in ords and 32 in threads:
             ax.plot([32], [75], "*", color=colour("rdr"), ms=12, label="paper: RDR > 75")
         ax.plot(threads, threads, color="0.7", ls=":", label="ideal (ori)")

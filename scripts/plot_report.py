@@ -18,22 +18,26 @@ import plot_common  # noqa: E402,F401  (re-runs this script under Debian's pytho
 
 def main(d):
     figs = os.path.join(d, "figures")
-    os.makedirs(figs, exist_ok=True)
     manifest = os.path.join(d, "manifest.json")
     if not os.path.isfile(manifest):
-        raise SystemExit(f"plot_report: {manifest}: no such file (not a report folder?)")
+        plot_common.refuse(f"{manifest}: no such file (not a report folder?)")
+    os.makedirs(figs, exist_ok=True)
     with open(manifest) as f:
         figures = json.load(f)["figures"]
     made = []
     for fig in figures:
         module = importlib.import_module(fig["script"][:-3])
-        module.plot([os.path.join(d, i) for i in fig["inputs"]], os.path.join(figs, fig["name"]),
-                    title=fig.get("title", ""), variant=fig.get("variant", ""))
+        inputs = [os.path.join(d, i) for i in fig["inputs"]]
+        plot_common.guarded(
+            lambda: module.plot(inputs, os.path.join(figs, fig["name"]),
+                                title=fig.get("title", ""), variant=fig.get("variant", "")),
+            inputs)
         made.append(fig["name"])
     print(f"plot_report: {len(made)} figures in {figs}: {', '.join(made)}")
 
 
 if __name__ == "__main__":
+    plot_common.wants_help(__doc__)
     if len(sys.argv) != 2:
-        raise SystemExit(__doc__)
+        plot_common.usage_error(__doc__)
     main(sys.argv[1])

@@ -13,7 +13,8 @@ distinguishable):
 """
 import sys
 
-from plot_common import colour, grid, legend_below, num, plt, read_rows, save, unique
+from plot_common import (colour, grid, guarded, legend_below, num, plt, read_rows, save, unique,
+                         usage_error, wants_help)
 
 
 def _points(ax, xs, ys, los, his, faint, o, **kw):
@@ -95,7 +96,8 @@ def plot(inputs, out, title="", variant="speedup"):
 
 
 if __name__ == "__main__":
+    wants_help(__doc__)
     a = sys.argv[1:]
     if len(a) not in (4, 5):
-        raise SystemExit(__doc__)
-    plot(a[:-3], a[-3], title=a[-2], variant=a[-1])
+        usage_error(__doc__)
+    guarded(lambda: plot(a[:-3], a[-3], title=a[-2], variant=a[-1]), a[:-3])

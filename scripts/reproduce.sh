@@ -4,8 +4,8 @@
 # to the paper's vertex counts (cached under out/meshes/), runs `meshreuse report` (Table 1, 2, 3,
 # misses and their reductions, execution times, speedups, Speedup(p)/Gain(p), reordering cost; on
 # 1..nproc threads; and the many-core part: the paper's 4 x 8-core Westmere-EX simulated at 1-32
-# threads, compact and scatter, Figure 11 and Speedup(p) predicted) and scripts/plot_report.py
-# (every figure, PNG and PDF), then prints the results README's path: results/<date>/README.md
+# threads, compact and scatter, Figure 11 and Speedup(p) predicted), which draws every figure
+# (PNG and PDF, scripts/plot_report.py), then prints the results README's path: results/<date>/README.md
 # (ours | paper | difference, every figure).
 #
 # Usage: scripts/reproduce.sh [--quick | --scale] [--orderings ori,bfs,rdr,file:my.perm,...]
@@ -124,9 +124,7 @@ case $mode in
 esac
 
 say "running meshreuse report on ${#files[@]} meshes ($mode): orderings $orderings -> $out"
-"$bin" report "${files[@]}" "${args[@]}" --out "$out" $quiet >/dev/null
-say "drawing the figures"
-if [[ -n $quiet ]]; then /usr/bin/python3 scripts/plot_report.py "$out" >/dev/null; else /usr/bin/python3 scripts/plot_report.py "$out" >&2; fi
+"$bin" report "${files[@]}" "${args[@]}" --out "$out" $quiet >/dev/null  # it draws the figures too
 elapsed=$(($(date +%s) - start))
 say "done in $((elapsed / 60)) min $((elapsed % 60)) s"
 

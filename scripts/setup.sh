@@ -2,21 +2,24 @@
 # Installs what meshreuse needs on a Debian machine, only what is missing, with apt-get (as root).
 # Triangle (Shewchuk's mesh generator) is Debian's triangle-bin, in the non-free component: a
 # sources entry for non-free is added when no configured source offers it yet.
-# Usage: scripts/setup.sh [--with-plots] [--with-fuzz]   (sourced or run; idempotent)
+# Usage: scripts/setup.sh [--with-plots] [--with-tests] [--with-fuzz]   (sourced or run; idempotent)
 set -euo pipefail
 
-want_plots=0 want_fuzz=0
+want_plots=0 want_tests=0 want_fuzz=0
 for a in "$@"; do
   [[ $a == --with-plots ]] && want_plots=1
+  [[ $a == --with-tests ]] && want_tests=1
   [[ $a == --with-fuzz ]] && want_fuzz=1
 done
 
 pkgs=(build-essential cmake pkg-config libgtest-dev libbenchmark-dev libboost-program-options-dev
-      libpapi-dev libzstd-dev zstd libmetis-dev libboost-graph-dev triangle-bin time
+      libpapi-dev libzstd-dev zstd zlib1g-dev libmetis-dev libboost-graph-dev triangle-bin time
       nlohmann-json3-dev libopenmpi-dev openmpi-bin libscotch-dev libptscotch-dev gmsh)
 # (libscotch-dev: the scotch partition; libptscotch-dev: meshreuse-mpi's ptscotch partition;
 # gmsh: the tests check that Gmsh reads the split sets that `mesh partition --split` writes.)
 ((want_plots)) && pkgs+=(python3-matplotlib python3-numpy)
+# meshio: the tests read the .vtu and .pvtu files meshreuse writes with a reader nobody here wrote.
+((want_tests)) && pkgs+=(python3-meshio python3-numpy)
 # libFuzzer and clang's OpenMP runtime for the fuzz harnesses (scripts/fuzz.sh)
 ((want_fuzz)) && pkgs+=(clang libclang-rt-14-dev libomp-14-dev)
 

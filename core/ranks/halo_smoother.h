@@ -61,6 +61,8 @@ struct HaloSweep {
   double seconds = 0;       // wall time of the sweep on this rank, quality reduction included
   double cpu_seconds = 0;   // this rank's thread CPU time moving vertices and packing
   double wait_seconds = 0;  // wall time blocked in Recv
+  double work_seconds = 0;  // wall time of the spans cpu_seconds measures (their ratio: how much
+                            // of its work time the rank had a core)
 };
 
 struct HaloResult {
@@ -227,11 +229,13 @@ HaloResult SmoothRankPart(RankPart& p, const HaloOptions& opt, Communicator& tx,
   for (int it = 1; it <= opt.max_iters; ++it) {
     if constexpr (Sink::kEnabled) sink.BeginSweep(it);
     const auto t0 = Clock::now();
-    double cpu = 0;
-    auto timed = [&cpu](auto&& f) {
+    double cpu = 0, work = 0;
+    auto timed = [&cpu, &work](auto&& f) {
       const double c0 = ThreadCpuSeconds();
+      const auto w0 = Clock::now();
       f();
       cpu += ThreadCpuSeconds() - c0;
+      work += std::chrono::duration<double>(Clock::now() - w0).count();
     };
     double* xy = p.xy.data();
     constexpr Array kXy = Array::kCoords;
@@ -282,6 +286,7 @@ HaloResult SmoothRankPart(RankPart& p, const HaloOptions& opt, Communicator& tx,
     s.improvement = q_new.Minus(q);
     s.seconds = std::chrono::duration<double>(Clock::now() - t0).count();
     s.cpu_seconds = cpu;
+    s.work_seconds = work;
     s.wait_seconds = run.TakeWait();
     r.sweeps.push_back(s);
     q = q_new;

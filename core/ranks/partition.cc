@@ -11,6 +11,7 @@
 #include "core/orderings/registry.h"
 #include "core/ranks/rank_neighbourhood.h"
 #include "core/stdout_guard.h"
+#include "core/text_file.h"
 
 extern "C" {
 #include <scotch.h>
@@ -109,15 +110,45 @@ std::vector<int32_t> ScotchParts(const Mesh& m, int32_t parts, uint64_t seed) {
 }
 
 void CheckPartitionMethod(const std::string& method) {
+  if (IsPartitionFile(method)) {
+    if (method.size() == 5) throw UsageError("--partition file: needs a path (file:PATH)");
+    return;  // read (and checked against the mesh) once the mesh is
+  }
   if (method != "hilbert" && method != "metis" && method != "scotch" && method != "ranges" &&
       method != "gmsh")
-    throw UsageError("--partition must be hilbert, metis, scotch, ranges or gmsh, not '" + method +
-                     "'");
+    throw UsageError(
+        "--partition must be hilbert, metis, scotch, ranges, gmsh or file:PATH (meshreuse-mpi "
+        "smooth also ptscotch), not '" +
+        method + "'");
+}
+
+std::vector<int32_t> ReadPartitionFile(const std::string& path, int32_t vertices, int32_t parts) {
+  TextFile f(path);
+  std::vector<int32_t> part;
+  part.reserve(static_cast<size_t>(vertices));
+  std::string_view line, tok[2];
+  while (f.NextDataLine(&line)) {
+    if (Tokens(line).Split(tok, 2) != 1) f.Fail("expected one part number per line");
+    if (static_cast<int64_t>(part.size()) == vertices)
+      f.Fail("more lines than the mesh's " + std::to_string(vertices) + " vertices");
+    const int64_t p = f.ParseInt(tok[0], "part");
+    if (p < 0 || p >= parts)
+      f.Fail("part " + std::to_string(p) + " of vertex " + std::to_string(part.size()) +
+             " is outside 0.." + std::to_string(parts - 1) + " (" + std::to_string(parts) +
+             " ranks)");
+    part.push_back(static_cast<int32_t>(p));
+  }
+  if (static_cast<int64_t>(part.size()) != vertices)
+    throw InputError(path, 0,
+                     std::to_string(part.size()) + " parts for a mesh of " +
+                         std::to_string(vertices) + " vertices: a line per vertex");
+  return part;
 }
 
 std::vector<int32_t> PartsByMethod(const Mesh& m, const std::string& method, int32_t parts,
                                    uint64_t seed) {
   CheckPartitionMethod(method);
+  if (IsPartitionFile(method)) return ReadPartitionFile(method.substr(5), m.NumVertices(), parts);
   if (method == "ranges") return RangeParts(m, parts);
   if (method == "scotch") return ScotchParts(m, parts, seed);
   if (method == "gmsh")

@@ -30,6 +30,12 @@ std::vector<int32_t> RangeParts(const Mesh& m, int32_t parts);
 // "hilbert", "metis", "scotch", "ranges" or "gmsh" (UsageError naming --partition otherwise;
 // gmsh's parts come with the mesh, core/ranks/gmsh_split.h, and PartsByMethod refuses it).
 void CheckPartitionMethod(const std::string& method);
+// A partition from a file (`--partition file:PATH`): what `mesh partition -o` writes, or METIS's
+// and Scotch's plain output, one part per line, line k vertex k's ('#' starts a comment). It must
+// give every vertex of the mesh (`vertices`) a part in 0..parts-1; a part may be empty. InputError
+// naming the file and line otherwise (read no further than `vertices` parts).
+std::vector<int32_t> ReadPartitionFile(const std::string& path, int32_t vertices, int32_t parts);
+inline bool IsPartitionFile(const std::string& method) { return method.rfind("file:", 0) == 0; }
 std::vector<int32_t> PartsByMethod(const Mesh& m, const std::string& method, int32_t parts,
                                    uint64_t seed);
 

@@ -8,6 +8,7 @@
 
 #include "core/error.h"
 #include "core/orderings/registry.h"
+#include "core/progress.h"
 #include "core/quality.h"
 #include "core/radix_sort.h"
 
@@ -62,12 +63,19 @@ class PartBuilder {
     p.colours = parts ? *std::max_element(colour.begin(), colour.end()) + 1 : 1;
   }
   RankPart Build() {
+    // Progress in steps (core/progress.h): a part of 10^7 vertices takes tens of seconds.
     Gather();
+    ReportProgress(1, 6);
     Positions();
+    ReportProgress(2, 6);
     Layout();
+    ReportProgress(3, 6);
     Rows();
+    ReportProgress(4, 6);
     Triangles();
+    ReportProgress(5, 6);
     Links();
+    ReportProgress(6, 6);
     return std::move(p);
   }
 

@@ -1,6 +1,7 @@
 // The merge of chunk summaries; see merge_summaries.h.
 #include "reports/chunks/merge_summaries.h"
 
+#include <map>
 #include <stdexcept>
 
 #include "analysis/streamed_chain.h"
@@ -128,11 +129,39 @@ AnalyzeResult SummaryMerger::Finish() {
   return res;
 }
 
+namespace {
+
+// Why `paths` are not a run's summaries (chunks 0..P-1 once each, P from the first): the chunks
+// missing and those given twice, by name. The error path alone reads every summary for this.
+std::string ChunkCountProblem(const std::vector<std::string>& paths, uint32_t chunks) {
+  std::map<uint32_t, std::vector<std::string>> given;
+  for (const std::string& path : paths) given[ReadSummary(path).chunk].push_back(path);
+  std::string missing, twice;
+  for (uint32_t r = 0; r < chunks; ++r) {
+    const auto it = given.find(r);
+    if (it == given.end())
+      missing += (missing.empty() ? "" : ", ") + ChunkName(r, chunks);
+    else if (it->second.size() > 1)
+      twice += (twice.empty() ? "" : "; ") + ChunkName(r, chunks) + " (" + it->second[0] + ", " +
+               it->second[1] + ")";
+  }
+  std::string why = "a run of " + std::to_string(chunks) + " chunks, and " +
+                    std::to_string(paths.size()) +
+                    (paths.size() == 1 ? " summary given" : " summaries given");
+  if (!missing.empty()) why += ": chunk " + missing + " missing";
+  if (!twice.empty()) why += (missing.empty() ? ": chunk " : "; chunk ") + twice + " given twice";
+  return why + " (give every chunk's summary once, in order 0.." + std::to_string(chunks - 1) + ")";
+}
+
+}  // namespace
+
 AnalyzeResult MergeSummaries(const std::vector<std::string>& paths, bool profile, const Log& log) {
   if (paths.empty()) throw UsageError("--merge: no summary given");
   SummaryMerger m(profile);
   for (const std::string& path : paths) {
     SummaryFile s = ReadSummary(path);
+    if (&path == &paths[0] && s.id.chunks != paths.size())
+      throw InputError(path, 0, ChunkCountProblem(paths, s.id.chunks));
     log.Say("merging chunk " + ChunkName(s.chunk, s.id.chunks) + " (" + path + ")");
     m.Add(std::move(s), path, paths.size());
   }

@@ -62,6 +62,10 @@ ln -s /dev/zero "$tmp/zero.ele"
 printf 'name tiny\nsockets 1\ncores 1\nline 1\nmemory 100 100\nprivate L1=1G/1@4\n' >"$tmp/huge.machine"
 printf 'name bad\001name\nsockets 1\ncores 1\nline 64\nmemory 100 100\nprivate L1=32K/8@4\n' >"$tmp/ctrl.machine"
 touch "$tmp/afile"
+printf '# 2 parts\n0\n1\n0\n' >"$tmp/short.part"
+{ for i in $(seq 1 8); do echo 0; done; echo 1; } >"$tmp/long.part"
+printf '0\n1\n2\n0\n1\n0\n1\n0\n' >"$tmp/range.part"
+printf '0\n1\nx\n0\n1\n0\n1\n0\n' >"$tmp/word.part"
 /usr/bin/python3 - "$tmp" <<'PY'
 import random, struct, sys
 d = sys.argv[1]
@@ -133,6 +137,10 @@ hostile=(
   "2|$tmp/lie.zst: the zstd seek table does not match the frames|analyze $tmp/lie.zst --format u64"
   "2|$tmp/lie.zst: the zstd seek table does not match the frames|analyze $tmp/lie.zst --format u64 --threads 3"
   "2|$tmp/lie.zst: the zstd seek table does not match the frames|analyze $tmp/lie.zst --format u64 --chunk 1/3 --summary-out $tmp/lie.sum"
+  "2|$tmp/short.part: 3 parts for a mesh of 8 vertices: a line per vertex|smooth-ranks $data/two_interior.node --ranks 2 --partition file:$tmp/short.part"
+  "2|$tmp/long.part:9: more lines than the mesh's 8 vertices|smooth-ranks $data/two_interior.node --ranks 2 --partition file:$tmp/long.part"
+  "2|$tmp/range.part:3: part 2 of vertex 2 is outside 0..1 (2 ranks)|analyze $data/two_interior.node --ranks 2 --partition file:$tmp/range.part"
+  "2|$tmp/word.part:3: |simulate $data/two_interior.node --ranks 2 --partition file:$tmp/word.part"
   "2|usage: -o '$tmp/same.vtk' is the file --pi-out writes too|smooth-ranks $data/two_interior.node --ranks 2 -o $tmp/same.vtk --pi-out $tmp/same.vtk"
   "2|usage: --mrc-csv '$tmp/h.csv' is the file --histogram-csv writes too|analyze $data/two_interior.node --histogram-csv $tmp/h.csv --mrc-csv $tmp/h.csv"
 )

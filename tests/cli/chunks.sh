@@ -44,9 +44,10 @@ for P in 1 2 3 4 7; do
   done
 done
 # SHARDS at a fixed rate, with and without the exact analysis beside it: the merged estimate is
-# the serial sampler's, bit for bit.
+# the serial sampler's at the same setting (chunks sample every distance: --sample-exact-below 0),
+# bit for bit.
 for P in 1 3 4; do
-  for extra in "--sample-rate 0.1" "--sample-rate 0.05 --sample-error"; do
+  for extra in "--sample-rate 0.1 --sample-exact-below 0" "--sample-rate 0.05 --sample-error --sample-exact-below 0"; do
     outputs "$tmp/serial" "$bin" analyze "$tmp/mesh.trace" $extra
     chunked "$tmp/merged" "$P" "$tmp/mesh.trace" $extra
     same "mesh trace P=$P $extra" "$tmp/serial" "$tmp/merged"
@@ -64,7 +65,7 @@ contains "fixed-size chunk" "samples at a fixed rate"
 # chunks in every sweep.
 for opts in "--orderings rdr -k 3" "--orderings bfs -k 2 --threads 2" "--orderings ori -k 4 --threads 3" \
             "--orderings ori -k 2 --mode jacobi --threads 2" "--orderings rdr -k 3 --mode jacobi" \
-            "--orderings random -k 2 --sample-rate 0.2 --sample-error"; do
+            "--orderings random -k 2 --sample-rate 0.2 --sample-error --sample-exact-below 0"; do
   for P in 1 3 5; do
     outputs "$tmp/serial" "$bin" analyze "$data/plate41.msh" $opts
     chunked "$tmp/merged" "$P" "$data/plate41.msh" $opts
@@ -181,7 +182,13 @@ contains "reordered" "$tmp/u2: chunk 2/3 where chunk 1/3 was expected"
 check "repeated" 2 "$bin" analyze --merge "$tmp/u0" "$tmp/u1" "$tmp/u1" --quiet
 contains "repeated" "$tmp/u1: chunk 1/3 where chunk 2/3 was expected"
 check "missing" 2 "$bin" analyze --merge "$tmp/u0" "$tmp/u1" --quiet
-contains "missing" "a run of 3 chunks, and 2 summaries given"
+contains "missing" "a run of 3 chunks, and 2 summaries given: chunk 2/3 missing"
+check "missing in the middle" 2 "$bin" analyze --merge "$tmp/u0" "$tmp/u2" --quiet
+contains "missing in the middle: named" "chunk 1/3 missing"
+check "one of three" 2 "$bin" analyze --merge "$tmp/u1" --quiet
+contains "one of three: named" "1 summary given: chunk 0/3, 2/3 missing"
+check "four for three" 2 "$bin" analyze --merge "$tmp/u0" "$tmp/u1" "$tmp/u1" "$tmp/u2" --quiet
+contains "four for three: named" "chunk 1/3 ($tmp/u1, $tmp/u1) given twice"
 check "foreign" 2 "$bin" analyze --merge "$tmp/u0" "$tmp/other1" "$tmp/u2" --quiet
 contains "foreign" "$tmp/other1: a summary of another analysis"
 head -c 100 "$tmp/u2" >"$tmp/cut"

@@ -5,7 +5,8 @@ set -u
 bin=$1 data=$2
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
-source "$(dirname "$0")/lib.sh"
+here=$(cd "$(dirname "$0")" && pwd)
+source "$here/lib.sh"
 
 check "no arguments" 2 "$bin"
 contains "no arguments" "usage: meshreuse <command>"
@@ -116,6 +117,35 @@ grep -q '"git_revision"' "$tmp/res/run.json" && grep -q '"machine"' "$tmp/res/ru
   /usr/bin/python3 -c 'import json,sys; json.load(open(sys.argv[1]))' "$tmp/res/run.json" &&
   pass=$((pass + 1)) || { fail=$((fail + 1)); echo "FAIL run.json is not valid JSON with git_revision and machine"; }
 [[ $(ls "$tmp/res" | grep -c tmp) -eq 0 ]] && pass=$((pass + 1)) || { fail=$((fail + 1)); echo "FAIL temporary files left in results"; }
+# The same smoothed mesh in every format -o writes (issue 39): .vtu (VTK XML, compressed) and .msh
+# (Gmsh 4.1) read by meshio equal to the legacy .vtk; the .msh read back here equal to .node/.ele;
+# analyze --vtk X.vtu keeps its fields.
+fine41=$data/plate41.msh
+for f in s41.vtk s41.vtu s41.msh s41; do
+  check "smooth -o $f" 0 "$bin" smooth "$fine41" --max-iters 3 --tol -1 -o "$tmp/$f" --quiet
+done
+check "vtu == vtk (meshio)" 0 /usr/bin/python3 "$here/../scripts/check_vtu.py" grid "$tmp/s41.vtu" "$tmp/s41.vtk"
+contains "vtu == vtk: fields compared" "boundary, vertex_quality, triangle_quality"
+check "msh == vtk (meshio)" 0 /usr/bin/python3 "$here/../scripts/check_vtu.py" grid "$tmp/s41.msh" "$tmp/s41.vtk"
+check "msh read back" 0 "$bin" mesh convert "$tmp/s41.msh" -o "$tmp/back" --quiet
+if cmp -s "$tmp/back.node" "$tmp/s41.node" && cmp -s "$tmp/back.ele" "$tmp/s41.ele"; then pass=$((pass + 1)); else
+  fail=$((fail + 1)); echo "FAIL .msh read back differs from .node/.ele"; fi
+check "mesh convert -> vtu" 0 "$bin" mesh convert "$tmp/s41.msh" -o "$tmp/c41.vtu" --quiet
+check "converted vtu == smoothed vtu" 0 /usr/bin/python3 "$here/../scripts/check_vtu.py" grid "$tmp/c41.vtu" "$tmp/s41.vtu"
+check "analyze --vtk .vtu" 0 "$bin" analyze "$fine41" --orderings bfs --vtk "$tmp/a.vtu" --quiet
+check "analyze --vtk .vtk" 0 "$bin" analyze "$fine41" --orderings bfs --vtk "$tmp/a.vtk" --quiet
+if /usr/bin/python3 - "$tmp/a.vtu" "$tmp/a.vtk" <<'PY'; then pass=$((pass + 1)); else fail=$((fail + 1)); echo "FAIL analyze --vtk .vtu fields"; fi
+import sys, meshio, numpy as np
+u, k = meshio.read(sys.argv[1]), meshio.read(sys.argv[2])
+assert set(k.point_data) <= set(u.point_data), (set(k.point_data), set(u.point_data))
+for name in ("rank", "original_id", "reuse_distance_max"):
+    a, b = np.ravel(u.point_data[name]), np.ravel(k.point_data[name])
+    assert np.array_equal(a.astype(np.float64), b.astype(np.float64)), name
+assert u.point_data["rank"].dtype == np.int32
+PY
+check "pvtu refused by mesh convert" 2 "$bin" mesh convert "$fine41" -o "$tmp/x.pvtu"
+contains "pvtu refused by mesh convert: said" "a .pvtu (one .vtu piece per rank) is written by the distributed smoother"
+
 check "smooth two meshes" 0 "$bin" smooth "$data/two_interior.node" "$data/two_interior41.msh" --quiet
 contains "smooth two meshes" "median_ms_per_sweep"
 check "smooth -o two meshes" 2 "$bin" smooth "$data/two_interior.node" "$data/two_interior41.msh" -o "$tmp/x"
@@ -198,6 +228,26 @@ PY
 check "compare cpu clock" 0 "$bin" compare "$data/two_interior.node" --orderings ori,bfs --repeat 3 --clock cpu --out "$tmp/cmpcpu" --quiet
 contains "compare cpu clock" "per-sweep medians (cpu clock)"
 grep -q '"clock": "cpu"' "$tmp/cmpcpu/run.json" && pass=$((pass + 1)) || { fail=$((fail + 1)); echo "FAIL compare cpu clock: run.json"; }
+contains "compare cpu clock: the interval is the cpu one" "cpu ms/sweep [95%]"
+contains "compare cpu clock: wall beside it" "wall ms/sweep"
+# --repeat auto:CAP ends settled (every speedup within +-2%) or at its cap, and says which: at the
+# cap a warning naming the widest interval left, kept in run.json either way (issue 39).
+check "compare auto cap" 0 "$bin" compare "$data/plate41.msh" --orderings ori,bfs,random --repeat auto:3 --max-iters 2 --tol -1 --out "$tmp/cmpauto" --quiet
+cp "$tmp/out" "$tmp/cmpauto.out"
+if /usr/bin/python3 - "$tmp/cmpauto/run.json" "$tmp/cmpauto.out" <<'PY'; then pass=$((pass + 1)); else fail=$((fail + 1)); echo "FAIL compare auto cap"; cat "$tmp/cmpauto.out"; fi
+import json, sys
+run = json.load(open(sys.argv[1]))
+ends = run["repeat_auto"]
+out = open(sys.argv[2]).read()
+assert len(ends) == 1, ends
+e = ends[0]
+assert e["settled"] == (e["widest_relative_half_width"] <= 0.02), e
+said = "--repeat auto stopped at its cap of 3 rounds" in out
+assert said == (not e["settled"]), (said, e)
+if said:
+    assert f"the widest, {e['widest']}'s, is +-{100 * e['widest_relative_half_width']:.1f}%" in out, out
+    assert e["rounds"] == 3
+PY
 check "compare bad clock" 2 "$bin" compare "$data/two_interior.node" --clock cycles
 contains "compare bad clock" "--clock: 'cycles' is not a clock (wall or cpu)"
 check "compare bad threads" 2 "$bin" compare "$data/two_interior.node" --threads 1,x
@@ -302,6 +352,31 @@ contains "sample" '"seed":7,"accesses":60000'
 check "sample rate 1" 0 "$bin" analyze "$tmp/scan.u64" --format u64 --granularity element --sample-rate 1 --sample-error --cache L1=64K,L2=512K --csv --quiet
 contains "sample rate 1" ",mrc_mae,L1_miss_ratio_error,L2_miss_ratio_error"
 contains "sample rate 1" ",0,0,0"
+# Sampling is exact below the first cache level's capacity by default (512 lines or elements for
+# westmere-ex; issue 39): on a 15,000-vertex mesh at rate 0.01 the median and the L1 misses equal
+# the exact analysis's, bounded by 0; the levels beyond carry a 95% bound; a sample of fewer than
+# 1,000 ids is said to be too small. --sample-exact-below 0 turns the exact part off.
+"$bin" mesh refine "$data/plate41.msh" --levels 2 -o "$tmp/p2" --quiet &>/dev/null
+check "exact analysis" 0 "$bin" analyze "$tmp/p2.node" --orderings bfs -k 2 --granularity element --csv --quiet
+cp "$tmp/out" "$tmp/exact.csv"
+check "sampled, default" 0 "$bin" analyze "$tmp/p2.node" --orderings bfs -k 2 --granularity element --sample-rate 0.01 --csv --out "$tmp/sampled"
+cp "$tmp/out" "$tmp/sampled.out"
+contains "sampled, default: a small sample said" "ids (fewer than 1000): its estimates at distances of 512 and beyond are not to be trusted"
+if /usr/bin/python3 - "$tmp/exact.csv" "$tmp/sampled/analyze.csv" "$tmp/sampled/run.json" <<'PY'; then pass=$((pass + 1)); else fail=$((fail + 1)); echo "FAIL sampled, default"; cat "$tmp/sampled.out"; fi
+import csv, json, sys
+ex = next(csv.DictReader(open(sys.argv[1])))
+sa = next(csv.DictReader(open(sys.argv[2])))
+cfg = json.load(open(sys.argv[3]))["configuration"]
+assert cfg["sample_exact_below"] == 512, cfg["sample_exact_below"]
+assert sa["q50_est"] == ex["q50"], (sa["q50_est"], ex["q50"])
+assert round(float(sa["L1_misses_est"])) == int(ex["L1_misses"]), (sa["L1_misses_est"], ex["L1_misses"])
+assert float(sa["L1_misses_ci95"]) == 0
+for l in ("L2", "L3"):
+    assert float(sa[l + "_misses_ci95"]) > 0, l
+PY
+check "sampled, exact part off" 0 "$bin" analyze "$tmp/p2.node" --orderings bfs -k 2 --granularity element --sample-rate 0.01 --sample-exact-below 0 --out "$tmp/sampled0" --quiet
+contains "sampled, exact part off: said" "no distance counted exactly"
+grep -q '"sample_exact_below": 0' "$tmp/sampled0/run.json" && pass=$((pass + 1)) || { fail=$((fail + 1)); echo "FAIL --sample-exact-below 0: run.json"; }
 check "sample size" 0 "$bin" analyze "$tmp/scan.u64" --format u64 --granularity element --sample-size 100 --csv --quiet
 contains "sample size" ",fixed-size,"
 # Small distances counted exactly: at 1% on a mesh the L1 and L2 capacities (8 and 64 lines here)
@@ -440,7 +515,20 @@ contains "simulate machine" "memory_remote"
 check "simulate machine cores" 2 "$bin" simulate "$data/two_interior.node" --machine westmere-ex --threads 33 --quiet
 contains "simulate machine cores" "has 32 cores"
 check "simulate machine unknown" 2 "$bin" simulate "$data/two_interior.node" --machine nosuch --quiet
-contains "simulate machine unknown" "neither westmere-ex nor a machine file"
+contains "simulate machine unknown" "neither westmere-ex (alias westmere) nor a machine file"
+check "analyze without input" 2 "$bin" analyze
+contains "analyze without input: named as the usage shows it" "no INPUT given: meshreuse analyze INPUT..."
+"$bin" trace "$data/plate41.msh" --ordering bfs -k 2 -t 2 -o "$tmp/t2.trace" --quiet &>/dev/null
+check "simulate trace interleave" 2 "$bin" simulate "$tmp/t2.trace" --machine westmere-ex --threads 2 --interleave access --quiet
+contains "simulate trace interleave: refused by name" "t2.trace is a trace file, whose streams follow one another"
+check "simulate trace serial" 0 "$bin" simulate "$tmp/t2.trace" --machine westmere-ex --threads 2 --quiet
+contains "simulate trace serial: said" "interleave serial"
+check "simulate machine prefix" 2 "$bin" simulate "$data/two_interior.node" --machine wes --quiet
+contains "simulate machine prefix: refused, the alias listed" "'wes' is neither westmere-ex (alias westmere)"
+check "simulate machine alias" 0 "$bin" simulate "$data/two_interior.node" --machine westmere --threads 2 --out "$tmp/alias" --quiet
+grep -q '"machine": "westmere-ex"' "$tmp/alias/run.json" && pass=$((pass + 1)) || { fail=$((fail + 1)); echo "FAIL the alias westmere not recorded as westmere-ex"; grep machine "$tmp/alias/run.json"; }
+check "simulate help lists the alias" 0 "$bin" simulate --help
+contains "simulate help lists the alias" "westmere-ex (alias westmere)"
 printf 'name x\nsockets 2\ncores 2\nline 64\nmemory 1 2\nprivate L1=32K/8@4\nfrob 3\n' >"$tmp/bad.machine"
 check "simulate machine file" 2 "$bin" simulate "$data/two_interior.node" --machine "$tmp/bad.machine" --quiet
 contains "simulate machine file" "bad.machine:7: unknown key 'frob'"
@@ -454,6 +542,15 @@ contains "report prefetch" "no level 'L9'"
 [[ ! -e $tmp/rep ]] && pass=$((pass + 1)) || { fail=$((fail + 1)); echo "FAIL report with a bad machine option made its folder"; }
 check "report no machine" 0 "$bin" report "$data/two_interior.node" --out "$tmp/rep-nomachine" --machine none --no-timing --figure1-mesh none --profile-mesh none --quiet
 [[ ! -e $tmp/rep-nomachine/tables/machine_misses.csv && ! -e $tmp/rep-nomachine/data/machine.csv ]] && pass=$((pass + 1)) || { fail=$((fail + 1)); echo "FAIL report --machine none wrote the many-core part"; }
+# After --no-timing the results README says nothing was timed (not "3 rounds after a warm-up"),
+# and report draws its figures itself (issue 39), or with --no-figures leaves them to the script.
+if grep -q "nothing was timed" "$tmp/rep-nomachine/README.md" && ! grep -q "rounds after a warm-up" "$tmp/rep-nomachine/README.md"; then
+  pass=$((pass + 1)); else fail=$((fail + 1)); echo "FAIL report --no-timing README"; grep -n "Made by" "$tmp/rep-nomachine/README.md"; fi
+if /usr/bin/python3 -c 'import matplotlib' 2>/dev/null; then
+  [[ -s $tmp/rep-nomachine/figures/meshes.png ]] && pass=$((pass + 1)) || { fail=$((fail + 1)); echo "FAIL report drew no figures"; ls "$tmp/rep-nomachine/figures"; }
+fi
+check "report --no-figures" 0 "$bin" report "$data/two_interior.node" --out "$tmp/rep-nofig" --machine none --no-timing --figure1-mesh none --profile-mesh none --no-figures --quiet
+[[ -z $(ls "$tmp/rep-nofig/figures") ]] && pass=$((pass + 1)) || { fail=$((fail + 1)); echo "FAIL report --no-figures drew figures"; }
 # An output prefix that names no file would write the hidden ".node", ".ele" (and ".perm").
 for o in "" "$tmp/dir-prefix/" ".node"; do
   check "reorder prefix '$o'" 2 "$bin" reorder "$data/two_interior.node" --ordering bfs -o "$o" --quiet
@@ -537,6 +634,30 @@ for r in rep:
     n += 1
 assert n == 9, n  # 3 orderings x (1 thread + 2 placements at 4)
 PY
+# Speedups measured elsewhere (report --measured compare.csv): a thread count the prediction lacks
+# gets a row of its own; each cell is the mean over the file's meshes of its speedup_vs_ori1.
+check "compare elsewhere" 0 "$bin" compare "$data/plate41.msh" "$data/two_interior.node" --orderings ori,bfs,rdr --threads 1,2 --repeat 3 --out "$tmp/elsewhere" --quiet
+check "report --measured" 0 "$bin" report "$data/plate41.msh" --no-timing --machine-threads 1,4 \
+  --orderings ori,bfs,rdr --measured "$tmp/elsewhere/compare.csv" --figure1-mesh none --profile-mesh none --out "$tmp/mrep2" --quiet
+check "measured elsewhere in the table" 0 /usr/bin/python3 - "$tmp/elsewhere/compare.csv" "$tmp/mrep2/tables/predicted_speedup.csv" "$tmp/mrep2/README.md" <<'PY'
+import csv, sys
+from collections import defaultdict
+got = defaultdict(list)
+for r in csv.DictReader(open(sys.argv[1])):
+    if r["speedup_vs_ori1"]:
+        got[(r["ordering"], r["threads"])].append(float(r["speedup_vs_ori1"]))
+rows = {(r["ordering"], r["placement"], r["threads"]): r for r in csv.DictReader(open(sys.argv[2]))}
+for (o, p), v in got.items():
+    r = rows[(o, "compact", p)]
+    assert abs(float(r["measured_elsewhere"]) - sum(v) / len(v)) <= 0.006, (o, p, r["measured_elsewhere"], v)
+    assert rows.get((o, "scatter", p), {}).get("measured_elsewhere", "") == ""
+assert rows[("rdr", "compact", "2")]["speedup_at_low_latency"] == ""  # not simulated at 2
+assert "measured_elsewhere: Speedup(p) timed on" in open(sys.argv[3]).read()
+PY
+printf 'mesh,ordering\nm,ori\n' >"$tmp/notcompare.csv"
+check "report --measured, not a compare.csv" 2 "$bin" report "$data/plate41.msh" --no-timing --measured "$tmp/notcompare.csv" --out "$tmp/mrep3" --quiet
+contains "report --measured, not a compare.csv: named" "notcompare.csv:1: no column threads"
+[[ ! -e $tmp/mrep3 ]] && pass=$((pass + 1)) || { fail=$((fail + 1)); echo "FAIL report --measured: refused after making its folder"; }
 check "one thread count without a machine" 2 "$bin" simulate "$data/plate41.msh" --threads 1,4 --quiet
 contains "one thread count without a machine" "--threads and --placement take one value without --machine"
 

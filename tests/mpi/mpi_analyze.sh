@@ -56,7 +56,7 @@ same "mesh.trace.zst in one frame -np 3" "$tmp/serial" "$tmp/mpi"
 for np in 2 3; do
   for run_args in "$data/plate41.msh --orderings rdr -k 3 --threads 2" \
                   "$data/plate41.msh --orderings ori -k 2 --mode jacobi" \
-                  "$tmp/mesh.trace --sample-rate 0.1" "$tmp/mesh.trace --sample-rate 0.05 --sample-error"; do
+                  "$tmp/mesh.trace --sample-rate 0.1 --sample-exact-below 0" "$tmp/mesh.trace --sample-rate 0.05 --sample-error --sample-exact-below 0"; do
     outputs "$tmp/serial" "$bin" analyze $run_args
     outputs "$tmp/mpi" run "$np" "$mpi" analyze $run_args
     same "-np $np $run_args" "$tmp/serial" "$tmp/mpi"

@@ -11,7 +11,8 @@
 #                                count for every P (stopped by --tol);
 # and that the comparison can fail (ordered at -np 2 differs from the storage-order sweep).
 # The distributed mesh file (FILE.mrm) read in ranges: equal to the whole read and to the serial
-# sweep along pi at -np 1..4; damaged, truncated and foreign files refused on every rank.
+# sweep along pi at -np 1..4; -o X.pvtu at -np 3 (a piece per rank, read back by meshio);
+# damaged, truncated and foreign files refused on every rank.
 # meshreuse-mpi refine at -np 1..4 == one process's file byte for byte, smoothed along pi; refused
 # outputs and inputs. A scale smoke test at -np 2 on about 10^6 vertices (refined, no Triangle needed) with its memory
 # per rank checked (whole read and ranges); a rank killed mid-run ends the job naming the rank; bad input exits 2 naming
@@ -140,6 +141,11 @@ for np in 1 3; do
   equal "mrm written by $np ranks == serial along pi" "$tmp/serial.mrm" "$tmp/out.mrm"
 done
 check "mrm output reads" 0 "$bin" mesh info "$tmp/out.mrm"
+# -o X.pvtu at -np 3 from a mesh file read in ranges: each rank writes its piece; read by meshio
+# (tests/scripts/check_vtu.py), the pieces are the serial .vtu, ghost cells marked.
+check "serial jacobi .vtu (mrm)" 0 "$bin" smooth "$tmp/fine.mrm" --mode jacobi --max-iters 4 --tol -1 -o "$tmp/serial.vtu" --quiet
+check "mrm jacobi np 3 -> pvtu" 0 run 3 "$mpi" smooth "$tmp/fine.mrm" --mode jacobi --max-iters 4 --tol -1 -o "$tmp/np.pvtu" --quiet
+check "pvtu np 3 == serial .vtu (meshio)" 0 /usr/bin/python3 "$(dirname "$0")/../scripts/check_vtu.py" pieces "$tmp/serial.vtu" "$tmp/np.pvtu"
 # PT-Scotch on the mesh file: each rank hands PT-Scotch its range's rows, learns its part's ids and
 # its ghosts' owners from the directory and reads only its part; the same parts (the same rows go
 # to PT-Scotch), pi and result as every rank reading the whole mesh (the same ids, as .node), the
@@ -260,6 +266,9 @@ if [[ $rc -ne 0 && $rc -ne 124 ]] && grep -q "rank 1" "$tmp/out"; then pass=$((p
   fail=$((fail + 1)); echo "FAIL killed rank: exit $rc"; head -20 "$tmp/out"; fi
 check "missing mesh" 2 run 2 "$mpi" smooth "$tmp/missing.node" --quiet
 contains "missing mesh" "meshreuse-mpi: rank 0: error: $tmp/missing.node"
+contains "missing mesh: Open MPI's report announced" "the lines that follow, if any, are Open MPI's own report of the abort"
+check "help names the program" 0 run 1 "$mpi" smooth --help
+contains "help names the program" "usage: meshreuse-mpi smooth MESH"
 check "broken mesh" 2 run 2 "$mpi" smooth "$data/broken/degenerate.node" --quiet
 contains "broken mesh" "degenerate.ele:10"
 printf '3 2 0 0\n1 0 0\n2 1 0\n3 0 1\n' >"$tmp/tri.node"
@@ -276,6 +285,16 @@ contains "bad mode" "unknown distributed mode 'gs'"
 check "pi needs ordered" 2 run 1 "$mpi" smooth "$fine" --mode jacobi --pi-out "$tmp/pi2" --quiet
 check "serial visit order of another mesh" 2 "$bin" smooth "$plate" --visit-order "$tmp/pi" --quiet
 contains "serial visit order of another mesh" "$tmp/pi:"
+
+# Partition once, smooth many times (issue 39): a partition file from `mesh partition -o` gives
+# byte for byte the run that computed the same partition itself; one for other ranks is refused.
+check "partition file" 0 "$bin" mesh partition "$plate" --parts 3 --method metis -o "$tmp/p3.part" --quiet
+check "smooth from the file" 0 run 3 "$mpi" smooth "$plate" --partition "file:$tmp/p3.part" -o "$tmp/pf.vtk" --pi-out "$tmp/pf.pi" --quiet
+check "smooth computing it" 0 run 3 "$mpi" smooth "$plate" --partition metis -o "$tmp/pm.vtk" --pi-out "$tmp/pm.pi" --quiet
+equal "partition file: mesh" "$tmp/pf.vtk" "$tmp/pm.vtk"
+equal "partition file: pi" "$tmp/pf.pi" "$tmp/pm.pi"
+check "partition file for 3 ranks at 2" 2 run 2 "$mpi" smooth "$plate" --partition "file:$tmp/p3.part" --quiet
+contains "partition file for 3 ranks at 2" "$tmp/p3.part:4: part 2 of vertex 2 is outside 0..1 (2 ranks)"
 
 # Cancelled writers leave no temporary (issue 38): SIGTERM and SIGINT to mpirun (what SLURM's
 # scancel sends) and SIGKILL to one rank, while every rank writes the refined mesh file (-np 2 and

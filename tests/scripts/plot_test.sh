@@ -2,7 +2,8 @@
 # The plotting scripts on the fixture CSVs of tests/data/report (a report of two 1,500-vertex
 # meshes, its manifest.json naming what to draw): every figure as a valid PNG and PDF, the scale
 # figure when the manifest names it, each figure script from the command line, and a clear error
-# (not a traceback, not an empty plot) for a missing file or a profile with no rows.
+# (not a traceback, not an empty plot) for a missing file or a profile with no rows; --help of
+# every script, and one-line refusals (exit 2) of wrong arguments and tables a script does not draw.
 # Exit 77 (skipped) when Debian's matplotlib is not installed.
 # Usage: plot_test.sh FIXTURE_DIR
 set -euo pipefail
@@ -42,4 +43,24 @@ head -n 1 "$fixture/data/profile.csv" >"$tmp/empty.csv"
 if $py "$root/scripts/plot_profile.py" "$tmp/empty.csv" "$tmp/x" 2>"$tmp/err"; then exit 1; fi
 grep -q "no rows" "$tmp/err"
 [[ ! -e $tmp/x.png ]]
+# Every script answers --help (exit 0, its usage); wrong arguments and a table it does not draw
+# (compare's CSV to the speedup figure) are refused in one line with exit 2, never a traceback.
+for s in "$root"/scripts/plot_*.py; do
+  [[ $s == */plot_common.py ]] && continue
+  $py "$s" --help >"$tmp/help" 2>&1 || { echo "$(basename "$s") --help: exit $?"; exit 1; }
+  grep -q "scripts/$(basename "$s")" "$tmp/help" || { echo "$(basename "$s") --help: no usage line"; cat "$tmp/help"; exit 1; }
+done
+refused() {  # refused WHAT PATTERN COMMAND... : exit 2, PATTERN on stderr, no traceback
+  local what=$1 pattern=$2 rc=0
+  shift 2
+  "$@" >"$tmp/out" 2>"$tmp/err" || rc=$?
+  if [[ $rc -ne 2 ]] || ! grep -q -- "$pattern" "$tmp/err" || grep -q Traceback "$tmp/err"; then
+    echo "$what: exit $rc, stderr:"; cat "$tmp/err"; exit 1
+  fi
+}
+printf 'mesh,ordering,threads,rounds,sweep_ms\nm,ori,1,3,1.5\n' >"$tmp/compare.csv"
+refused "speedup of compare.csv" "no column 'speedup'" $py "$root/scripts/plot_speedup.py" "$tmp/compare.csv" "$tmp/s" t speedup
+refused "speedup, wrong arguments" "usage:" $py "$root/scripts/plot_speedup.py" a b
+refused "report of a folder that is none" "not a report folder" $py "$root/scripts/plot_report.py" "$tmp/none"
+[[ ! -e $tmp/none ]] || { echo "plot_report made the folder it refused"; exit 1; }
 echo "plot_test: every figure drawn from the fixture CSVs"
