@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "cli/common.h"
+#include "cli/configs.h"
 #include "core/error.h"
 #include "core/mesh_io.h"
 #include "core/output_file.h"
@@ -162,16 +163,14 @@ void AnalyzeConfigOf(AnalyzeOptionText& t, const po::variables_map& vm, AnalyzeC
                          "`analyze --chunk`, not here");
 }
 
-}  // namespace
-
-int AnalyzeCommand(const Args& args, Communicator* transport) {
+// Parses `args` into cfg, t and vm: false when --help was printed. The source is pointed at what
+// is in memory before the defaults that depend on it and the checks.
+bool ParseAnalyze(const Args& args, Communicator* transport, const InMemory& in_memory,
+                  AnalyzeConfig* cfg, AnalyzeOptionText* t, po::variables_map* vm) {
   po::options_description desc("options");
-  AnalyzeConfig cfg;
-  AnalyzeOptionText t;
-  AddAnalyzeOptions(desc, &cfg, &t);
+  AddAnalyzeOptions(desc, cfg, t);
   po::positional_options_description pos;
   pos.add("input", -1);
-  po::variables_map vm;
   if (!ParseOptions(args,
                     "analyze INPUT... [--orderings ori,bfs,rdr] [--iterations K] [--json|--csv]",
                     "Exact LRU reuse distances (element = vertex id, line = address / line size; "
@@ -179,23 +178,45 @@ int AnalyzeCommand(const Args& args, Communicator* transport) {
                     "mean, quantiles, modelled misses per cache level (fully associative LRU) and "
                     "the paper's equation-2 cost. Several meshes x --orderings print the paper's "
                     "Table 2. With --sample-rate or --sample-size: a SHARDS estimate instead.",
-                    desc, pos, vm))
-    return 0;
-  AnalyzeConfigOf(t, vm, &cfg);
-  const std::string &hist_csv = t.hist_csv, &prof_csv = t.prof_csv, &mrc_csv = t.mrc_csv,
-                    &out_dir = t.out_dir, &rank_stats = t.rank_stats;
-  cfg.transport = transport;
+                    desc, pos, *vm))
+    return false;
+  AnalyzeConfigOf(*t, *vm, cfg);
+  if (in_memory) in_memory(*cfg);
+  cfg->transport = transport;
   // Sampling counts the distances below the first cache level's capacity exactly unless told
   // (--sample-exact-below N, 0: off), where the whole stream passes in order: not in chunks.
-  if (cfg.sample && t.sample_exact_below.empty() && !transport && !cfg.chunk && !cfg.merge &&
-      !cfg.cache.levels.empty())
-    cfg.shards.exact_below = static_cast<uint32_t>(std::min<uint64_t>(
+  if (cfg->sample && t->sample_exact_below.empty() && !transport && !cfg->chunk && !cfg->merge &&
+      !cfg->cache.levels.empty())
+    cfg->shards.exact_below = static_cast<uint32_t>(std::min<uint64_t>(
         uint64_t{1} << 26,
-        cfg.cache.levels[0].bytes / std::min(cfg.element_bytes, cfg.line_bytes)));
+        cfg->cache.levels[0].bytes / std::min(cfg->element_bytes, cfg->line_bytes)));
+  CheckAnalyzeConfig(*cfg);
+  return true;
+}
+
+}  // namespace
+
+AnalyzeConfig AnalyzeConfigFromArgs(const Args& args, const InMemory& in_memory) {
+  AnalyzeConfig cfg;
+  AnalyzeOptionText t;
+  po::variables_map vm;
+  if (!ParseAnalyze(args, nullptr, in_memory, &cfg, &t, &vm))
+    throw UsageError("--help is the command's");
+  RefuseCommandOptions(
+      vm, {"histogram-csv", "profile-csv", "mrc-csv", "out", "rank-stats", "json", "csv", "quiet"});
+  return cfg;
+}
+
+int AnalyzeCommand(const Args& args, Communicator* transport) {
+  AnalyzeConfig cfg;
+  AnalyzeOptionText t;
+  po::variables_map vm;
+  if (!ParseAnalyze(args, transport, {}, &cfg, &t, &vm)) return 0;
+  const std::string &hist_csv = t.hist_csv, &prof_csv = t.prof_csv, &mrc_csv = t.mrc_csv,
+                    &out_dir = t.out_dir, &rank_stats = t.rank_stats;
   // A distributed run: every rank analyses its chunk; rank 0 alone prints and writes.
   const bool writer = !transport || transport->rank() == 0;
   const OutputFormat fmt = FormatOption(vm);
-  CheckAnalyzeConfig(cfg);
   if (cfg.chunk) {
     if (!hist_csv.empty() || !prof_csv.empty() || !mrc_csv.empty() || !out_dir.empty() ||
         !cfg.vtk.empty() || fmt != OutputFormat::kText)

@@ -7,6 +7,7 @@
 
 #include "analysis/papi_counters.h"
 #include "cli/common.h"
+#include "cli/configs.h"
 #include "core/error.h"
 #include "core/orderings/registry.h"
 #include "core/output_file.h"
@@ -14,12 +15,15 @@
 
 namespace meshreuse::cli {
 
-int CompareCommand(const Args& args) {
+namespace {
+
+// Parses `args` into cfg, vm and out_dir: false when --help was printed.
+bool ParseCompare(const Args& args, CompareConfig& cfg, po::variables_map& vm,
+                  std::string& out_dir) {
   po::options_description desc("options");
-  std::string orderings = "ori,bfs,rdr,random", threads = "1", out_dir, mode = "gauss-seidel",
+  std::string orderings = "ori,bfs,rdr,random", threads = "1", mode = "gauss-seidel",
               quality = "per-move", triangle_order, counters, seed = "1", repeat = "5",
               clock = "wall";
-  CompareConfig cfg;
   desc.add_options()("mesh", po::value(&cfg.meshes)->required()->multitoken(), "mesh file(s)")(
       "orderings", po::value(&orderings)->default_value(orderings),
       "comma-separated orderings (LABEL=SPEC names a row)")(
@@ -45,7 +49,6 @@ int CompareCommand(const Args& args) {
   AddTriangleOrderOption(desc, &triangle_order);
   po::positional_options_description pos;
   pos.add("mesh", -1);
-  po::variables_map vm;
   if (!ParseOptions(
           args, "compare MESH... [--orderings ori,bfs,rdr,random] [--threads 1,2] [--repeat 5]",
           "For each mesh x ordering x thread count: an untimed warm-up round, then --repeat "
@@ -58,7 +61,7 @@ int CompareCommand(const Args& args) {
           "distinguishable'. A busy machine (load above the cores, CPU/wall below 0.9, rounds "
           "varying by more than 5%) is said on stderr and in run.json.",
           desc, pos, vm))
-    return 0;
+    return false;
   cfg.orderings = SplitList(orderings);
   if (cfg.orderings.empty()) throw UsageError("no ordering given");
   for (const std::string& o : cfg.orderings) CheckOrderingSpec(o);
@@ -66,13 +69,11 @@ int CompareCommand(const Args& args) {
   ParseRepeat(repeat, &cfg.repeat, &cfg.repeat_auto, &cfg.repeat_cap);
   cfg.seed = ParseCount(seed, "--seed", 0, UINT64_MAX >> 1);
   cfg.clock = ParseClock(clock);
-  const OutputFormat fmt = FormatOption(vm);
   if (std::isnan(cfg.smooth.tol)) throw UsageError("--tol must be a number");
   if (cfg.smooth.max_iters < 1) throw UsageError("--max-iters must be at least 1");
   cfg.smooth.mode = ParseUpdateMode(mode);
   cfg.smooth.quality = ParseQualityMode(quality);
   cfg.triangle_order = ParseTriangleOrder(triangle_order);
-  if (!out_dir.empty()) PrepareOutDir(out_dir);
   if (!counters.empty() && counters != "none") {
     cfg.counter_events = counters == "default" ? DefaultCounterEvents() : SplitList(counters);
     const CounterNote note = ProbeCounters(cfg.counter_events);
@@ -80,6 +81,27 @@ int CompareCommand(const Args& args) {
       std::fprintf(stderr, "meshreuse: note: counters: %s%s\n", note.note.c_str(),
                    note.available ? "" : "; no counter is recorded");
   }
+  return true;
+}
+
+}  // namespace
+
+CompareConfig CompareConfigFromArgs(const Args& args) {
+  CompareConfig cfg;
+  po::variables_map vm;
+  std::string out_dir;
+  if (!ParseCompare(args, cfg, vm, out_dir)) throw UsageError("--help is the command's");
+  RefuseCommandOptions(vm, {"out", "json", "csv", "markdown", "quiet"});
+  return cfg;
+}
+
+int CompareCommand(const Args& args) {
+  CompareConfig cfg;
+  po::variables_map vm;
+  std::string out_dir;
+  if (!ParseCompare(args, cfg, vm, out_dir)) return 0;
+  const OutputFormat fmt = FormatOption(vm);
+  if (!out_dir.empty()) PrepareOutDir(out_dir);
   const Progress progress(vm.count("quiet") > 0);
   const Log log = MakeLog(progress);
   const CompareResult result = RunCompare(cfg, log.progress, log.warn);

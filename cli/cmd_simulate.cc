@@ -5,6 +5,7 @@
 
 #include "analysis/machine.h"
 #include "cli/common.h"
+#include "cli/configs.h"
 #include "core/error.h"
 #include "reports/simulate.h"
 #include "tracer/access_stream.h"
@@ -12,11 +13,13 @@
 
 namespace meshreuse::cli {
 
-int SimulateCommand(const Args& args) {
+namespace {
+
+// Parses `args` into cfg, vm and out_dir: false when --help was printed.
+bool ParseSimulate(const Args& args, const InMemory& in_memory, SimulateConfig& cfg,
+                   po::variables_map& vm, std::string& out_dir) {
   po::options_description desc("options");
-  SimulateConfig cfg;
-  std::string cache = "westmere-ex", line_bytes = "64", out_dir, placement = "compact",
-              interleave = "1";
+  std::string cache = "westmere-ex", line_bytes = "64", placement = "compact", interleave = "1";
   SourceOptionText source;
   desc.add_options()("input", po::value(&cfg.inputs)->required()->multitoken(),
                      "mesh(es) (the smoother streams into the simulator), a trace file from "
@@ -70,7 +73,6 @@ int SimulateCommand(const Args& args) {
   AddFormatOptions(desc);
   po::positional_options_description pos;
   pos.add("input", -1);
-  po::variables_map vm;
   if (!ParseOptions(args, "simulate INPUT... [--orderings ori,bfs,rdr] [--cache L1=32K/8,...]",
                     "Set-associative simulation (valgrind's model: LRU by default, write-allocate, "
                     "an access straddling two lines counts once and misses if either misses, each "
@@ -78,9 +80,9 @@ int SimulateCommand(const Args& args) {
                     "misses, cold misses and the excess over them, read, write and instruction "
                     "fetch misses, per level and thread stream.",
                     desc, pos, vm))
-    return 0;
-  const OutputFormat fmt = FormatOption(vm);
+    return false;
   SourceOf(source, vm, &cfg);
+  if (in_memory) in_memory(cfg);
   cfg.line_bytes = static_cast<uint32_t>(ParseCount(line_bytes, "--line-bytes", 1, 1 << 20));
   cfg.cache = ParseCacheSpec(cache);
   cfg.placements.clear();
@@ -102,7 +104,7 @@ int SimulateCommand(const Args& args) {
   if (!cfg.machine.empty()) {
     bool traces = !cfg.inputs.empty();
     for (const std::string& in : cfg.inputs) {
-      const bool trace = !cfg.format.empty() || ClassifyInput(in) != InputKind::kMesh;
+      const bool trace = cfg.KindOf(in) != InputKind::kMesh;
       if (trace && !vm["interleave"].defaulted() && cfg.interleave != kSerialShares)
         throw UsageError("--interleave " + interleave + ": " + in +
                          " is a trace file, whose streams follow one another: it can only be "
@@ -115,6 +117,27 @@ int SimulateCommand(const Args& args) {
   if (cfg.machine.empty() && (!cfg.prefetch.empty() || cfg.warm || cfg.per_thread))
     throw UsageError("--prefetch, --warm and --per-thread need --machine");
   CheckSimulateConfig(cfg);
+  return true;
+}
+
+}  // namespace
+
+SimulateConfig SimulateConfigFromArgs(const Args& args, const InMemory& in_memory) {
+  SimulateConfig cfg;
+  po::variables_map vm;
+  std::string out_dir;
+  if (!ParseSimulate(args, in_memory, cfg, vm, out_dir))
+    throw UsageError("--help is the command's");
+  RefuseCommandOptions(vm, {"out", "json", "csv", "quiet", "per-sweep"});
+  return cfg;
+}
+
+int SimulateCommand(const Args& args) {
+  SimulateConfig cfg;
+  po::variables_map vm;
+  std::string out_dir;
+  if (!ParseSimulate(args, {}, cfg, vm, out_dir)) return 0;
+  const OutputFormat fmt = FormatOption(vm);
   if (!out_dir.empty()) PrepareOutDir(out_dir);
   const Progress progress(vm.count("quiet") > 0);
   if (!cfg.machine.empty())

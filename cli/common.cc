@@ -210,4 +210,12 @@ RankOptions RankOptionsOf(const RankOptionText& text, const po::variables_map& v
   return o;
 }
 
+void RefuseCommandOptions(const po::variables_map& vm, const std::vector<std::string>& options) {
+  for (const std::string& o : options)
+    if (vm.count(o) && !vm[o].defaulted())
+      throw UsageError("--" + o +
+                       " is the command line's (printing and writing tables): here the results "
+                       "are returned");
+}
+
 }  // namespace meshreuse::cli

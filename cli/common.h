@@ -92,6 +92,10 @@ void CheckDistinctOutputs(const std::vector<std::pair<std::string, std::string>>
 // whose process is gone): the files a cancelled job could not remove, named for the user.
 void WarnStaleTemporaries(const std::string& path);
 
+// For a caller that is not the command (cli/configs.h): UsageError naming the first of these
+// options that was given ("--csv is the command line's: ...").
+void RefuseCommandOptions(const po::variables_map& vm, const std::vector<std::string>& options);
+
 // The full command line, for run.json.
 const std::vector<std::string>& FullCommandLine();
 // A runner's output: printed on stdout in `fmt` and, with `out_dir`, written under it (its

@@ -19,6 +19,7 @@ class Table {
   explicit Table(std::vector<std::string> header) : header_(std::move(header)) {}
   void AddRow(const std::vector<std::string>& row);
   size_t Rows() const { return row_start_.size(); }
+  const std::vector<std::string>& Header() const { return header_; }
   // Row r's cells (a copy; for tests and small tables).
   std::vector<std::string> Row(size_t r) const;
 

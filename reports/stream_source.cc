@@ -108,14 +108,20 @@ void StreamMeshInput(const StreamSource& src, StreamJob job, StreamConsumer& c, 
 
 }  // namespace
 
+InputKind StreamSource::KindOf(const std::string& in) const {
+  const bool first = !inputs.empty() && in == inputs[0];
+  if (loaded && first) return InputKind::kMesh;  // a mesh already read
+  if ((ids && first) || !format.empty()) return InputKind::kText;
+  return ClassifyInput(in);
+}
+
 void ForEachStream(const StreamSource& src, StreamConsumer& c, const Log& log) {
   const TraceFormat* fmt = src.Format();
   if (!fmt) CheckTraceSets(src.inputs);
   for (const std::string& in : src.inputs) {
     StreamJob job;
     job.input = in;
-    const bool loaded = src.loaded && in == src.inputs[0];  // a mesh already read
-    job.kind = loaded ? InputKind::kMesh : fmt ? InputKind::kText : ClassifyInput(in);
+    job.kind = src.KindOf(in);
     if (job.kind == InputKind::kMesh) {
       for (const OrderingSpec& ord : src.orderings) {
         job.ordering = &ord;
@@ -124,6 +130,15 @@ void ForEachStream(const StreamSource& src, StreamConsumer& c, const Log& log) {
       continue;
     }
     if (c.TakeTrace(in, log)) continue;
+    if (src.ids && in == src.inputs[0]) {
+      job.kind = InputKind::kText;
+      job.format = fmt ? fmt : &ParseTraceFormat("u64");
+      log.Say(c.Verb() + " " + in + " (" + Grouped(static_cast<long long>(src.ids_count)) +
+              " ids in memory)" + c.Where());
+      StreamIds(src.ids, src.ids_count, in, c.Start(job), {}, src.poll);
+      c.Finish(job);
+      continue;
+    }
     if (job.kind == InputKind::kTrace) {
       log.Say(c.Verb() + " trace " + in + c.Where());
       StreamTraceFile(in, c.Start(job), FileProgress(log, c.Verb()));

@@ -12,6 +12,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -46,11 +47,20 @@ struct StreamSource {
   // The mesh inputs[0] names, already read (the report reads each mesh once for many runs): laid
   // out from it, not read again. Not owned.
   const Mesh* loaded = nullptr;
+  // Ids in memory for the input inputs[0] names (the Python module's numpy arrays): streamed as a
+  // u64 trace of those values is (tracer/access_stream.h StreamIds), not read. Not owned. `poll`
+  // is called between their batches (the module checks for Ctrl-C there).
+  const uint64_t* ids = nullptr;
+  uint64_t ids_count = 0;
+  std::function<void()> poll;
 
   // UsageError for what cannot be streamed, before any work: no input, an unknown format, no
   // ordering, sweeps or threads out of range, --instructions without lackey, --ranks with a trace
   // format or several threads, a partition method unknown.
   void Check() const;
+  // What input `in` is: a mesh (loaded, or by its name), another tool's trace (ids in memory, or
+  // any input under `format`), else a meshreuse trace (or text on standard input: ClassifyInput).
+  InputKind KindOf(const std::string& in) const;
   // `format` parsed (nullptr: meshes and meshreuse traces).
   const TraceFormat* Format() const;
   // The smoother's options for a mesh: exactly `iterations` sweeps on `threads` streams.

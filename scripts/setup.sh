@@ -14,12 +14,15 @@ done
 
 pkgs=(build-essential cmake pkg-config libgtest-dev libbenchmark-dev libboost-program-options-dev
       libpapi-dev libzstd-dev zstd zlib1g-dev libmetis-dev libboost-graph-dev triangle-bin time
-      nlohmann-json3-dev libopenmpi-dev openmpi-bin libscotch-dev libptscotch-dev gmsh)
+      nlohmann-json3-dev libopenmpi-dev openmpi-bin libscotch-dev libptscotch-dev gmsh
+      pybind11-dev python3-dev python3-numpy)
 # (libscotch-dev: the scotch partition; libptscotch-dev: meshreuse-mpi's ptscotch partition;
-# gmsh: the tests check that Gmsh reads the split sets that `mesh partition --split` writes.)
+# gmsh: the tests check that Gmsh reads the split sets that `mesh partition --split` writes;
+# pybind11-dev, python3-dev, python3-numpy: the Python module, `import meshreuse`.)
 ((want_plots)) && pkgs+=(python3-matplotlib python3-numpy)
 # meshio: the tests read the .vtu and .pvtu files meshreuse writes with a reader nobody here wrote.
-((want_tests)) && pkgs+=(python3-meshio python3-numpy)
+# pytest and scipy: the Python module's tests and examples (scipy's RCM raced against ours).
+((want_tests)) && pkgs+=(python3-meshio python3-numpy python3-pytest python3-scipy python3-matplotlib)
 # libFuzzer and clang's OpenMP runtime for the fuzz harnesses (scripts/fuzz.sh)
 ((want_fuzz)) && pkgs+=(clang libclang-rt-14-dev libomp-14-dev)
 

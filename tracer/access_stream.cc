@@ -227,6 +227,40 @@ void StreamForeignTrace(const std::string& path, const TraceFormat& format, bool
   to.End();
 }
 
+void StreamIds(const uint64_t* ids, uint64_t n, const std::string& label, AccessConsumer& to,
+               const ProgressFn& progress, const std::function<void()>& poll,
+               const RecordRange* range) {
+  StreamInfo info;
+  info.input = label;
+  info.threads = 1;
+  info.records = n;
+  if (n) info.sweep_records = info.sweep_elements = {{n}};
+  to.Begin(info);
+  std::vector<Access> out(kBatch);
+  const uint64_t last = range ? std::min(n, range->end) : n;
+  for (uint64_t at = range ? std::min(n, range->first) : 0; at < last;) {
+    const uint64_t end = std::min(last, at + (uint64_t{1} << 16));
+    for (; at < end;) {
+      const size_t k = static_cast<size_t>(std::min<uint64_t>(kBatch, end - at));
+      for (size_t i = 0; i < k; ++i) {
+        const uint64_t v = ids[at + i];
+        if (v == foreign_detail::kReserved)
+          throw InputError(label, 0,
+                           "value " + std::to_string(at + i) +
+                               " is 2^64-1, which is reserved: ids and addresses must be below it");
+        out[i] = {v,    v, 1, 0, static_cast<uint8_t>(AccessKind::kNone), Access::kForeignArray,
+                  false};
+      }
+      to.Consume(out.data(), k);
+      at += k;
+    }
+    if (progress && (at & 0xFFFFF) == 0)
+      progress(static_cast<double>(at) / static_cast<double>(last));
+    if (poll) poll();
+  }
+  to.End();
+}
+
 InputKind ClassifyInput(const std::string& path) {
   auto ends = [&](const std::string& x) {
     return path.size() >= x.size() && path.compare(path.size() - x.size(), x.size(), x) == 0;

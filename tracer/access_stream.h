@@ -111,6 +111,14 @@ void StreamForeignTrace(const std::string& path, const TraceFormat& format, bool
                         AccessConsumer& to, const ProgressFn& progress = {},
                         const RecordRange* range = nullptr);
 
+// Ids already in memory (the Python module's numpy arrays): one stream, each value an access of
+// one byte, element and address alike -- exactly what StreamForeignTrace delivers for a u64 file of
+// the same values (a range too: ids [first, end)), so every table equals `--format u64` on that
+// file. The value 2^64-1 is refused (InputError naming `label` and the index). `poll`, when set,
+// is called between batches of 2^16 ids (a caller's chance to stop the work: it may throw).
+void StreamIds(const uint64_t* ids, uint64_t n, const std::string& label, AccessConsumer& to,
+               const ProgressFn& progress = {}, const std::function<void()>& poll = {},
+               const RecordRange* range = nullptr);
 // What a path given without --format is: a mesh (by its name: .node, .ele, .msh, .mrm, or a
 // prefix P with P.node), standard input ("-": a text trace of ids), or else a meshreuse trace.
 enum class InputKind { kMesh, kTrace, kText };

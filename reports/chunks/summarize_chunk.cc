@@ -326,7 +326,11 @@ SummaryFile SummarizeChunk(const ReuseJob& cfg, uint32_t r, uint32_t p, bool dis
   s.chunk = r;
   s.id.chunks = p;
   s.id.format = fmt ? fmt->name : "";
-  s.id.fingerprint = Fingerprint(in, !distributed, &s.id.input_bytes);
+  const bool memory = cfg.ids && in == cfg.inputs[0];  // ids in memory, as a u64 file of them
+  if (memory)
+    s.id.input_bytes = 8 * cfg.ids_count;
+  else
+    s.id.fingerprint = Fingerprint(in, !distributed, &s.id.input_bytes);
   s.id.instructions = cfg.instructions;
   Granularity g = Granularity::kBoth;
   if (cfg.granularity)
@@ -338,7 +342,9 @@ SummaryFile SummarizeChunk(const ReuseJob& cfg, uint32_t r, uint32_t p, bool dis
   uint64_t total;
   std::vector<uint64_t> eoff, loff;
   const bool text = fmt && fmt->syntax != TraceSyntax::kFixedRecords;
-  if (fmt) {
+  if (memory) {
+    total = cfg.ids_count;
+  } else if (fmt) {
     // A text trace is cut by bytes of its content (decompressed), at line boundaries.
     const int64_t content = InputStream(in).size();
     if (content < 0)
@@ -367,7 +373,9 @@ SummaryFile SummarizeChunk(const ReuseJob& cfg, uint32_t r, uint32_t p, bool dis
   const RecordRange range{s.first, s.end};
   log.Say("analysing chunk " + ChunkName(r, p) + " of " + in + (text ? ": bytes " : ": records ") +
           std::to_string(s.first) + ".." + std::to_string(s.end) + " of " + std::to_string(total));
-  if (fmt)
+  if (memory)
+    StreamIds(cfg.ids, cfg.ids_count, in, a, FileProgress(log), cfg.poll, &range);
+  else if (fmt)
     StreamForeignTrace(in, *fmt, cfg.instructions, a, FileProgress(log), &range);
   else
     StreamTraceFile(in, a, FileProgress(log), &range);
