@@ -27,10 +27,8 @@ namespace {
 // A column of cells as Python holds it: a numpy array of int64 when every cell is a whole number
 // that fits, of float64 when every cell is a number or empty (NaN), else a list of str (None for
 // an empty cell); whole numbers beyond 64 bits (exact sums) as a list of Python ints.
-py::object Column(const Table& t, size_t c) {
-  const size_t n = t.Rows();
-  std::vector<std::string> cells(n);
-  for (size_t r = 0; r < n; ++r) cells[r] = t.Row(r)[c];
+py::object Column(const std::vector<std::string>& cells) {
+  const size_t n = cells.size();
   bool ints = true, big = false, floats = true, any = false;
   std::vector<int64_t> iv(n);
   std::vector<double> fv(n);
@@ -72,8 +70,14 @@ py::object Column(const Table& t, size_t c) {
 
 // A table as Python holds it: column name -> Column, in the table's order.
 py::dict TableToPython(const Table& t) {
+  const std::vector<std::string>& header = t.Header();
+  std::vector<std::vector<std::string>> cells(header.size());
+  for (size_t r = 0; r < t.Rows(); ++r) {
+    std::vector<std::string> row = t.Row(r);
+    for (size_t c = 0; c < header.size(); ++c) cells[c].push_back(std::move(row[c]));
+  }
   py::dict cols;
-  for (size_t c = 0; c < t.Header().size(); ++c) cols[py::str(t.Header()[c])] = Column(t, c);
+  for (size_t c = 0; c < header.size(); ++c) cols[py::str(header[c])] = Column(cells[c]);
   return cols;
 }
 
