@@ -138,7 +138,12 @@ cli::InMemory Memory(const py::object& memory) {
     const Mesh* m = memory.cast<const PyMesh&>().mesh.get();
     return [m](StreamSource& s) { s.loaded = m; };
   }
-  const auto ids = memory.cast<py::array_t<uint64_t, py::array::c_style>>();
+  // The caller's own array, not a converted copy that would die before the run (the package
+  // hands C-contiguous uint64 ids).
+  using Ids = py::array_t<uint64_t, py::array::c_style>;
+  if (!Ids::check_(memory) || memory.cast<py::array>().ndim() != 1)
+    throw py::type_error("ids must be a one-dimensional C-contiguous uint64 array");
+  const Ids ids = py::reinterpret_borrow<Ids>(memory);
   const uint64_t* data = ids.data();
   const uint64_t n = static_cast<uint64_t>(ids.size());
   return [data, n](StreamSource& s) {
