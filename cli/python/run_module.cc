@@ -152,15 +152,6 @@ cli::InMemory Memory(const py::object& memory) {
   };
 }
 
-std::string U128(unsigned __int128 v) {
-  std::string s;
-  do {
-    s.insert(s.begin(), static_cast<char>('0' + static_cast<int>(v % 10)));
-    v /= 10;
-  } while (v);
-  return s;
-}
-
 // Every exact stream of the analysis: its key, counts and histogram (distances with a count, in
 // increasing order, and the counts) as numpy arrays.
 py::list Streams(const AnalyzeResult& r) {
@@ -179,7 +170,7 @@ py::list Streams(const AnalyzeResult& r) {
         d["granularity"] = GranularityName(g);
         d["accesses"] = s->hist.accesses();
         d["cold"] = s->hist.cold();
-        d["sum"] = py::int_(py::str(U128(s->hist.sum())));
+        d["sum"] = py::int_(py::str(ToDecimal(s->hist.sum())));
         d["max"] = s->hist.max();
         d["distances"] = py::array_t<uint64_t>(static_cast<py::ssize_t>(dist.size()), dist.data());
         d["counts"] = py::array_t<uint64_t>(static_cast<py::ssize_t>(count.size()), count.data());
