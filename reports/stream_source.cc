@@ -111,7 +111,7 @@ void StreamMeshInput(const StreamSource& src, StreamJob job, StreamConsumer& c, 
 InputKind StreamSource::KindOf(const std::string& in) const {
   const bool first = !inputs.empty() && in == inputs[0];
   if (loaded && first) return InputKind::kMesh;  // a mesh already read
-  if ((ids && first) || !format.empty()) return InputKind::kText;
+  if (IdsOf(in) || !format.empty()) return InputKind::kText;
   return ClassifyInput(in);
 }
 
@@ -130,8 +130,7 @@ void ForEachStream(const StreamSource& src, StreamConsumer& c, const Log& log) {
       continue;
     }
     if (c.TakeTrace(in, log)) continue;
-    if (src.ids && in == src.inputs[0]) {
-      job.kind = InputKind::kText;
+    if (src.IdsOf(in)) {
       job.format = fmt ? fmt : &ParseTraceFormat("u64");
       log.Say(c.Verb() + " " + in + " (" + Grouped(static_cast<long long>(src.ids_count)) +
               " ids in memory)" + c.Where());

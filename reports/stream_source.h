@@ -61,6 +61,8 @@ struct StreamSource {
   // What input `in` is: a mesh (loaded, or by its name), another tool's trace (ids in memory, or
   // any input under `format`), else a meshreuse trace (or text on standard input: ClassifyInput).
   InputKind KindOf(const std::string& in) const;
+  // Whether input `in` is the ids in memory (ids, for inputs[0]).
+  bool IdsOf(const std::string& in) const { return ids && !inputs.empty() && in == inputs[0]; }
   // `format` parsed (nullptr: meshes and meshreuse traces).
   const TraceFormat* Format() const;
   // The smoother's options for a mesh: exactly `iterations` sweeps on `threads` streams.

@@ -16,7 +16,7 @@ namespace meshreuse {
 
 bool CanAnalyzeInChunks(const ReuseJob& cfg, const std::string& in) {
   if (in == "-" || (cfg.sample && (cfg.shards.s_max || cfg.shards.exact_below))) return false;
-  if (cfg.ids && !cfg.inputs.empty() && in == cfg.inputs[0]) return true;  // ids in memory
+  if (cfg.IdsOf(in)) return true;  // ids in memory: cut as a u64 file of them
   struct stat st;
   if (::stat(in.c_str(), &st) != 0 || !S_ISREG(st.st_mode)) return false;
   try {

@@ -326,7 +326,7 @@ SummaryFile SummarizeChunk(const ReuseJob& cfg, uint32_t r, uint32_t p, bool dis
   s.chunk = r;
   s.id.chunks = p;
   s.id.format = fmt ? fmt->name : "";
-  const bool memory = cfg.ids && in == cfg.inputs[0];  // ids in memory, as a u64 file of them
+  const bool memory = cfg.IdsOf(in);  // ids in memory, as a u64 file of them
   if (memory)
     s.id.input_bytes = 8 * cfg.ids_count;
   else
