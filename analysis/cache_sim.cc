@@ -52,10 +52,46 @@ SetAssociativeCache::SetAssociativeCache(uint64_t bytes, uint32_t ways, uint32_t
   CheckGeometry(bytes, ways, line_bytes);
   sets_ = bytes / line_bytes / ways;
   ways_ = ways;
+  padded_ = static_cast<uint32_t>((uint64_t{ways} + 3) / 4 * 4);
+  groups_ = padded_ / 4;
+  block_bytes_ = 20 * uint64_t{padded_};
   pow2_ = (sets_ & (sets_ - 1)) == 0;
   mask_ = sets_ - 1;
-  tags_.reset(static_cast<uint64_t*>(std::calloc(sets_ * ways_, sizeof(uint64_t))));
-  if (!tags_) throw std::bad_alloc();
+  block_.reset(static_cast<uint8_t*>(std::calloc(sets_, block_bytes_)));
+  if (!block_) throw std::bad_alloc();
+}
+
+void SetAssociativeCache::Install(Set s, uint64_t tag) {
+  uint32_t v = 0;
+  if (policy_ == Replacement::kRandom) {
+    uint32_t held = 0;  // the ways in use are the first `held` (the old array's positions)
+    while (held < ways_ && s.tag[held] != 0) ++held;
+    if (held < ways_) {
+      v = held;
+    } else {
+      rng_ ^= rng_ << 13, rng_ ^= rng_ >> 7, rng_ ^= rng_ << 17;  // xorshift64, seeded
+      v = static_cast<uint32_t>(rng_ % ways_);
+    }
+  } else {
+    for (uint32_t i = 1; i < ways_; ++i) v = s.stamp[i] < s.stamp[v] ? i : v;  // an empty is 0
+    s.stamp[v] = ++clock_;
+  }
+  victim_ = s.tag[v] - 1;  // ~0 when the way was empty
+  s.tag[v] = tag;
+  s.sig[v] = static_cast<uint32_t>(tag);
+}
+
+bool SetAssociativeCache::Invalidate(uint64_t line) {
+  const Set s = SetOf(line);
+  const uint32_t w = Find<0>(s, line + 1);
+  if (w == kNone) return false;
+  if (policy_ == Replacement::kRandom) {  // positions: the ways after it move up
+    for (uint32_t j = w; j + 1 < ways_; ++j) s.tag[j] = s.tag[j + 1], s.sig[j] = s.sig[j + 1];
+    s.tag[ways_ - 1] = 0, s.sig[ways_ - 1] = 0;
+  } else {
+    s.tag[w] = 0, s.sig[w] = 0, s.stamp[w] = 0;
+  }
+  return true;
 }
 
 CacheHierarchy::CacheHierarchy(const std::vector<CacheLevel>& levels, uint32_t line_bytes)
@@ -94,6 +130,21 @@ CacheHierarchy::CacheHierarchy(const std::vector<CacheLevel>& levels, uint32_t l
 }
 
 bool CacheHierarchy::FirstTouch(uint64_t line) {
+  // A window of kWindowLines lines from the first line recorded, one bit each (a few megabytes of
+  // addresses from the first: the smoother's arrays, canonical or not), and the hash set beyond.
+  if (!window_) {
+    window_base_ = line & ~(kWindowLines - 1);
+    window_.reset(static_cast<uint64_t*>(std::calloc(kWindowLines / 64, sizeof(uint64_t))));
+    if (!window_) throw std::bad_alloc();
+  }
+  if (line - window_base_ < kWindowLines) {
+    const uint64_t i = line - window_base_, bit = uint64_t{1} << (i & 63);
+    uint64_t& word = window_.get()[i >> 6];
+    if (word & bit) return false;
+    word |= bit;
+    ++seen_used_;
+    return true;
+  }
   if (2 * (seen_used_ + 1) > seen_.size()) {  // keep the load factor at most 1/2
     std::vector<uint64_t> old(2 * seen_.size(), kEmpty);
     old.swap(seen_);
@@ -116,40 +167,67 @@ bool CacheHierarchy::FirstTouch(uint64_t line) {
   }
 }
 
-void CacheHierarchy::Access(uint64_t address, uint32_t size, bool write, bool fetch) {
+void CacheHierarchy::Allocate() {
+  for (const CacheLevel& l : config_) levels_.emplace_back(l.bytes, l.ways, line_bytes_, l.policy);
+  fast_ = !has_i1_ && !wide_;
+}
+
+void CacheHierarchy::Access(uint64_t address, uint32_t size, bool write, bool fetch,
+                            bool first_missed) {
   ++accesses_;
-  if (levels_.size() != config_.size())
-    for (const CacheLevel& l : config_)
-      levels_.emplace_back(l.bytes, l.ways, line_bytes_, l.policy);
+  if (config_.empty()) return;
+  if (__builtin_expect(levels_.empty(), 0)) Allocate();
   const uint64_t first = address >> shift_;
   const uint64_t last = (address + (size ? size - 1 : 0)) >> shift_;
+  const uint8_t* path = nullptr;  // the levels in the order tried (without an I1: all, in order)
+  size_t n = config_.size();
+  if (has_i1_) {
+    const std::vector<uint8_t>& p = fetch ? fetch_path_ : data_path_;
+    path = p.data(), n = p.size();
+  }
+  // The first level alone, on the path most accesses take: a hit there touched lines that an
+  // earlier access recorded (it missed there first), so the record of first touches is consulted
+  // only from a miss on. An access of three lines or more records only its end lines (as it always
+  // has); after the first such access every access consults the record, so the counts are those
+  // of recording at every access exactly.
+  const size_t l0 = path ? path[0] : 0;
+  ++stats_[l0].accesses;
+  bool hit = false;
+  if (first_missed)  // one line (HitFirst looks up no other)
+    levels_[l0].InstallMissed(first);
+  else
+    hit = levels_[l0].Access(first);
+  if (__builtin_expect(last != first, 0)) {
+    for (uint64_t l = first + 1; l <= last; ++l) hit = levels_[l0].Access(l) && hit;
+    if (last - first >= 2) wide_ = true, fast_ = false;
+  }
+  if (hit && !wide_) return;
   // A line number of ~0 would collide with the empty tag; it is the last line of the address
   // space, which no real access reaches with lines of 2 bytes or more.
   bool cold = FirstTouch(first);
   if (last != first) cold = FirstTouch(last) || cold;
-  auto miss = [&](size_t i) {  // true if level i misses
-    LevelStats& s = stats_[i];
-    ++s.accesses;
-    bool hit = levels_[i].Access(first);
-    for (uint64_t l = first + 1; l <= last; ++l) hit = levels_[i].Access(l) && hit;
-    if (hit) return false;
+  if (hit) return;
+  auto count_miss = [&](LevelStats& s) {
     ++s.misses;
     if (cold) ++s.cold;
     ++(fetch ? s.fetch_misses : write ? s.write_misses : s.read_misses);
-    return true;
   };
-  if (has_i1_) {
-    for (const uint8_t i : fetch ? fetch_path_ : data_path_)
-      if (!miss(i)) return;
-    return;
+  count_miss(stats_[l0]);
+  for (size_t k = 1; k < n; ++k) {  // each level sees the misses of the one before
+    const size_t i = path ? path[k] : k;
+    LevelStats& s = stats_[i];
+    ++s.accesses;
+    hit = levels_[i].Access(first);
+    for (uint64_t l = first + 1; l <= last; ++l) hit = levels_[i].Access(l) && hit;
+    if (hit) return;
+    count_miss(s);
   }
-  for (size_t i = 0; i < levels_.size(); ++i)  // no I1: every access takes every level in turn
-    if (!miss(i)) return;
 }
 
 CacheSimulation::CacheSimulation(const CacheSpec& spec, uint32_t line_bytes)
     : spec_(spec), line_bytes_(line_bytes) {
   const CacheHierarchy check(spec.levels, line_bytes);  // the geometry, before any access
+  first_groups_ = check.FirstGroups();
 }
 
 void CacheSimulation::Begin(const StreamInfo& info) {

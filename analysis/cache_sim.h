@@ -28,11 +28,17 @@
 // add up to the level's exactly).
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <cstdlib>
 #include <memory>
 #include <string>
+#include <type_traits>
 #include <vector>
+
+#ifdef __SSE2__
+#include <emmintrin.h>
+#endif
 
 #include "analysis/cache_model.h"
 #include "core/table.h"
@@ -49,85 +55,145 @@ struct LevelStats {
 };
 
 // One level. Lines are addresses >> log2(line bytes).
+//
+// Layout (issue 40: a hit in a few instructions, no branch on the data). A set is a block of its
+// ways' 32-bit signatures (the low half of the tag), which SSE2 compares four at a time, their
+// tags (line + 1; 0 = an empty way), confirming a signature's match (two lines of one set share a
+// signature only 2^32 lines apart), and their stamps. Tags stay where they were installed:
+//   - LRU: a way's stamp is the level's clock at its last use (0 = empty), so a hit is one store,
+//     and a miss replaces the smallest stamp: an empty way while one is left, else the least
+//     recently used. The order of the stamps is the recency list of valgrind's MRU-first array
+//     (the form this class had before, and the naive reference of the tests); an invalidated way
+//     becomes empty, the others keep their order, as the array's ways after it moved up.
+//   - FIFO: the stamp is the clock at installation; a hit does not change it.
+//   - random: the ways keep the old array's positions (an install fills the first empty way, else
+//     way rng % ways; an invalidation moves the ways after it up), so seeded runs replace the same
+//     lines.
+// Ways are padded to a multiple of four with signature 0 and tag 0 (never confirmed: a tag is
+// never 0); the padding's stamps are never read.
 class SetAssociativeCache {
  public:
-  // Lines a level may hold: its tags are allocated up front (calloc: pages as they are touched),
-  // and a level of more lines is a mistake (1 B lines in a GiB cache), refused naming the level.
+  // Lines a level may hold: its blocks are allocated up front (calloc: pages as they are touched;
+  // 20 B a way, so at most 1.25 GiB), and a level of more lines is a mistake (1 B lines in a GiB
+  // cache), refused naming the level.
   static constexpr uint64_t kMaxLines = uint64_t{1} << 26;
   // Throws UsageError unless bytes is a multiple of line_bytes * ways.
   SetAssociativeCache(uint64_t bytes, uint32_t ways, uint32_t line_bytes,
                       Replacement policy = Replacement::kLru);
   // The same check, without building the cache.
   static void CheckGeometry(uint64_t bytes, uint32_t ways, uint32_t line_bytes);
+  // Groups of four ways (the padded set); and f(std::integral_constant<uint32_t, G>) with G that
+  // count where it is a common one (4 to 32 ways), else 0 (any count, known at run time): a loop
+  // calling a lookup for many accesses dispatches once, and the lookup's loop unrolls.
+  uint32_t groups() const { return groups_; }
+  template <class F>
+  static decltype(auto) WithGroups(uint32_t groups, F&& f) {
+    using U = uint32_t;
+    switch (groups) {
+      case 1:
+        return f(std::integral_constant<U, 1>());  // up to 4 ways
+      case 2:
+        return f(std::integral_constant<U, 2>());  // 8
+      case 3:
+        return f(std::integral_constant<U, 3>());  // 12
+      case 4:
+        return f(std::integral_constant<U, 4>());  // 16
+      case 6:
+        return f(std::integral_constant<U, 6>());  // 24
+      case 8:
+        return f(std::integral_constant<U, 8>());  // 32
+      default:
+        return f(std::integral_constant<U, 0>());
+    }
+  }
   // Looks `line` up; on a hit moves it to the front of its set, on a miss installs it there
   // (evicting the least recently used). Returns true on a hit.
   bool Access(uint64_t line) {
-    const uint64_t tag = line + 1;  // 0 is an empty way (lines are below 2^63)
-    uint64_t* set = tags_.get() + (pow2_ ? (line & mask_) : (line % sets_)) * ways_;
-    if (set[0] == tag) return true;
-    for (uint32_t i = 1; i < ways_; ++i)
-      if (set[i] == tag) {
-        if (policy_ == Replacement::kLru) {
-          for (uint32_t j = i; j > 0; --j) set[j] = set[j - 1];
-          set[0] = tag;
-        }
-        return true;
-      }
-    if (policy_ == Replacement::kRandom) {  // an empty way, else one by xorshift64 (seeded)
-      for (uint32_t i = 0; i < ways_; ++i)
-        if (set[i] == 0) {
-          set[i] = tag;
-          victim_ = ~uint64_t{0};
-          return false;
-        }
-      rng_ ^= rng_ << 13, rng_ ^= rng_ >> 7, rng_ ^= rng_ << 17;
-      victim_ = set[rng_ % ways_] - 1;
-      set[rng_ % ways_] = tag;
+    return WithGroups(groups_, [&](auto g) {
+      if (Hit<decltype(g)::value>(line)) return true;
+      Install(SetOf(line), line + 1);
       return false;
-    }
-    victim_ = set[ways_ - 1] - 1;  // ~0 when the way was empty
-    for (uint32_t j = ways_ - 1; j > 0; --j) set[j] = set[j - 1];
-    set[0] = tag;
-    return false;
+    });
   }
+  // A hit does what Access does; a miss changes nothing and returns false. G: groups(), or 0.
+  template <uint32_t G>
+  bool Hit(uint64_t line) {
+    const Set s = SetOf(line);  // a set never touched: its signatures 0, never confirmed
+    const uint32_t w = Find<G>(s, line + 1);
+    if (w == kNone) return false;
+    if (policy_ == Replacement::kLru) s.stamp[w] = ++clock_;
+    return true;
+  }
+  // What Access does after a miss, for a caller whose Hit just returned false.
+  void InstallMissed(uint64_t line) { Install(SetOf(line), line + 1); }
   // The line the last missing Access evicted, ~0 if it filled an empty way.
   uint64_t victim() const { return victim_; }
   // Whether `line` is held (no change to the set's order).
-  bool Contains(uint64_t line) const {
-    const uint64_t* set = tags_.get() + (pow2_ ? (line & mask_) : (line % sets_)) * ways_;
-    for (uint32_t i = 0; i < ways_; ++i)
-      if (set[i] == line + 1) return true;
-    return false;
-  }
-  // Removes `line` if held (the ways after it move up, the last becomes empty): coherence and
+  bool Contains(uint64_t line) const { return Find<0>(SetOf(line), line + 1) != kNone; }
+  // Removes `line` if held (the ways after it move up in the recency list): coherence and
   // inclusion. Returns whether it was held.
-  bool Invalidate(uint64_t line) {
-    uint64_t* set = tags_.get() + (pow2_ ? (line & mask_) : (line % sets_)) * ways_;
-    for (uint32_t i = 0; i < ways_; ++i)
-      if (set[i] == line + 1) {
-        for (uint32_t j = i; j + 1 < ways_; ++j) set[j] = set[j + 1];
-        set[ways_ - 1] = 0;
-        return true;
-      }
-    return false;
-  }
+  bool Invalidate(uint64_t line);
   uint64_t sets() const { return sets_; }
   uint32_t ways() const { return ways_; }
 
  private:
+  static constexpr uint32_t kNone = ~0u;
+  struct Set {
+    uint32_t* sig;
+    uint64_t* tag;
+    uint64_t* stamp;
+  };
+  Set SetOf(uint64_t line) const {
+    uint8_t* b = block_.get() + (pow2_ ? (line & mask_) : (line % sets_)) * block_bytes_;
+    uint64_t* tag = reinterpret_cast<uint64_t*>(b + 4 * uint64_t{padded_});
+    return {reinterpret_cast<uint32_t*>(b), tag, tag + padded_};
+  }
+  // Bit i set where x[i] == key, for 4 * n values (n <= 8).
+  static uint32_t Matches(const uint32_t* x, uint32_t n, uint32_t key) {
+    uint32_t m = 0;
+#ifdef __SSE2__
+    const __m128i k = _mm_set1_epi32(static_cast<int>(key));
+    for (uint32_t g = 0; g < n; ++g) {
+      const __m128i v = _mm_loadu_si128(reinterpret_cast<const __m128i*>(x + 4 * g));
+      m |= static_cast<uint32_t>(_mm_movemask_ps(_mm_castsi128_ps(_mm_cmpeq_epi32(v, k))))
+           << (4 * g);
+    }
+#else
+    for (uint32_t i = 0; i < 4 * n; ++i) m |= static_cast<uint32_t>(x[i] == key) << i;
+#endif
+    return m;
+  }
+  // The way holding `tag`, or kNone: the ways whose signature matches, confirmed on the tag.
+  // G: the groups fixed at compile time (0: groups_, any count).
+  template <uint32_t G>
+  uint32_t Find(Set s, uint64_t tag) const {
+    const uint32_t groups = G ? G : groups_;
+    for (uint32_t g = 0; g < groups; g += 8)
+      for (uint32_t m =
+               Matches(s.sig + 4 * g, std::min(8u, groups - g), static_cast<uint32_t>(tag));
+           m; m &= m - 1) {
+        const uint32_t w = 4 * g + static_cast<uint32_t>(__builtin_ctz(m));
+        if (s.tag[w] == tag) return w;
+      }
+    return kNone;
+  }
+  void Install(Set s, uint64_t tag);  // a miss: the victim chosen, the tag in its way
+
   uint64_t sets_, mask_;
-  uint32_t ways_;
+  uint32_t ways_, padded_, groups_;  // padded_: ways rounded up to a multiple of 4, groups_ = /4
+  uint64_t block_bytes_;             // a set: padded_ signatures, tags and stamps
   bool pow2_;
   Replacement policy_;
+  uint64_t clock_ = 0;  // uses and installs so far (LRU, FIFO)
   uint64_t rng_ = 0x9E3779B97F4A7C15ull;
   uint64_t victim_ = ~uint64_t{0};
-  // sets x ways, most recently used first; 0 = empty. From calloc, whose large blocks are fresh
-  // zero pages: a level costs memory only for the sets a stream touches, so 256 streams of a few
-  // accesses each do not hold 256 copies of a 24 MiB L3's tags.
+  // The sets' blocks, from calloc, whose large blocks are fresh zero pages: a level costs memory
+  // only for the sets a stream touches, so 256 streams of a few accesses each do not hold 256
+  // copies of a 24 MiB L3's tags. All zero is a set of empty ways.
   struct Free {
-    void operator()(uint64_t* p) const { std::free(p); }
+    void operator()(void* p) const { std::free(p); }
   };
-  std::unique_ptr<uint64_t[], Free> tags_;
+  std::unique_ptr<uint8_t[], Free> block_;
 };
 
 // A hierarchy for one stream; all levels share one line size.
@@ -141,13 +207,33 @@ class CacheHierarchy {
 
   // The levels' tags are allocated at the first access: memory follows the streams that have
   // accesses, whatever thread count a trace's header announces.
-  void Access(uint64_t address, uint32_t size, bool write, bool fetch = false);
+  // first_missed: the caller's HitFirst has just missed this access (its first level is not
+  // looked up again).
+  void Access(uint64_t address, uint32_t size, bool write, bool fetch = false,
+              bool first_missed = false);
+  // The first level's lookup, when that is all an access may do there (one line, no I1, the
+  // levels made, no access of three lines so far): a hit counted as Access counts it (kHit), or
+  // a miss with nothing changed (kMissed: then Access(..., first_missed = true) goes on from it).
+  // Otherwise kNotLookedUp, and Access does it all. G: the first level's groups (FirstGroups()).
+  enum Lookup { kNotLookedUp, kMissed, kHit };
+  template <uint32_t G>
+  Lookup HitFirst(uint64_t address, uint32_t size) {
+    if (!fast_) return kNotLookedUp;
+    const uint64_t first = address >> shift_;
+    if (((address + (size ? size - 1 : 0)) >> shift_) != first) return kNotLookedUp;
+    if (!levels_.front().Hit<G>(first)) return kMissed;
+    ++accesses_;
+    ++stats_.front().accesses;
+    return kHit;
+  }
+  uint32_t FirstGroups() const { return (config_.empty() ? 0 : config_[0].ways + 3) / 4; }
   const std::vector<LevelStats>& stats() const { return stats_; }
   uint64_t distinct_lines() const { return seen_used_; }
   uint64_t accesses() const { return accesses_; }
 
  private:
   bool FirstTouch(uint64_t line);  // records the line; true if it was never seen
+  void Allocate();
 
   std::vector<CacheLevel> config_;
   uint32_t line_bytes_;
@@ -156,9 +242,17 @@ class CacheHierarchy {
   bool has_i1_ = false;  // without an I1 every access tries every level in turn
   std::vector<uint8_t> data_path_, fetch_path_;  // with one: level indices, in the order tried
   int shift_;
-  std::vector<uint64_t> seen_;  // open addressing set of touched lines (~0 = empty)
+  static constexpr uint64_t kWindowLines = uint64_t{1} << 22;  // a bit each: 512 KiB
+  struct FreeWords {
+    void operator()(uint64_t* p) const { std::free(p); }
+  };
+  std::unique_ptr<uint64_t[], FreeWords> window_;  // touched lines near the first, made then
+  uint64_t window_base_ = 0;
+  std::vector<uint64_t> seen_;  // the others: open addressing set (~0 = empty)
   uint64_t seen_used_ = 0;
   uint64_t accesses_ = 0;
+  bool wide_ = false;  // an access spanned three lines or more: record at every access
+  bool fast_ = false;  // HitFirst may answer: the levels made, no I1, not wide_
 };
 
 // Per thread stream, and per sweep (BeginSweep marks where each sweep starts). A stream's
@@ -170,13 +264,8 @@ class CacheSimulation : public AccessConsumer {
   void BeginSweep(int sweep) override;
   void Consume(const meshreuse::Access* a, size_t n) override {
     if (by_array_) return ConsumeByArray(a, n);
-    for (size_t i = 0; i < n;) {  // runs of one thread: its hierarchy looked up once a run
-      const uint8_t t = a[i].thread;
-      CacheHierarchy& h = streams_[t];
-      for (; i < n && a[i].thread == t; ++i)
-        h.Access(a[i].address, a[i].size, a[i].write,
-                 a[i].kind == static_cast<uint8_t>(AccessKind::kFetch));
-    }
+    SetAssociativeCache::WithGroups(first_groups_,
+                                    [&](auto g) { ConsumeIn<decltype(g)::value>(a, n); });
   }
   // Counts each level's lookups and misses per array too (Access::array: the smoother's arrays,
   // core/access.h, or kForeignArray): which data misses. From the next access on.
@@ -232,6 +321,20 @@ class CacheSimulation : public AccessConsumer {
   bool by_array_ = false;
   std::vector<std::vector<uint64_t>> per_array_;
   void ConsumeByArray(const meshreuse::Access* a, size_t n);
+  // The loop every access takes: a first-level hit inline, anything else through Access.
+  template <uint32_t G>
+  void ConsumeIn(const meshreuse::Access* a, size_t n) {
+    for (size_t i = 0; i < n;) {  // runs of one thread: its hierarchy looked up once a run
+      const uint8_t t = a[i].thread;
+      CacheHierarchy& h = streams_[t];
+      for (; i < n && a[i].thread == t; ++i)
+        if (const auto r = h.HitFirst<G>(a[i].address, a[i].size); r != CacheHierarchy::kHit)
+          h.Access(a[i].address, a[i].size, a[i].write,
+                   a[i].kind == static_cast<uint8_t>(AccessKind::kFetch),
+                   r == CacheHierarchy::kMissed);
+    }
+  }
+  uint32_t first_groups_ = 0;
   std::vector<LevelStats> StartOf(int thread, size_t s) const;
 };
 

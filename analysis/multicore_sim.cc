@@ -141,6 +141,8 @@ double ThreadStats::CyclesHigh(const Machine& m) const { return Cycles(*this, m,
 MulticoreSimulation::MulticoreSimulation(const Machine& m, Placement placement)
     : m_(m), placement_(placement), private_levels_(m.private_levels()) {
   shift_ = __builtin_ctz(m.line_bytes);
+  fast_ = private_levels_ > 0 && !m.levels[0].prefetch;
+  if (!m.levels.empty()) l1_groups_ = (m.levels[0].cache.ways + 3) / 4;
   cores_.resize(m.cores());
   sockets_.resize(m.sockets);
 }
@@ -160,6 +162,7 @@ void MulticoreSimulation::Resize(int threads) {
   stats_.assign(threads, ThreadStats());
   for (ThreadStats& s : stats_) s.levels.resize(m_.levels.size());
   for (auto& c : cores_) c.reset();
+  l1_.assign(cores_.size(), nullptr);
   for (auto& s : sockets_) s.reset();
   info_base_ = info_.canonical ? AddressCanonicalizer::kCanonicalBase >> shift_ : 0;
   dense_.reset(static_cast<LineInfo*>(std::calloc(kDenseLines, sizeof(LineInfo))));
@@ -177,6 +180,7 @@ MulticoreSimulation::Owner& MulticoreSimulation::CoreOwner(int core) {
       cores_[core]->caches.emplace_back(l.bytes, l.ways, m_.line_bytes, l.policy);
     }
     cores_[core]->prefetched.resize(private_levels_);
+    if (private_levels_ > 0) l1_[core] = &cores_[core]->caches.front();
   }
   return *cores_[core];
 }
@@ -228,6 +232,14 @@ int MulticoreSimulation::HomeSocket(uint64_t line) const {
   return static_cast<int>(((line << shift_) >> 12) % static_cast<uint64_t>(m_.sockets));
 }
 
+void MulticoreSimulation::WriteHit(int core, uint64_t line) {
+  ReserveSparse(1);  // (the line's record exists: it missed here before; this keeps Info's rule)
+  LineInfo& e = Info(line);
+  const int socket = core / m_.cores_per_socket;
+  if ((e.cores & ~(uint64_t{1} << core)) || (e.sockets & ~(1u << socket) & 0xFFu))
+    InvalidateOthers(core, e, line);
+}
+
 void MulticoreSimulation::BackInvalidate(int socket, uint64_t line) {
   for (int k = 0; k < m_.cores_per_socket; ++k) {
     const int core = socket * m_.cores_per_socket + k;
@@ -266,7 +278,8 @@ void MulticoreSimulation::InvalidateOthers(int core, LineInfo& e, uint64_t line)
   e.sockets = static_cast<uint8_t>(e.sockets & (1u << socket));
 }
 
-void MulticoreSimulation::Access(int thread, uint64_t address, uint32_t size, bool write) {
+void MulticoreSimulation::Access(int thread, uint64_t address, uint32_t size, bool write,
+                                 bool first_missed) {
   const int core = core_of_[thread];
   const int socket = core / m_.cores_per_socket;
   const uint64_t cbit = uint64_t{1} << core;
@@ -292,7 +305,9 @@ void MulticoreSimulation::Access(int thread, uint64_t address, uint32_t size, bo
     if (i == base) owner_cold = false;
     bool hit = true, coherence = false;
     for (uint64_t l = first; l <= last; ++l) {
-      if (cache.Access(l)) {
+      if (i == 0 && first_missed) {  // HitFirst has looked it up: one line, no prefetcher
+        cache.InstallMissed(l);
+      } else if (cache.Access(l)) {
         if (ml.prefetch && owner->prefetched[i - base].Erase(l)) {
           ++s.prefetch_hits;
           LineInfo& e = Info(l);  // its first demand touch: no longer new to the owner

@@ -64,10 +64,17 @@ class MulticoreSimulation : public AccessConsumer {
   void Begin(const StreamInfo& info) override;  // the threads: placed on cores
   void BeginSweep(int sweep) override;
   void Consume(const meshreuse::Access* a, size_t n) override {
-    for (size_t i = 0; i < n; ++i) Access(a[i].thread, a[i].address, a[i].size, a[i].write);
+    SetAssociativeCache::WithGroups(l1_groups_, [&](auto g) {
+      for (size_t i = 0; i < n; ++i) {
+        const auto r =
+            HitFirst<decltype(g)::value>(a[i].thread, a[i].address, a[i].size, a[i].write);
+        if (r != CacheHierarchy::kHit)
+          Access(a[i].thread, a[i].address, a[i].size, a[i].write, r == CacheHierarchy::kMissed);
+      }
+    });
   }
-  // By hand (tests), after Begin or Resize.
-  void Access(int thread, uint64_t address, uint32_t size, bool write);
+  // By hand (tests), after Begin or Resize. first_missed: HitFirst has just missed it.
+  void Access(int thread, uint64_t address, uint32_t size, bool write, bool first_missed = false);
   void Resize(int threads);
 
   int threads() const { return static_cast<int>(core_of_.size()); }
@@ -98,6 +105,24 @@ class MulticoreSimulation : public AccessConsumer {
     uint8_t sockets = 0, seen_sockets = 0, removed_sockets = 0;
   };
   LineInfo& Info(uint64_t line);  // never grows the table: ReserveSparse first
+  // The core's first (private) level looked up, when that is all an access may do there (one
+  // line, no prefetcher at that level): a hit counted as Access counts it and a write's coherence
+  // done (kHit), or a miss with nothing changed (kMissed); otherwise kNotLookedUp (as
+  // CacheHierarchy::HitFirst). G: that level's groups (WithGroups).
+  template <uint32_t G>
+  CacheHierarchy::Lookup HitFirst(int thread, uint64_t address, uint32_t size, bool write) {
+    if (!fast_) return CacheHierarchy::kNotLookedUp;
+    const int core = core_of_[thread];
+    SetAssociativeCache* l1 = l1_[core];
+    if (!l1) return CacheHierarchy::kNotLookedUp;
+    const uint64_t first = address >> shift_;
+    if (((address + (size ? size - 1 : 0)) >> shift_) != first) return CacheHierarchy::kNotLookedUp;
+    if (!l1->Hit<G>(first)) return CacheHierarchy::kMissed;
+    ++stats_[thread].levels.front().accesses;
+    if (write && coherent_) WriteHit(core, first);
+    return CacheHierarchy::kHit;
+  }
+  void WriteHit(int core, uint64_t line);  // coherence: the line held elsewhere is taken away
   void ReserveSparse(uint64_t more);
   void BackInvalidate(int socket, uint64_t line);
   void InvalidateOthers(int core, LineInfo& e, uint64_t line);
@@ -113,6 +138,9 @@ class MulticoreSimulation : public AccessConsumer {
   std::vector<ThreadStats> stats_;                       // per thread
   std::vector<std::unique_ptr<Owner>> cores_, sockets_;  // made at first use
   bool coherent_ = false;                                // coherence on and more than one thread
+  bool fast_ = false;       // HitFirst may answer: a private first level without a prefetcher
+  uint32_t l1_groups_ = 0;  // the first level's groups of ways
+  std::vector<SetAssociativeCache*> l1_;  // per core: its first level (null until made)
   // Line records: a direct array for the 2^22 lines from the stream's base (the canonical arrays
   // of a mesh of a few million vertices; calloc'ed, so pages cost memory only once touched), a
   // hash table beyond.

@@ -307,6 +307,87 @@ TEST(SetAssociativeCache, FifoAndRandomReplacement) {
   for (uint64_t l = 0; l < 4; ++l) EXPECT_TRUE(r.Access(l));  // four fit in four ways
 }
 
+// One level as valgrind's simulator and this class before issue 40 kept it: per set an array with
+// the most recent line first, a hit moving its line to the front (LRU), a miss evicting the last
+// way, an invalidation moving the ways after it up; random replacement by position, with the
+// same xorshift sequence. The fast level (signatures, tags and stamps) must agree access by access,
+// victim by victim, for every policy, with padding (ways not a multiple of four) and more than 32
+// ways (a second group of signatures), under lookups, invalidations and membership tests.
+struct ArrayLevel {
+  uint64_t sets;
+  uint32_t ways;
+  Replacement policy;
+  std::vector<std::vector<uint64_t>> s;  // tags = line + 1, 0 empty
+  uint64_t rng = 0x9E3779B97F4A7C15ull, victim = ~uint64_t{0};
+  ArrayLevel(uint64_t sets_, uint32_t ways_, Replacement p)
+      : sets(sets_), ways(ways_), policy(p), s(sets_, std::vector<uint64_t>(ways_, 0)) {}
+  bool Access(uint64_t line) {
+    std::vector<uint64_t>& set = s[line % sets];
+    const auto it = std::find(set.begin(), set.end(), line + 1);
+    if (it != set.end()) {
+      if (policy == Replacement::kLru) std::rotate(set.begin(), it, it + 1);
+      return true;
+    }
+    if (policy == Replacement::kRandom) {
+      const auto empty = std::find(set.begin(), set.end(), 0u);
+      if (empty != set.end()) {
+        *empty = line + 1;
+        victim = ~uint64_t{0};
+        return false;
+      }
+      rng ^= rng << 13, rng ^= rng >> 7, rng ^= rng << 17;
+      victim = set[rng % ways] - 1;
+      set[rng % ways] = line + 1;
+      return false;
+    }
+    victim = set.back() - 1;
+    std::rotate(set.begin(), set.end() - 1, set.end());
+    set.front() = line + 1;
+    return false;
+  }
+  bool Invalidate(uint64_t line) {
+    std::vector<uint64_t>& set = s[line % sets];
+    const auto it = std::find(set.begin(), set.end(), line + 1);
+    if (it == set.end()) return false;
+    std::rotate(it, it + 1, set.end());
+    set.back() = 0;
+    return true;
+  }
+};
+
+TEST(SetAssociativeCache, MatchesTheMostRecentFirstArrayOnRandomStreams) {
+  for (const Replacement p : {Replacement::kLru, Replacement::kFifo, Replacement::kRandom})
+    for (const uint32_t ways : {1u, 2u, 3u, 4u, 7u, 8u, 12u, 24u, 33u, 40u})
+      for (const uint64_t sets : {uint64_t{1}, uint64_t{3}, uint64_t{4}}) {
+        SetAssociativeCache fast(sets * ways * 64, ways, 64, p);
+        ArrayLevel ref(sets, ways, p);
+        std::mt19937_64 rng(ways * 131 + sets + static_cast<uint64_t>(p));
+        // Lines from a pool a little larger than the cache, some 2^32 lines apart (the same
+        // signature in one set: only the full tag tells them apart).
+        const uint64_t pool = sets * ways + ways / 2 + 2;
+        const std::string what = std::string(ReplacementName(p)) + " ways " + std::to_string(ways) +
+                                 " sets " + std::to_string(sets);
+        for (int i = 0; i < 4000; ++i) {
+          uint64_t line = rng() % pool;
+          if (rng() % 5 == 0) line += uint64_t{1} << 32;
+          const int op = static_cast<int>(rng() % 10);
+          if (op == 0) {
+            ASSERT_EQ(fast.Invalidate(line), ref.Invalidate(line)) << what << " step " << i;
+          } else if (op == 1) {
+            const bool held =
+                std::count(ref.s[line % sets].begin(), ref.s[line % sets].end(), line + 1) > 0;
+            ASSERT_EQ(fast.Contains(line), held) << what << " step " << i;
+          } else {
+            const bool hit = fast.Access(line);
+            ASSERT_EQ(hit, ref.Access(line)) << what << " step " << i;
+            if (!hit) {
+              ASSERT_EQ(fast.victim(), ref.victim) << what << " step " << i;
+            }
+          }
+        }
+      }
+}
+
 // A 30 x 24 synthetic mesh with a hole, and `sweeps` exact sweeps on two threads.
 Mesh SmallMesh(uint64_t seed) {
   SyntheticOptions so;

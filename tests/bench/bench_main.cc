@@ -17,8 +17,14 @@
 //   StreamingRatio           untraced and streamed sweeps alternated: their ratio
 //   Memory/<sweeps>          analyzer bytes per distinct element after 1 and 100 sweeps
 //   Multicore/P              the many-core simulator (westmere-ex, P threads compact, a visit
-//                            per turn) against today's per-stream simulator on the same streams,
-//                            alternated: ns per access and their ratio (the goal: <= 1.5)
+//                            per turn) and the per-stream one (one thread's streams), each beside
+//                            its code before issue 40 (tests/bench/before/) on the same streams,
+//                            in turn: ns per access, the speedups pair by pair (median, min, max;
+//                            the goal >= 3) and many-core over per-stream (the goal: <= 1.5)
+//   OneRank                  the distributed smoother at one rank (ordered, ori, on a thread
+//                            communicator) and the serial smoother with --quality per-sweep, the
+//                            same sweeps in turn: ms per sweep (sweeps 2-6, median) and their
+//                            ratio pair by pair (issue 40's goal: <= 1.15), the quality equal
 //   Build/fan/N, Build/grid/N  BuildMesh and RDR on a fan (one vertex in N triangles) and on a
 //                            grid of N triangles, alternated: ns per triangle, and fan/grid
 //                            (linear in any degree: the fan within 3x of the grid at 10^5 and
@@ -43,8 +49,13 @@
 #include "core/mesh_io.h"
 #include "core/orderings/registry.h"
 #include "core/quality.h"
+#include "core/ranks/halo_smoother.h"
+#include "core/ranks/partition.h"
+#include "core/ranks/rank_part.h"
+#include "core/ranks/thread_communicator.h"
 #include "core/smoother.h"
 #include "core/synthetic.h"
+#include "tests/bench/before/multicore_sim.h"
 #include "tracer/access_stream.h"
 #include "tracer/foreign_trace.h"
 
@@ -140,8 +151,8 @@ void TextbookFenwick(benchmark::State& state, std::string name) {
   state.SetItemsProcessed(state.iterations() * static_cast<int64_t>(trace.size()));
 }
 
-// The exact parallel analyzer (chunks and the streamed merge) against the serial one, interleaved: each
-// iteration analyses the trace serially and on `threads` threads (StreamAnalysis, histogram
+// The exact parallel analyzer (chunks and the streamed merge) against the serial one, interleaved:
+// each iteration analyses the trace serially and on `threads` threads (StreamAnalysis, histogram
 // included, one batch), and the ratio of the summed times is the speedup.
 void ParallelSpeedup(benchmark::State& state, std::string name) {
   const std::vector<uint64_t>& trace = Trace(name);
@@ -421,32 +432,138 @@ void Multicore(benchmark::State& state) {
   StreamMesh(m1, o, "m", "ori", one);  // today's case: one stream, private caches
   const Machine w = ParseMachine("westmere-ex");
   const CacheSpec spec = ParseCacheSpec("westmere-ex");
-  std::vector<double> multi, single;
+  // Each iteration times the old code (tests/bench/before/, as at 6436f89) and today's on the same
+  // streams, in turn; their counts must agree exactly.
+  std::vector<double> multi, single, multi_before, single_before;
+  auto ns = [](auto t0, auto t1, size_t n) {
+    return 1e9 * std::chrono::duration<double>(t1 - t0).count() / static_cast<double>(n);
+  };
+  auto feed = [](auto& sim, const std::vector<Access>& all) {
+    for (size_t i = 0; i < all.size(); i += 512)
+      sim.Consume(all.data() + i, std::min<size_t>(512, all.size() - i));
+  };
+  std::vector<double> scan;  // reading the stored stream alone: a floor under both
   for (auto _ : state) {
+    auto s0 = std::chrono::steady_clock::now();
+    uint64_t sum = 0;
+    for (const Access& x : keep.all) sum += x.address + x.size + x.thread + x.write;
+    benchmark::DoNotOptimize(sum);
+    scan.push_back(ns(s0, std::chrono::steady_clock::now(), keep.all.size()));
     auto t0 = std::chrono::steady_clock::now();
+    before::MulticoreSimulation a0(w, Placement::kCompact);
+    a0.Begin(keep.info);
+    feed(a0, keep.all);
+    auto t1 = std::chrono::steady_clock::now();
     MulticoreSimulation a(w, Placement::kCompact);
     a.Begin(keep.info);
-    for (size_t i = 0; i < keep.all.size(); i += 512)
-      a.Consume(keep.all.data() + i, std::min<size_t>(512, keep.all.size() - i));
-    auto t1 = std::chrono::steady_clock::now();
+    feed(a, keep.all);
+    auto t2 = std::chrono::steady_clock::now();
+    before::CacheSimulation b0(spec, 64);
+    b0.Begin(one.info);
+    feed(b0, one.all);
+    auto t3 = std::chrono::steady_clock::now();
     CacheSimulation b(spec, 64);
     b.Begin(one.info);
-    for (size_t i = 0; i < one.all.size(); i += 512)
-      b.Consume(one.all.data() + i, std::min<size_t>(512, one.all.size() - i));
-    auto t2 = std::chrono::steady_clock::now();
-    benchmark::DoNotOptimize(a.Stats(0).levels[0].misses + b.Stats(0)[0].misses);
-    multi.push_back(1e9 * std::chrono::duration<double>(t1 - t0).count() /
-                    static_cast<double>(keep.all.size()));
-    single.push_back(1e9 * std::chrono::duration<double>(t2 - t1).count() /
-                     static_cast<double>(one.all.size()));
+    feed(b, one.all);
+    auto t4 = std::chrono::steady_clock::now();
+    for (int t = 0; t < p; ++t)
+      for (size_t l = 0; l < w.levels.size(); ++l) {
+        const auto& x = a.Stats(t).levels[l];
+        const auto& y = a0.Stats(t).levels[l];
+        if (x.misses != y.misses || x.cold != y.cold || x.coherence != y.coherence ||
+            x.prefetch_hits != y.prefetch_hits || x.inclusion_victims != y.inclusion_victims)
+          return state.SkipWithError("the many-core simulator's counts changed");
+      }
+    for (size_t l = 0; l < spec.levels.size(); ++l)
+      if (b.Stats(0)[l].misses != b0.Stats(0)[l].misses ||
+          b.Stats(0)[l].cold != b0.Stats(0)[l].cold)
+        return state.SkipWithError("the per-stream simulator's counts changed");
+    multi_before.push_back(ns(t0, t1, keep.all.size()));
+    multi.push_back(ns(t1, t2, keep.all.size()));
+    single_before.push_back(ns(t2, t3, one.all.size()));
+    single.push_back(ns(t3, t4, one.all.size()));
   }
   auto median = [](std::vector<double> v) {
     std::sort(v.begin(), v.end());
     return v[v.size() / 2];
   };
+  auto ratios = [](const std::vector<double>& x, const std::vector<double>& y) {
+    std::vector<double> r;  // pair by pair: both of a pair ran in the same iteration
+    for (size_t i = 0; i < x.size(); ++i) r.push_back(x[i] / y[i]);
+    std::sort(r.begin(), r.end());
+    return r;
+  };
+  const std::vector<double> rm = ratios(multi_before, multi), rs = ratios(single_before, single);
   state.counters["multicore_ns_per_access"] = median(multi);
+  state.counters["multicore_before_ns"] = median(multi_before);
+  state.counters["multicore_speedup"] = rm[rm.size() / 2];
+  state.counters["multicore_speedup_min"] = rm.front();
+  state.counters["multicore_speedup_max"] = rm.back();
   state.counters["per_stream_ns_per_access"] = median(single);
+  state.counters["per_stream_before_ns"] = median(single_before);
+  state.counters["per_stream_speedup"] = rs[rs.size() / 2];
+  state.counters["per_stream_speedup_min"] = rs.front();
+  state.counters["per_stream_speedup_max"] = rs.back();
   state.counters["ratio"] = median(multi) / median(single);
+  state.counters["read_stream_ns"] = median(scan);
+  CacheSimulation b(spec, 64);  // the levels' miss rates of the one-thread stream
+  b.Begin(one.info);
+  feed(b, one.all);
+  for (size_t l = 0; l < spec.levels.size(); ++l)
+    state.counters[spec.levels[l].name + "_miss_rate"] = b.Stats(0)[l].MissRate();
+}
+
+// One rank of the distributed smoother against the serial lean sweep, alternated.
+void OneRank(benchmark::State& state) {
+  const Mesh& base = BaseMesh();
+  const std::vector<int32_t> part(static_cast<size_t>(base.NumVertices()), 0);
+  const PartitionStats ps = MeasurePartition(base, part, 1);
+  constexpr int kSweeps = 6;
+  HaloOptions ho;
+  ho.max_iters = kSweeps, ho.tol = -1;
+  SmoothOptions so = ExactSweeps(kSweeps);
+  so.quality = QualityMode::kPerSweep;
+  auto median = [](std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    return v[v.size() / 2];
+  };
+  std::vector<double> serial_ms, rank_ms, ratio, rank_q_ms, serial_q_ms;
+  std::vector<double> wq;  // the serial smoother's interleaved weights (smoother.h)
+  for (const double w : GlobalQualityWeights(base)) wq.push_back(w), wq.push_back(0.0);
+  NullSink null;
+  for (auto _ : state) {
+    Mesh m = base.Clone();
+    const SmoothResult sr = Smooth(m, so);
+    RankPart p = BuildRankPart(base, part, 1, ps.colour, 0);
+    HaloResult hr;
+    ThreadCommunicator::Run(1, [&](Communicator& tx) { hr = SmoothRankPart(p, ho, tx); });
+    std::vector<double> a, b;  // sweeps 2.. (the first pays for cold caches)
+    for (int k = 1; k < kSweeps; ++k) a.push_back(1e3 * sr.sweeps[k].seconds);
+    for (int k = 1; k < kSweeps; ++k) b.push_back(1e3 * hr.sweeps[k].seconds);
+    if (std::abs(hr.sweeps.back().quality - sr.sweeps.back().quality) > 1e-12)
+      return state.SkipWithError("one rank's quality differs from the serial smoother's");
+    serial_ms.push_back(median(a));
+    rank_ms.push_back(median(b));
+    // Where the difference is: each quality pass alone, on the same coordinates (the rank's
+    // exact fixed-point sum of its triangles; the serial smoother's vectorised double sum).
+    const auto c0 = std::chrono::steady_clock::now();
+    const FixedSum exact = PartQuality(p);
+    const auto c1 = std::chrono::steady_clock::now();
+    const double plain = smoother_detail::QualityPass(m, wq.data(), 1, null, nullptr);
+    const auto c2 = std::chrono::steady_clock::now();
+    benchmark::DoNotOptimize(exact.ToDouble() + plain);
+    rank_q_ms.push_back(1e3 * std::chrono::duration<double>(c1 - c0).count());
+    serial_q_ms.push_back(1e3 * std::chrono::duration<double>(c2 - c1).count());
+    ratio.push_back(rank_ms.back() / serial_ms.back());
+  }
+  std::sort(ratio.begin(), ratio.end());
+  state.counters["serial_ms_per_sweep"] = median(serial_ms);
+  state.counters["one_rank_ms_per_sweep"] = median(rank_ms);
+  state.counters["ratio"] = ratio[ratio.size() / 2];
+  state.counters["ratio_min"] = ratio.front();
+  state.counters["ratio_max"] = ratio.back();
+  state.counters["rank_quality_pass_ms"] = median(rank_q_ms);
+  state.counters["serial_quality_pass_ms"] = median(serial_q_ms);
 }
 
 // A fan: vertex 0 at the centre of n rim vertices, n triangles around it (its degree is n); or a
@@ -565,6 +682,7 @@ int main(int argc, char** argv) {
       ->Arg(32)
       ->Iterations(5)
       ->Unit(benchmark::kMillisecond);
+  benchmark::RegisterBenchmark("OneRank", OneRank)->Iterations(7)->Unit(benchmark::kMillisecond);
   benchmark::RegisterBenchmark("Build", Build)
       ->Arg(100000)
       ->Arg(1000000)

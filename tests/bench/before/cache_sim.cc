@@ -1,0 +1,292 @@
+// The simulators as they were at 6436f89 (before issue 40's rewrite), kept verbatim in namespace
+// before so that meshreuse_bench's Multicore/P times the old and the new code on the same streams
+// in one run (the issue's "before and after, side by side"). Benchmark-only: nothing links it but
+// meshreuse_bench. The original header comment follows.
+// Set-associative cache simulation; see cache_sim.h.
+#include "tests/bench/before/cache_sim.h"
+
+#include <algorithm>
+#include <iterator>
+#include <new>
+#include <stdexcept>
+#include <string>
+
+#include "core/error.h"
+#include "core/mix.h"
+#include "core/schedule.h"
+
+namespace meshreuse::before {
+
+namespace {
+constexpr uint64_t kEmpty = ~uint64_t{0};
+
+}  // namespace
+
+LevelStats& LevelStats::operator+=(const LevelStats& o) {
+  accesses += o.accesses;
+  misses += o.misses;
+  cold += o.cold;
+  read_misses += o.read_misses;
+  write_misses += o.write_misses;
+  fetch_misses += o.fetch_misses;
+  return *this;
+}
+
+LevelStats LevelStats::operator-(const LevelStats& o) const {
+  LevelStats d;
+  d.accesses = accesses - o.accesses;
+  d.misses = misses - o.misses;
+  d.cold = cold - o.cold;
+  d.read_misses = read_misses - o.read_misses;
+  d.write_misses = write_misses - o.write_misses;
+  d.fetch_misses = fetch_misses - o.fetch_misses;
+  return d;
+}
+
+void SetAssociativeCache::CheckGeometry(uint64_t bytes, uint32_t ways, uint32_t line_bytes) {
+  if (line_bytes == 0 || ways == 0 || bytes == 0 || bytes % (uint64_t{line_bytes} * ways) != 0)
+    throw UsageError("a cache of " + std::to_string(bytes) + " B cannot have " +
+                     std::to_string(ways) + " ways of " + std::to_string(line_bytes) +
+                     " B lines (the size must be a multiple of ways x line size)");
+}
+
+SetAssociativeCache::SetAssociativeCache(uint64_t bytes, uint32_t ways, uint32_t line_bytes,
+                                         Replacement policy)
+    : policy_(policy) {
+  CheckGeometry(bytes, ways, line_bytes);
+  sets_ = bytes / line_bytes / ways;
+  ways_ = ways;
+  pow2_ = (sets_ & (sets_ - 1)) == 0;
+  mask_ = sets_ - 1;
+  tags_.reset(static_cast<uint64_t*>(std::calloc(sets_ * ways_, sizeof(uint64_t))));
+  if (!tags_) throw std::bad_alloc();
+}
+
+CacheHierarchy::CacheHierarchy(const std::vector<CacheLevel>& levels, uint32_t line_bytes)
+    : config_(levels), line_bytes_(line_bytes) {
+  if (line_bytes == 0 || (line_bytes & (line_bytes - 1)))
+    throw UsageError("the line size must be a power of two");
+  shift_ = __builtin_ctz(line_bytes);
+  for (const CacheLevel& l : levels) {
+    if (l.ways == 0)
+      throw UsageError("cache level " + l.name + " needs its associativity for simulation, e.g. " +
+                       l.name + "=32K/8 (the fully associative model is `analyze`)");
+    SetAssociativeCache::CheckGeometry(l.bytes, l.ways, line_bytes);
+    if (l.bytes / line_bytes > SetAssociativeCache::kMaxLines)
+      throw UsageError("cache level " + l.name + ": " + std::to_string(l.bytes / line_bytes) +
+                       " lines of " + std::to_string(line_bytes) + " B; a level holds at most " +
+                       std::to_string(SetAssociativeCache::kMaxLines) + " lines");
+  }
+  int i1 = -1;
+  for (size_t i = 0; i < levels.size(); ++i) {
+    if (levels[i].name != "I1") {
+      data_path_.push_back(static_cast<uint8_t>(i));
+      continue;
+    }
+    if (i1 >= 0) throw UsageError("cache level I1 is named twice");
+    i1 = static_cast<int>(i);
+  }
+  if (i1 >= 0 && data_path_.empty())
+    throw UsageError(
+        "cache level I1 (the instruction cache) needs a data level beside it, e.g. "
+        "I1=32K/8,D1=32K/8,LL=8M/16");
+  has_i1_ = i1 >= 0;
+  if (has_i1_) fetch_path_.push_back(static_cast<uint8_t>(i1));
+  fetch_path_.insert(fetch_path_.end(), data_path_.begin() + (i1 >= 0 ? 1 : 0), data_path_.end());
+  stats_.resize(levels.size());
+  seen_.assign(16, kEmpty);
+}
+
+bool CacheHierarchy::FirstTouch(uint64_t line) {
+  if (2 * (seen_used_ + 1) > seen_.size()) {  // keep the load factor at most 1/2
+    std::vector<uint64_t> old(2 * seen_.size(), kEmpty);
+    old.swap(seen_);
+    const uint64_t m = seen_.size() - 1;
+    for (uint64_t x : old)
+      if (x != kEmpty) {
+        uint64_t i = Mix64(x) & m;
+        while (seen_[i] != kEmpty) i = (i + 1) & m;
+        seen_[i] = x;
+      }
+  }
+  const uint64_t m = seen_.size() - 1;
+  for (uint64_t i = Mix64(line) & m;; i = (i + 1) & m) {
+    if (seen_[i] == line) return false;
+    if (seen_[i] == kEmpty) {
+      seen_[i] = line;
+      ++seen_used_;
+      return true;
+    }
+  }
+}
+
+void CacheHierarchy::Access(uint64_t address, uint32_t size, bool write, bool fetch) {
+  ++accesses_;
+  if (levels_.size() != config_.size())
+    for (const CacheLevel& l : config_)
+      levels_.emplace_back(l.bytes, l.ways, line_bytes_, l.policy);
+  const uint64_t first = address >> shift_;
+  const uint64_t last = (address + (size ? size - 1 : 0)) >> shift_;
+  // A line number of ~0 would collide with the empty tag; it is the last line of the address
+  // space, which no real access reaches with lines of 2 bytes or more.
+  bool cold = FirstTouch(first);
+  if (last != first) cold = FirstTouch(last) || cold;
+  auto miss = [&](size_t i) {  // true if level i misses
+    LevelStats& s = stats_[i];
+    ++s.accesses;
+    bool hit = levels_[i].Access(first);
+    for (uint64_t l = first + 1; l <= last; ++l) hit = levels_[i].Access(l) && hit;
+    if (hit) return false;
+    ++s.misses;
+    if (cold) ++s.cold;
+    ++(fetch ? s.fetch_misses : write ? s.write_misses : s.read_misses);
+    return true;
+  };
+  if (has_i1_) {
+    for (const uint8_t i : fetch ? fetch_path_ : data_path_)
+      if (!miss(i)) return;
+    return;
+  }
+  for (size_t i = 0; i < levels_.size(); ++i)  // no I1: every access takes every level in turn
+    if (!miss(i)) return;
+}
+
+CacheSimulation::CacheSimulation(const CacheSpec& spec, uint32_t line_bytes)
+    : spec_(spec), line_bytes_(line_bytes) {
+  const CacheHierarchy check(spec.levels, line_bytes);  // the geometry, before any access
+}
+
+void CacheSimulation::Begin(const StreamInfo& info) {
+  info_ = info;
+  Resize(info.threads);
+}
+
+void CacheSimulation::Resize(int threads) {
+  if (threads < 1 || threads > kMaxThreads)
+    throw std::invalid_argument("streams must be 1.." + std::to_string(kMaxThreads));
+  streams_.clear();
+  for (int t = 0; t < threads; ++t) streams_.emplace_back(spec_.levels, line_bytes_);
+  marks_.assign(threads, {});
+  marked_.assign(threads, 0);
+  sweeps_ = 0;
+  per_array_.assign(by_array_ ? threads : 0, {});
+}
+
+void CacheSimulation::ConsumeByArray(const meshreuse::Access* a, size_t n) {
+  const size_t levels = spec_.levels.size();
+  std::vector<uint64_t> before(2 * levels);
+  for (size_t i = 0; i < n; ++i) {
+    const meshreuse::Access& x = a[i];
+    CacheHierarchy& h = streams_[x.thread];
+    std::vector<uint64_t>& c = per_array_[x.thread];
+    if (c.empty()) c.assign(256 * levels * 2, 0);
+    const std::vector<LevelStats>& st = h.stats();  // one entry per level, from construction
+    for (size_t l = 0; l < levels; ++l)
+      before[2 * l] = st[l].accesses, before[2 * l + 1] = st[l].misses;
+    h.Access(x.address, x.size, x.write, x.kind == static_cast<uint8_t>(AccessKind::kFetch));
+    uint64_t* row = c.data() + static_cast<size_t>(x.array) * levels * 2;
+    for (size_t l = 0; l < levels; ++l) {
+      row[2 * l] += st[l].accesses - before[2 * l];
+      row[2 * l + 1] += st[l].misses - before[2 * l + 1];
+    }
+  }
+}
+
+uint64_t CacheSimulation::ArrayAccesses(int thread, int array, size_t level) const {
+  if (thread < 0 || static_cast<size_t>(thread) >= per_array_.size() || per_array_[thread].empty())
+    return 0;
+  return per_array_[thread][(static_cast<size_t>(array) * spec_.levels.size() + level) * 2];
+}
+
+uint64_t CacheSimulation::ArrayMisses(int thread, int array, size_t level) const {
+  if (thread < 0 || static_cast<size_t>(thread) >= per_array_.size() || per_array_[thread].empty())
+    return 0;
+  return per_array_[thread][(static_cast<size_t>(array) * spec_.levels.size() + level) * 2 + 1];
+}
+
+std::vector<std::string> CacheSimulation::ArrayColumns() {
+  return {"input", "ordering", "thread", "array", "level", "accesses", "misses", "miss_share"};
+}
+
+void CacheSimulation::AppendArrayRows(Table* t) const {
+  const std::vector<CacheLevel>& levels = spec_.levels;
+  for (int th = 0; th < static_cast<int>(per_array_.size()); ++th) {
+    if (per_array_[th].empty()) continue;
+    const std::vector<LevelStats>& total = Stats(th);
+    for (int a = 0; a < 256; ++a) {
+      uint64_t any = 0;  // an I1 sees no data, the data levels no fetches: any level counts
+      for (size_t l = 0; l < levels.size(); ++l) any += ArrayAccesses(th, a, l);
+      if (any == 0) continue;
+      const std::string name = a == Access::kForeignArray ? "trace"
+                               : a < kArrays              ? ArrayName(static_cast<Array>(a))
+                                                          : std::to_string(a);
+      for (size_t l = 0; l < levels.size(); ++l) {
+        const uint64_t m = ArrayMisses(th, a, l);
+        const uint64_t all = total[l].misses;
+        t->AddRow({info_.input, info_.ordering, std::to_string(th), name, levels[l].name,
+                   std::to_string(ArrayAccesses(th, a, l)), std::to_string(m),
+                   ExactNumber(all ? static_cast<double>(m) / static_cast<double>(all) : 0.0)});
+      }
+    }
+  }
+}
+
+void CacheSimulation::BeginSweep(int) {
+  for (size_t t = 0; t < streams_.size(); ++t)
+    if (streams_[t].accesses() != marked_[t]) {
+      marks_[t].push_back({sweeps_, streams_[t].stats()});
+      marked_[t] = streams_[t].accesses();
+    }
+  ++sweeps_;
+}
+
+std::vector<LevelStats> CacheSimulation::StartOf(int thread, size_t s) const {
+  const std::vector<Mark>& m = marks_[thread];
+  const auto it =
+      std::upper_bound(m.begin(), m.end(), s, [](size_t v, const Mark& x) { return v < x.sweep; });
+  return it == m.begin() ? std::vector<LevelStats>(spec_.levels.size()) : std::prev(it)->stats;
+}
+
+std::vector<LevelStats> CacheSimulation::SweepStats(int thread, size_t s) const {
+  if (s >= sweeps_) throw std::out_of_range("no such sweep");
+  const std::vector<LevelStats> start = StartOf(thread, s);
+  const std::vector<LevelStats> end =
+      s + 1 < sweeps_ ? StartOf(thread, s + 1) : streams_[thread].stats();
+  std::vector<LevelStats> d(start.size());
+  for (size_t i = 0; i < d.size(); ++i) d[i] = end[i] - start[i];
+  return d;
+}
+
+std::vector<std::string> CacheSimulation::Columns() {
+  return {"input", "ordering", "thread",    "sweep",       "level",        "size",
+          "ways",  "sets",     "policy",    "accesses",    "hits",         "misses",
+          "cold",  "excess",   "miss_rate", "read_misses", "write_misses", "fetch_misses"};
+}
+
+void CacheSimulation::AppendRows(Table* t, bool per_sweep) const {
+  const std::vector<CacheLevel>& levels = spec_.levels;
+  for (int th = 0; th < threads(); ++th) {
+    std::vector<std::pair<std::string, std::vector<LevelStats>>> parts = {{"all", Stats(th)}};
+    if (per_sweep) {  // the sweeps with accesses: each is the sweep before a mark, or the last
+      const std::vector<Mark>& m = marks_[th];
+      for (const Mark& x : m)
+        if (x.sweep > 0) parts.emplace_back(std::to_string(x.sweep), SweepStats(th, x.sweep - 1));
+      if (sweeps_ > 0 && streams_[th].accesses() != marked_[th])
+        parts.emplace_back(std::to_string(sweeps_), SweepStats(th, sweeps_ - 1));
+    }
+    for (const auto& [sweep, st] : parts)
+      for (size_t i = 0; i < levels.size(); ++i) {
+        const LevelStats& s = st[i];
+        t->AddRow({info_.input, info_.ordering, std::to_string(th), sweep, levels[i].name,
+                   std::to_string(levels[i].bytes), std::to_string(levels[i].ways),
+                   std::to_string(levels[i].bytes / line_bytes_ / levels[i].ways),
+                   ReplacementName(levels[i].policy), std::to_string(s.accesses),
+                   std::to_string(s.accesses - s.misses), std::to_string(s.misses),
+                   std::to_string(s.cold), std::to_string(s.misses - s.cold),
+                   ExactNumber(s.MissRate()), std::to_string(s.read_misses),
+                   std::to_string(s.write_misses), std::to_string(s.fetch_misses)});
+      }
+  }
+}
+
+}  // namespace meshreuse::before

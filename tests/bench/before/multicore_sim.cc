@@ -1,0 +1,447 @@
+// The simulators as they were at 6436f89 (before issue 40's rewrite), kept verbatim in namespace
+// before so that meshreuse_bench's Multicore/P times the old and the new code on the same streams
+// in one run (the issue's "before and after, side by side"). Benchmark-only: nothing links it but
+// meshreuse_bench. The original header comment follows.
+// Many-core cache simulation; see multicore_sim.h.
+#include "tests/bench/before/multicore_sim.h"
+
+#include <algorithm>
+#include <cstdlib>
+#include <new>
+#include <stdexcept>
+#include <string>
+
+#include "core/access.h"
+#include "core/error.h"
+#include "core/schedule.h"
+
+namespace meshreuse::before {
+
+namespace {
+
+uint64_t Mix(uint64_t x) {  // SplitMix64's finaliser: consecutive lines spread over the table
+  x ^= x >> 30;
+  x *= 0xbf58476d1ce4e5b9ull;
+  x ^= x >> 27;
+  x *= 0x94d049bb133111ebull;
+  return x ^ (x >> 31);
+}
+
+// A set of lines (all below 2^63): open addressing, linear probing, tombstones for erase.
+class LineSet {
+ public:
+  bool Insert(uint64_t line) {  // true if it was new
+    if (4 * (used_ + 1) > 3 * slots_.size()) Grow();
+    const uint64_t m = slots_.size() - 1;
+    uint64_t* tomb = nullptr;
+    for (uint64_t i = Mix(line) & m;; i = (i + 1) & m) {
+      if (slots_[i] == line) return false;
+      if (slots_[i] == kTomb && !tomb) tomb = &slots_[i];
+      if (slots_[i] == kEmpty) {
+        if (tomb) {
+          *tomb = line;
+        } else {
+          slots_[i] = line;
+          ++used_;
+        }
+        ++size_;
+        return true;
+      }
+    }
+  }
+  bool Erase(uint64_t line) {
+    if (size_ == 0) return false;
+    const uint64_t m = slots_.size() - 1;
+    for (uint64_t i = Mix(line) & m;; i = (i + 1) & m) {
+      if (slots_[i] == line) {
+        slots_[i] = kTomb;
+        --size_;
+        return true;
+      }
+      if (slots_[i] == kEmpty) return false;
+    }
+  }
+  bool Contains(uint64_t line) const {
+    if (size_ == 0) return false;
+    const uint64_t m = slots_.size() - 1;
+    for (uint64_t i = Mix(line) & m;; i = (i + 1) & m) {
+      if (slots_[i] == line) return true;
+      if (slots_[i] == kEmpty) return false;
+    }
+  }
+
+ private:
+  static constexpr uint64_t kEmpty = ~uint64_t{0}, kTomb = ~uint64_t{0} - 1;
+  void Grow() {
+    std::vector<uint64_t> old(std::max<size_t>(16, 2 * slots_.size()), kEmpty);
+    old.swap(slots_);
+    used_ = size_ = 0;
+    for (uint64_t x : old)
+      if (x != kEmpty && x != kTomb) Insert(x);
+  }
+  std::vector<uint64_t> slots_ = std::vector<uint64_t>(16, kEmpty);
+  uint64_t used_ = 0, size_ = 0;  // slots not empty (tombstones too); lines held
+};
+
+}  // namespace
+
+struct MulticoreSimulation::Owner {
+  std::vector<SetAssociativeCache> caches;  // the levels it holds, in the machine's order
+  std::vector<LineSet> prefetched;          // per level: brought by the prefetcher, not demanded
+};
+
+CoreLevelStats& CoreLevelStats::operator+=(const CoreLevelStats& o) {
+  accesses += o.accesses, misses += o.misses, cold += o.cold, read_misses += o.read_misses;
+  write_misses += o.write_misses, coherence += o.coherence;
+  inclusion_victims += o.inclusion_victims, prefetches += o.prefetches;
+  prefetch_hits += o.prefetch_hits;
+  return *this;
+}
+
+CoreLevelStats CoreLevelStats::operator-(const CoreLevelStats& o) const {
+  CoreLevelStats d;
+  d.accesses = accesses - o.accesses, d.misses = misses - o.misses, d.cold = cold - o.cold;
+  d.read_misses = read_misses - o.read_misses, d.write_misses = write_misses - o.write_misses;
+  d.coherence = coherence - o.coherence;
+  d.inclusion_victims = inclusion_victims - o.inclusion_victims;
+  d.prefetches = prefetches - o.prefetches, d.prefetch_hits = prefetch_hits - o.prefetch_hits;
+  return d;
+}
+
+ThreadStats& ThreadStats::operator+=(const ThreadStats& o) {
+  if (levels.size() < o.levels.size()) levels.resize(o.levels.size());
+  for (size_t i = 0; i < o.levels.size(); ++i) levels[i] += o.levels[i];
+  memory_local += o.memory_local, memory_remote += o.memory_remote;
+  invalidations_sent += o.invalidations_sent;
+  return *this;
+}
+
+ThreadStats ThreadStats::operator-(const ThreadStats& o) const {
+  ThreadStats d;
+  d.levels.resize(levels.size());
+  for (size_t i = 0; i < levels.size(); ++i)
+    d.levels[i] = i < o.levels.size() ? levels[i] - o.levels[i] : levels[i];
+  d.memory_local = memory_local - o.memory_local;
+  d.memory_remote = memory_remote - o.memory_remote;
+  d.invalidations_sent = invalidations_sent - o.invalidations_sent;
+  return d;
+}
+
+namespace {
+double Cycles(const ThreadStats& s, const Machine& m, bool high) {
+  double c = 0;
+  for (size_t i = 0; i < s.levels.size() && i < m.levels.size(); ++i) {
+    const LatencyRange& l = m.levels[i].cache.latency;
+    c += static_cast<double>(s.levels[i].accesses) * (high ? l.high : l.low);
+  }
+  return c + static_cast<double>(s.memory_local) * m.memory_local +
+         static_cast<double>(s.memory_remote) * m.memory_remote;
+}
+}  // namespace
+
+double ThreadStats::CyclesLow(const Machine& m) const { return Cycles(*this, m, false); }
+double ThreadStats::CyclesHigh(const Machine& m) const { return Cycles(*this, m, true); }
+
+MulticoreSimulation::MulticoreSimulation(const Machine& m, Placement placement)
+    : m_(m), placement_(placement), private_levels_(m.private_levels()) {
+  shift_ = __builtin_ctz(m.line_bytes);
+  cores_.resize(m.cores());
+  sockets_.resize(m.sockets);
+}
+
+MulticoreSimulation::~MulticoreSimulation() = default;
+
+void MulticoreSimulation::Begin(const StreamInfo& info) {
+  info_ = info;
+  Resize(info.threads);
+}
+
+void MulticoreSimulation::Resize(int threads) {
+  core_of_ = PlaceThreads(m_, threads, placement_);
+  coherent_ = m_.coherence && threads > 1;  // one core has no one to invalidate
+  thread_of_core_.assign(m_.cores(), -1);
+  for (int t = 0; t < threads; ++t) thread_of_core_[core_of_[t]] = t;
+  stats_.assign(threads, ThreadStats());
+  for (ThreadStats& s : stats_) s.levels.resize(m_.levels.size());
+  for (auto& c : cores_) c.reset();
+  for (auto& s : sockets_) s.reset();
+  info_base_ = info_.canonical ? AddressCanonicalizer::kCanonicalBase >> shift_ : 0;
+  dense_.reset(static_cast<LineInfo*>(std::calloc(kDenseLines, sizeof(LineInfo))));
+  if (!dense_) throw std::bad_alloc();
+  sparse_.assign(1024, SparseEntry());
+  sparse_used_ = 0;
+  marks_.clear();
+}
+
+MulticoreSimulation::Owner& MulticoreSimulation::CoreOwner(int core) {
+  if (!cores_[core]) {
+    cores_[core] = std::make_unique<Owner>();
+    for (size_t i = 0; i < private_levels_; ++i) {
+      const CacheLevel& l = m_.levels[i].cache;
+      cores_[core]->caches.emplace_back(l.bytes, l.ways, m_.line_bytes, l.policy);
+    }
+    cores_[core]->prefetched.resize(private_levels_);
+  }
+  return *cores_[core];
+}
+
+MulticoreSimulation::Owner& MulticoreSimulation::SocketOwner(int socket) {
+  if (!sockets_[socket]) {
+    sockets_[socket] = std::make_unique<Owner>();
+    for (size_t i = private_levels_; i < m_.levels.size(); ++i) {
+      const CacheLevel& l = m_.levels[i].cache;
+      sockets_[socket]->caches.emplace_back(l.bytes, l.ways, m_.line_bytes, l.policy);
+    }
+    sockets_[socket]->prefetched.resize(m_.levels.size() - private_levels_);
+  }
+  return *sockets_[socket];
+}
+
+// Room for `more` new sparse records without growing: Access takes references to records and
+// then looks more up (a straddling access's second line, prefetched lines: at most 4 new), so the
+// table grows before, never while a reference is held.
+void MulticoreSimulation::ReserveSparse(uint64_t more) {
+  if (4 * (sparse_used_ + more) > 3 * sparse_.size()) {
+    std::vector<SparseEntry> old(2 * sparse_.size());
+    old.swap(sparse_);
+    const uint64_t m = sparse_.size() - 1;
+    for (const SparseEntry& e : old)
+      if (e.line != ~uint64_t{0}) {
+        uint64_t i = Mix(e.line) & m;
+        while (sparse_[i].line != ~uint64_t{0}) i = (i + 1) & m;
+        sparse_[i] = e;
+      }
+  }
+}
+
+MulticoreSimulation::LineInfo& MulticoreSimulation::Info(uint64_t line) {
+  if (line - info_base_ < kDenseLines) return dense_.get()[line - info_base_];
+  const uint64_t m = sparse_.size() - 1;
+  for (uint64_t i = Mix(line) & m;; i = (i + 1) & m) {
+    if (sparse_[i].line == line) return sparse_[i].info;
+    if (sparse_[i].line == ~uint64_t{0}) {
+      sparse_[i].line = line;
+      ++sparse_used_;
+      return sparse_[i].info;
+    }
+  }
+}
+
+int MulticoreSimulation::HomeSocket(uint64_t line) const {
+  if (m_.numa == Numa::kFirstTouch) return 0;
+  return static_cast<int>(((line << shift_) >> 12) % static_cast<uint64_t>(m_.sockets));
+}
+
+void MulticoreSimulation::BackInvalidate(int socket, uint64_t line) {
+  for (int k = 0; k < m_.cores_per_socket; ++k) {
+    const int core = socket * m_.cores_per_socket + k;
+    if (!cores_[core]) continue;
+    Owner& o = *cores_[core];
+    const int t = thread_of_core_[core];
+    for (size_t i = 0; i < private_levels_; ++i)
+      if (o.caches[i].Invalidate(line) && t >= 0) ++stats_[t].levels[i].inclusion_victims;
+  }
+}
+
+void MulticoreSimulation::InvalidateOthers(int core, LineInfo& e, uint64_t line) {
+  const int socket = core / m_.cores_per_socket;
+  const int t = thread_of_core_[core];
+  for (uint64_t others = e.cores & ~(uint64_t{1} << core); others; others &= others - 1) {
+    const int d = __builtin_ctzll(others);
+    Owner& o = *cores_[d];
+    bool held = false;
+    for (size_t i = 0; i < private_levels_; ++i) held = o.caches[i].Invalidate(line) || held;
+    if (held) {
+      e.removed_cores |= uint64_t{1} << d;
+      ++stats_[t].invalidations_sent;
+    }
+  }
+  for (unsigned others = e.sockets & ~(1u << socket) & 0xFFu; others; others &= others - 1) {
+    const int s = __builtin_ctz(others);
+    Owner& o = *sockets_[s];
+    bool held = false;
+    for (SetAssociativeCache& c : o.caches) held = c.Invalidate(line) || held;
+    if (held) {
+      e.removed_sockets = static_cast<uint8_t>(e.removed_sockets | (1u << s));
+      ++stats_[t].invalidations_sent;
+    }
+  }
+  e.cores &= uint64_t{1} << core;
+  e.sockets = static_cast<uint8_t>(e.sockets & (1u << socket));
+}
+
+void MulticoreSimulation::Access(int thread, uint64_t address, uint32_t size, bool write) {
+  const int core = core_of_[thread];
+  const int socket = core / m_.cores_per_socket;
+  const uint64_t cbit = uint64_t{1} << core;
+  const uint8_t sbit = static_cast<uint8_t>(1u << socket);
+  ThreadStats& st = stats_[thread];
+  const uint64_t first = address >> shift_;
+  const uint64_t last = (address + (size ? size - 1 : 0)) >> shift_;
+  ReserveSparse(2 * (last - first + 1));
+  // Per line of the access (two when it straddles), its record, fetched at its first miss.
+  LineInfo* info[2] = {nullptr, nullptr};
+  bool missed_private = false, missed_shared = false;
+  Owner* owner = &CoreOwner(core);
+  size_t base = 0;          // the owner's first level
+  bool owner_cold = false;  // a line of this access is new to the owner (decided at its first)
+  bool missed_all = true;
+  for (size_t i = 0; i < m_.levels.size(); ++i) {
+    const bool shared = i >= private_levels_;
+    if (i == private_levels_) owner = &SocketOwner(socket), base = private_levels_;
+    const MachineLevel& ml = m_.levels[i];
+    SetAssociativeCache& cache = owner->caches[i - base];
+    CoreLevelStats& s = st.levels[i];
+    ++s.accesses;
+    if (i == base) owner_cold = false;
+    bool hit = true, coherence = false;
+    for (uint64_t l = first; l <= last; ++l) {
+      if (cache.Access(l)) {
+        if (ml.prefetch && owner->prefetched[i - base].Erase(l)) {
+          ++s.prefetch_hits;
+          LineInfo& e = Info(l);  // its first demand touch: no longer new to the owner
+          if (shared)
+            e.seen_sockets |= sbit;
+          else
+            e.seen_cores |= cbit;
+        }
+        continue;
+      }
+      hit = false;
+      LineInfo*& slot = info[l - first];
+      if (!slot) slot = &Info(l);
+      LineInfo& e = *slot;
+      if (!shared) {
+        missed_private = true;
+        if (i == base) owner_cold = !(e.seen_cores & cbit) || owner_cold, e.seen_cores |= cbit;
+        coherence = (e.removed_cores & cbit) || coherence;
+        e.cores |= cbit;
+      } else {
+        missed_shared = true;
+        if (i == base) owner_cold = !(e.seen_sockets & sbit) || owner_cold, e.seen_sockets |= sbit;
+        coherence = (e.removed_sockets & sbit) || coherence;
+        e.sockets |= sbit;
+        if (ml.inclusive && cache.victim() != ~uint64_t{0}) BackInvalidate(socket, cache.victim());
+      }
+      if (ml.prefetch) owner->prefetched[i - base].Erase(l);
+      if (ml.prefetch && !cache.Contains(l + 1)) {
+        // The next line, into this level and every level below that lacks it (the request goes
+        // down the hierarchy like a miss, so an inclusive level holds what is above it); not a
+        // demand access anywhere, counted once, here.
+        owner->prefetched[i - base].Insert(l + 1);
+        ++s.prefetches;
+        LineInfo& n = Info(l + 1);  // held now: coherence must find it; not taken away
+        for (size_t j = i; j < m_.levels.size(); ++j) {
+          const bool sj = j >= private_levels_;
+          Owner& oj = sj ? SocketOwner(socket) : CoreOwner(core);
+          SetAssociativeCache& cj = oj.caches[sj ? j - private_levels_ : j];
+          if (cj.Contains(l + 1)) continue;
+          cj.Access(l + 1);
+          if (!sj) {
+            n.cores |= cbit;
+            n.removed_cores &= ~cbit;
+          } else {
+            n.sockets |= sbit;
+            n.removed_sockets = static_cast<uint8_t>(n.removed_sockets & ~sbit);
+            if (m_.levels[j].inclusive && cj.victim() != ~uint64_t{0})
+              BackInvalidate(socket, cj.victim());
+          }
+        }
+      }
+    }
+    if (hit) {
+      missed_all = false;
+      break;
+    }
+    ++s.misses;
+    if (owner_cold) ++s.cold;
+    if (coherence) ++s.coherence;
+    ++(write ? s.write_misses : s.read_misses);
+  }
+  for (LineInfo* e : info)  // the lines coherence took are back where this access missed
+    if (e) {
+      if (missed_private) e->removed_cores &= ~cbit;
+      if (missed_shared) e->removed_sockets = static_cast<uint8_t>(e->removed_sockets & ~sbit);
+    }
+  if (missed_all) {
+    const bool local = HomeSocket(first) == socket;
+    ++(local ? st.memory_local : st.memory_remote);
+  }
+  if (write && coherent_)
+    for (uint64_t l = first; l <= last; ++l) {
+      LineInfo& e = info[l - first] ? *info[l - first] : Info(l);
+      if ((e.cores & ~cbit) || (e.sockets & ~sbit)) InvalidateOthers(core, e, l);
+    }
+}
+
+void MulticoreSimulation::BeginSweep(int) { marks_.push_back(stats_); }
+
+ThreadStats MulticoreSimulation::SweepStats(int thread, size_t s) const {
+  const ThreadStats& start = marks_.at(s)[thread];
+  const ThreadStats& end = s + 1 < marks_.size() ? marks_[s + 1][thread] : stats_[thread];
+  return end - start;
+}
+
+std::vector<std::string> MulticoreSimulation::Columns() {
+  return {"input",
+          "ordering",
+          "machine",
+          "placement",
+          "threads",
+          "thread",
+          "core",
+          "socket",
+          "sweep",
+          "level",
+          "accesses",
+          "hits",
+          "misses",
+          "cold",
+          "coherence",
+          "inclusion_victims",
+          "prefetches",
+          "prefetch_hits",
+          "read_misses",
+          "write_misses",
+          "cycles_at_low_latency",
+          "cycles_at_high_latency"};
+}
+
+void MulticoreSimulation::AppendRows(Table* t, bool last_sweep_only) const {
+  const bool last = last_sweep_only && !marks_.empty();
+  for (int th = 0; th < threads(); ++th) {
+    const ThreadStats s = last ? SweepStats(th, marks_.size() - 1) : stats_[th];
+    const std::vector<std::string> key = {info_.input,
+                                          info_.ordering,
+                                          m_.name,
+                                          PlacementName(placement_),
+                                          std::to_string(threads()),
+                                          std::to_string(th),
+                                          std::to_string(core_of_[th]),
+                                          std::to_string(core_of_[th] / m_.cores_per_socket),
+                                          last ? std::to_string(marks_.size()) : "all"};
+    auto row = [&](const std::string& level, std::vector<std::string> cells) {
+      std::vector<std::string> r = key;
+      r.push_back(level);
+      r.insert(r.end(), cells.begin(), cells.end());
+      t->AddRow(r);
+    };
+    for (size_t i = 0; i < m_.levels.size(); ++i) {
+      const CoreLevelStats& l = s.levels[i];
+      row(m_.levels[i].cache.name,
+          {std::to_string(l.accesses), std::to_string(l.accesses - l.misses),
+           std::to_string(l.misses), std::to_string(l.cold), std::to_string(l.coherence),
+           std::to_string(l.inclusion_victims), std::to_string(l.prefetches),
+           std::to_string(l.prefetch_hits), std::to_string(l.read_misses),
+           std::to_string(l.write_misses), "", ""});
+    }
+    row("memory_local",
+        {std::to_string(s.memory_local), "", "", "", "", "", "", "", "", "", "", ""});
+    row("memory_remote",
+        {std::to_string(s.memory_remote), "", "", "", "", "", "", "", "", "", "", ""});
+    row("total", {std::to_string(s.levels.empty() ? 0 : s.levels[0].accesses), "", "", "", "", "",
+                  "", "", "", "", ExactNumber(s.CyclesLow(m_)), ExactNumber(s.CyclesHigh(m_))});
+  }
+}
+
+}  // namespace meshreuse::before

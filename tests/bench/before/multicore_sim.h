@@ -1,0 +1,138 @@
+// The simulators as they were at 6436f89 (before issue 40's rewrite), kept verbatim in namespace
+// before so that meshreuse_bench's Multicore/P times the old and the new code on the same streams
+// in one run (the issue's "before and after, side by side"). Benchmark-only: nothing links it but
+// meshreuse_bench. The original header comment follows.
+// Many-core cache simulation: the thread streams of a traced run on a machine (machine.h), each
+// thread on a core by a placement, every access through its core's private levels, then its
+// socket's shared levels, then memory (local or remote by the machine's NUMA rule). The rules of
+// one level are cache_sim.h's (set-associative, LRU by default, write-allocate, a straddling access
+// is one access and misses if either line misses, a level sees the misses of the one above), and
+// beyond them:
+//   - inclusion: an inclusive shared level that evicts a line removes it from the private levels
+//     of its socket's cores (each removal from a core that held it is an inclusion victim);
+//   - write-invalidate coherence (the machine may turn it off): a write by a core removes the
+//     line from every other core's private levels and every other socket's shared levels; the
+//     next miss of a core or socket on a line so removed is a coherence miss (counted apart,
+//     within the misses). Which cores may hold a line is kept in a directory;
+//   - a next-line prefetcher at a level: a demand miss of line L there brings L+1 into that level
+//     and into every level below it that lacks it (as a request down the hierarchy would; an
+//     inclusive level keeps holding what is above it), not counted as an access anywhere; a later
+//     demand hit on a prefetched line that no demand had touched is a prefetch hit, a miss the
+//     prefetcher hid;
+//   - cold misses are first touches by the level's owner (a core for a private level, a socket for
+//     a shared one), so a machine of private levels gives today's per-stream numbers exactly.
+// The interleaving of the streams is the traced run's (SmoothOptions::interleave): accesses are
+// simulated in the order they arrive. Per thread: counts per level, memory accesses local and
+// remote, and the cost model's cycles (every access pays the first level's latency, a miss at
+// level i the latency of level i+1, memory's after the last: the paper's equation 2 per thread);
+// time(p) is the slowest thread's.
+#pragma once
+
+#include <cstdint>
+#include <cstdlib>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "tests/bench/before/cache_sim.h"
+#include "analysis/machine.h"
+#include "core/table.h"
+#include "tracer/access_stream.h"
+
+namespace meshreuse::before {
+
+struct CoreLevelStats {
+  uint64_t accesses = 0, misses = 0, cold = 0, read_misses = 0, write_misses = 0;
+  uint64_t coherence = 0;          // misses on lines another core's write removed
+  uint64_t inclusion_victims = 0;  // private levels: lines removed by the shared level's eviction
+  uint64_t prefetches = 0, prefetch_hits = 0;
+  CoreLevelStats& operator+=(const CoreLevelStats& o);
+  CoreLevelStats operator-(const CoreLevelStats& o) const;
+};
+
+struct ThreadStats {
+  std::vector<CoreLevelStats> levels;
+  uint64_t memory_local = 0, memory_remote = 0;
+  uint64_t invalidations_sent = 0;  // lines this core's writes removed elsewhere
+  ThreadStats& operator+=(const ThreadStats& o);
+  ThreadStats operator-(const ThreadStats& o) const;
+  // The cost model's cycles for these counts on `m` (low and high ends of the latency ranges).
+  double CyclesLow(const Machine& m) const;
+  double CyclesHigh(const Machine& m) const;
+};
+
+class MulticoreSimulation : public AccessConsumer {
+ public:
+  MulticoreSimulation(const Machine& m, Placement placement);
+  ~MulticoreSimulation() override;
+  void Begin(const StreamInfo& info) override;  // the threads: placed on cores
+  void BeginSweep(int sweep) override;
+  void Consume(const meshreuse::Access* a, size_t n) override {
+    for (size_t i = 0; i < n; ++i) Access(a[i].thread, a[i].address, a[i].size, a[i].write);
+  }
+  // By hand (tests), after Begin or Resize.
+  void Access(int thread, uint64_t address, uint32_t size, bool write);
+  void Resize(int threads);
+
+  int threads() const { return static_cast<int>(core_of_.size()); }
+  int CoreOf(int thread) const { return core_of_[thread]; }
+  const ThreadStats& Stats(int thread) const { return stats_[thread]; }
+  // Thread `thread`'s counts in sweep s (0-based, in BeginSweep order; empty before any).
+  ThreadStats SweepStats(int thread, size_t s) const;
+  size_t sweeps() const { return marks_.size(); }
+  const Machine& machine() const { return m_; }
+  Placement placement() const { return placement_; }
+
+  // input, ordering, machine, placement, threads, thread, core, socket, sweep ("all", or the
+  // 1-based last sweep with last_sweep), level (the machine's, then memory_local, memory_remote),
+  // accesses, hits, misses, cold, coherence, inclusion_victims, prefetches, prefetch_hits,
+  // read_misses, write_misses, cycles_low, cycles_high (on the level "all" rows only... see .cc).
+  static std::vector<std::string> Columns();
+  void AppendRows(Table* t, bool last_sweep_only) const;
+
+ private:
+  struct Owner;  // a core's or a socket's caches, seen lines and coherence-removed lines
+  Owner& CoreOwner(int core);
+  Owner& SocketOwner(int socket);
+  // Per line: the cores and sockets that may hold it (a superset: the directory coherence
+  // consults), those that have missed on it (first touches: cold misses), and those coherence
+  // took it from (their next miss on it is a coherence miss).
+  struct LineInfo {
+    uint64_t cores = 0, seen_cores = 0, removed_cores = 0;
+    uint8_t sockets = 0, seen_sockets = 0, removed_sockets = 0;
+  };
+  LineInfo& Info(uint64_t line);  // never grows the table: ReserveSparse first
+  void ReserveSparse(uint64_t more);
+  void BackInvalidate(int socket, uint64_t line);
+  void InvalidateOthers(int core, LineInfo& e, uint64_t line);
+  int HomeSocket(uint64_t line) const;
+
+  Machine m_;
+  Placement placement_;
+  StreamInfo info_;
+  int shift_;
+  size_t private_levels_;
+  std::vector<int> core_of_;                             // per thread
+  std::vector<int> thread_of_core_;                      // -1: idle core
+  std::vector<ThreadStats> stats_;                       // per thread
+  std::vector<std::unique_ptr<Owner>> cores_, sockets_;  // made at first use
+  bool coherent_ = false;                                // coherence on and more than one thread
+  // Line records: a direct array for the 2^22 lines from the stream's base (the canonical arrays
+  // of a mesh of a few million vertices; calloc'ed, so pages cost memory only once touched), a
+  // hash table beyond.
+  static constexpr uint64_t kDenseLines = uint64_t{1} << 22;
+  struct Free {
+    void operator()(void* p) const { std::free(p); }
+  };
+  std::unique_ptr<LineInfo, Free> dense_;
+  uint64_t info_base_ = 0;
+  struct SparseEntry {
+    uint64_t line = ~uint64_t{0};
+    LineInfo info;
+  };
+  std::vector<SparseEntry> sparse_;
+  uint64_t sparse_used_ = 0;
+  std::vector<std::vector<ThreadStats>> marks_;  // [sweep][thread] at its start
+};
+
+}  // namespace meshreuse::before
