@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <functional>
 #include <thread>
 
 #include "analysis/machine.h"
@@ -98,6 +99,10 @@ int ReportCommand(const Args& args) {
       "a compare.csv from `meshreuse compare --out DIR` run on another machine (a 16-core "
       "node, say): its speedups drawn beside the many-core prediction (the machine named from "
       "the run.json beside it)")(
+      "prior-phases", po::value(&cfg.prior_phases),
+      "a file of phases that ran before the report, one \"NAME WALL_SECONDS CPU_SECONDS\" per "
+      "line (scripts/reproduce.sh: its setup, build and meshing): put first in the README's and "
+      "run.json's breakdown of where the time went")(
       "no-figures",
       "do not draw the figures (otherwise drawn at the end by scripts/plot_report.py under "
       "Debian's /usr/bin/python3 with matplotlib)")("out", po::value(&out_dir)->required(),
@@ -142,8 +147,17 @@ int ReportCommand(const Args& args) {
   const bool existed = std::filesystem::exists(out_dir);
   PrepareOutDir(out_dir, /*must_be_empty=*/true);
   const Progress progress(vm.count("quiet") > 0);
+  // The figures are drawn inside the run, once its tables and data are written, so their time is
+  // in the breakdown; a failure to draw them is a note, not an error.
+  std::string why_no_figures;
+  std::function<void()> figures;
+  if (vm.count("no-figures") == 0)
+    figures = [&] {
+      progress.Say("drawing the figures (scripts/plot_report.py)");
+      why_no_figures = DrawFigures(out_dir, vm.count("quiet") > 0);
+    };
   try {
-    std::printf("%s\n", RunReport(cfg, out_dir, MakeLog(progress)).c_str());
+    std::printf("%s\n", RunReport(cfg, out_dir, MakeLog(progress), figures).c_str());
   } catch (...) {
     // A failed run leaves the folder as it found it (absent, or empty), so a retry can use it.
     std::error_code ec;
@@ -155,16 +169,12 @@ int ReportCommand(const Args& args) {
     }
     throw;
   }
-  if (vm.count("no-figures") == 0) {
-    progress.Say("drawing the figures (scripts/plot_report.py)");
-    const std::string why = DrawFigures(out_dir, vm.count("quiet") > 0);
-    if (!why.empty())
-      std::fprintf(stderr,
-                   "meshreuse: note: the figures were not drawn (%s): draw them with "
-                   "/usr/bin/python3 scripts/plot_report.py %s once Debian's python3-matplotlib "
-                   "is installed (scripts/setup.sh --with-plots)\n",
-                   why.c_str(), out_dir.c_str());
-  }
+  if (!why_no_figures.empty())
+    std::fprintf(stderr,
+                 "meshreuse: note: the figures were not drawn (%s): draw them with "
+                 "/usr/bin/python3 scripts/plot_report.py %s once Debian's python3-matplotlib "
+                 "is installed (scripts/setup.sh --with-plots)\n",
+                 why_no_figures.c_str(), out_dir.c_str());
   return 0;
 }
 

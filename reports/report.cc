@@ -21,9 +21,11 @@
 #include "core/orderings/registry.h"
 #include "core/output_file.h"
 #include "core/schedule.h"
+#include "core/smoother.h"
 #include "reports/inputs.h"
 #include "reports/output.h"
 #include "reports/paper.h"
+#include "reports/phase_times.h"
 #include "reports/pictures.h"
 #include "reports/report_outputs.h"
 #include "reports/run_info.h"
@@ -170,7 +172,7 @@ void MeasureReuse(const ReportConfig& cfg, const ReportMesh& mr, const Mesh& bas
 // side by side on the host's cores (each its own stream and simulators, results kept in job
 // order, so nothing depends on the schedule); one ordering's layout in memory at a time.
 void MeasureMachine(const ReportConfig& cfg, const ReportMesh& mr, const Mesh& base, ReportData* d,
-                    Steps& steps) {
+                    Steps& steps, PhaseTimes* phases) {
   Machine machine = ParseMachine(cfg.machine);
   Machine prefetching = machine;
   SetPrefetch(&prefetching, cfg.prefetch_levels);
@@ -185,6 +187,8 @@ void MeasureMachine(const ReportConfig& cfg, const ReportMesh& mr, const Mesh& b
     for (int j = 0; j < jobs; ++j) {
       try {
         const int threads = cfg.machine_threads[j];
+        const auto w0 = Clock::now();
+        const double c0 = ThreadCpuSeconds();
 #pragma omp critical(meshreuse_report_steps)
         steps.Say("many-core simulation: " + mr.name + " " + label + ", " +
                   std::to_string(threads) + " thread(s) on " + machine.name);
@@ -204,8 +208,13 @@ void MeasureMachine(const ReportConfig& cfg, const ReportMesh& mr, const Mesh& b
         if (threads == 1 && !cfg.prefetch_levels.empty())
           runs[j].push_back(CollectMachineRun(pre, mr.name, label, true));
 #pragma omp critical(meshreuse_report_steps)
-        steps.Done(mr.weight * Steps::kMachine * cfg.machine_sweeps *
-                   static_cast<double>(to.size()));
+        {
+          steps.Done(mr.weight * Steps::kMachine * cfg.machine_sweeps *
+                     static_cast<double>(to.size()));
+          phases->Add("many-core simulation, " + std::to_string(threads) + " thread(s)",
+                      std::chrono::duration<double>(Clock::now() - w0).count(),
+                      ThreadCpuSeconds() - c0, "inside the one above");
+        }
       } catch (...) {
 #pragma omp critical(meshreuse_report_failed)
         if (!failed) failed = std::current_exception();
@@ -219,12 +228,16 @@ void MeasureMachine(const ReportConfig& cfg, const ReportMesh& mr, const Mesh& b
 
 // Everything but the timing, for one mesh: Table 1's counts, the reuse analyses, Table 3.
 void MeasureMesh(const ReportConfig& cfg, ReportMesh& mr, ReportData* d, Steps& steps,
-                 const Log& log) {
-  const Mesh base = LoadMesh(mr.path, log);
+                 const Log& log, PhaseTimes* phases) {
+  const Mesh base = [&] {
+    const PhaseTimes::Scope t = phases->Time("reading the meshes");
+    return LoadMesh(mr.path, log);
+  }();
   mr.vertices = base.NumVertices(), mr.triangles = base.NumTriangles();
   mr.interior = static_cast<int32_t>(base.interior.size());
   AppendMeshDrawing(mr.name, base, &d->drawing);
   if (mr.name == cfg.figure1_mesh) {
+    const PhaseTimes::Scope t = phases->Time("smoothing picture");
     steps.Say("smoothing picture: " + mr.name);
     AppendSmoothingWindow(mr.name, base, cfg.smooth, &d->smoothing);
   }
@@ -233,6 +246,7 @@ void MeasureMesh(const ReportConfig& cfg, ReportMesh& mr, ReportData* d, Steps& 
     for (const std::string& o : cfg.figure1_orderings)
       if (!Contains(specs, o)) specs.push_back(o);
   for (const std::string& spec : specs) {
+    const PhaseTimes::Scope t = phases->Time("reuse distances (Table 2, Figure 1, profiles)");
     const bool in_tables = Contains(cfg.orderings, spec);
     MeasureReuse(cfg, mr, base, spec, ParseOrderingSpec(spec).label, in_tables, d, steps);
   }
@@ -248,6 +262,7 @@ void MeasureMesh(const ReportConfig& cfg, ReportMesh& mr, ReportData* d, Steps& 
   steps.Say("misses (Table 3): " + mr.name + ", " + std::to_string(cfg.orderings.size()) +
             " orderings x " + std::to_string(cfg.validate_sweeps) + " traced sweeps");
   for (size_t k = 0; k < cfg.orderings.size(); ++k) {  // one at a time: progress moves with each
+    const PhaseTimes::Scope t = phases->Time("misses (Table 3: the simulator, the model)");
     vc.orderings = {ForMesh(cfg.orderings[k], mr.name)};
     std::vector<OrderingValidation> vs =
         RunValidation(base, vc, [&](const std::string& s) { steps.Say(s); });
@@ -255,7 +270,10 @@ void MeasureMesh(const ReportConfig& cfg, ReportMesh& mr, ReportData* d, Steps& 
     d->validation.push_back(std::move(vs[0]));
     steps.Done(mr.weight * Steps::kSimulation * cfg.validate_sweeps);
   }
-  if (!cfg.machine.empty()) MeasureMachine(cfg, mr, base, d, steps);
+  if (!cfg.machine.empty()) {
+    const PhaseTimes::Scope t = phases->Time("many-core simulation (" + cfg.machine + ")");
+    MeasureMachine(cfg, mr, base, d, steps, phases);
+  }
 }
 
 // One run's noise into the report's: the loads at the first start and the last end, the lowest
@@ -572,8 +590,11 @@ ReportConfig WithFigureMeshes(ReportConfig cfg, std::vector<std::string>* notes)
   return cfg;
 }
 
-std::string RunReport(const ReportConfig& in_cfg, const std::string& out_dir, const Log& log) {
+std::string RunReport(const ReportConfig& in_cfg, const std::string& out_dir, const Log& log,
+                      const std::function<void()>& figures) {
   CheckReportConfig(in_cfg);
+  PhaseTimes phases;  // the prior ones first: a bad file fails before the long work
+  if (!in_cfg.prior_phases.empty()) phases.AddFile(in_cfg.prior_phases);
   std::vector<std::string> notes;
   const ReportConfig cfg = WithFigureMeshes(in_cfg, &notes);
   for (const std::string& n : notes) log.Say(n);
@@ -595,7 +616,7 @@ std::string RunReport(const ReportConfig& in_cfg, const std::string& out_dir, co
     d.meshes.push_back({p, MeshShortName(p), ec ? 1.0 : static_cast<double>(bytes)});
   }
   Steps steps(log, cfg, d.meshes);
-  for (ReportMesh& m : d.meshes) MeasureMesh(cfg, m, &d, steps, log);
+  for (ReportMesh& m : d.meshes) MeasureMesh(cfg, m, &d, steps, log, &phases);
   // Figure 1's panels in the configured order (the paper's: random, ORI, BFS).
   auto rank = [&](const Figure1Data& f) {
     for (size_t i = 0; i < cfg.figure1_orderings.size(); ++i)
@@ -606,19 +627,32 @@ std::string RunReport(const ReportConfig& in_cfg, const std::string& out_dir, co
                    [&](const Figure1Data& a, const Figure1Data& b) { return rank(a) < rank(b); });
   CounterSources(cfg, &d);
   if (cfg.timing) {
+    const PhaseTimes::Scope t = phases.Time("timed runs (Table 4, speedups)");
     MeasureTiming(cfg, &d, steps);
     if (const std::string busy = BusyNote(d); !busy.empty()) log.Warn(busy);
   }
 
   std::string sections;
-  const Json manifest = WriteOutputs(d, out_dir, &sections);
-  WriteTextFile(out_dir + "/manifest.json", RunJsonText(manifest));
-  WriteTextFile(
-      out_dir + "/run.json",
-      RunJsonText(RunJson("meshreuse report", cfg.command_line, ConfigurationJson(cfg),
-                          Json{{"counters", d.counters},
-                               {"noise", cfg.timing ? d.noise.ToJson() : Json(nullptr)}})));
-  WriteTextFile(out_dir + "/README.md", Readme(d, manifest, sections));
+  const Json manifest = [&] {
+    const PhaseTimes::Scope t = phases.Time("tables and figure data");
+    return WriteOutputs(d, out_dir, &sections);
+  }();
+  WriteTextFile(out_dir + "/manifest.json", RunJsonText(manifest));  // what the figures read
+  if (figures) {
+    const PhaseTimes::Scope t = phases.Time("figures (scripts/plot_report.py)");
+    figures();
+  }
+  WriteTextFile(out_dir + "/run.json",
+                RunJsonText(RunJson("meshreuse report", cfg.command_line, ConfigurationJson(cfg),
+                                    Json{{"counters", d.counters},
+                                         {"noise", cfg.timing ? d.noise.ToJson() : Json(nullptr)},
+                                         {"phases", phases.ToJson()}})));
+  WriteTextFile(out_dir + "/README.md",
+                Readme(d, manifest, sections) +
+                    "\n## Where the time went\n\nWall and CPU seconds per phase of this run "
+                    "(CPU: every thread of the process; the many-core configurations run two at "
+                    "a time, each shown with its own thread's CPU):\n\n" +
+                    phases.Markdown());
   steps.Say("tables written to " + out_dir);
   return out_dir + "/README.md";
 }

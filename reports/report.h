@@ -19,6 +19,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -64,6 +65,9 @@ struct ReportConfig : TimingOptions {
   // A compare.csv measured elsewhere (reports/measured.h), drawn beside the many-core
   // prediction; "": none.
   std::string measured;
+  // Phases before the report (scripts/reproduce.sh: setup, build, meshing), "NAME WALL CPU" per
+  // line: put first in the README's and run.json's breakdown of the time.
+  std::string prior_phases;
 };
 
 // Throws UsageError for a configuration that cannot run (no mesh, no ordering, a bad thread
@@ -74,6 +78,9 @@ void CheckReportConfig(const ReportConfig& cfg);
 // data/*, run.json, manifest.json, README.md. Returns the README's path. Files are written
 // atomically. `log` gets "step, mesh, ordering, elapsed, remaining" lines and the readers'
 // warnings.
-std::string RunReport(const ReportConfig& cfg, const std::string& out_dir, const Log& log);
+// `figures`, when given, draws the figures once the tables and data are written (timed with the
+// rest, before README.md and run.json).
+std::string RunReport(const ReportConfig& cfg, const std::string& out_dir, const Log& log,
+                      const std::function<void()>& figures = {});
 
 }  // namespace meshreuse

@@ -73,22 +73,36 @@ while [[ ! -e $probe && $probe == */* ]]; do probe=${probe%/*}; done
 [[ ! -e $probe || -d $probe ]] || lib_die "cannot write to '$out': '$probe' is not a folder"
 [[ ! -e $out ]] || [[ -d $out && -z $(ls -A "$out") ]] || lib_die "'$out' exists and is not empty: give a new --out"
 
-bash scripts/setup.sh --with-plots
-say "building Release in build/release"
+# Where the time goes before the report (which adds its own phases): "NAME WALL CPU" lines for
+# its --prior-phases, from bash's `time` (wall, and user + system CPU, the children's included).
 mkdir -p build
-cmake -S . -B build/release -DCMAKE_BUILD_TYPE=Release >build/release.configure.log 2>&1 ||
-  { cat build/release.configure.log; exit 1; }
-# The program alone (not the tests and benchmarks), its progress shown: a first build takes minutes.
-if [[ -n $quiet ]]; then
-  cmake --build build/release --target meshreuse -j"$(nproc 2>/dev/null || echo 2)" \
-    >build/release.build.log 2>&1 || { tail -n 40 build/release.build.log; exit 1; }
-else
-  if ! cmake --build build/release --target meshreuse -j"$(nproc 2>/dev/null || echo 2)" 2>&1 |
-      tee build/release.build.log | { grep --line-buffered -E '^\[ *[0-9]+%\]' >&2 || true; }; then
-    tail -n 40 build/release.build.log
-    exit 1
+phases=build/reproduce-phases.txt
+: >"$phases"
+phase() {  # phase NAME COMMAND...: runs it in this shell, its time appended to $phases
+  local name=$1 TIMEFORMAT="%R %U %S"
+  shift
+  { time "$@" 2>&3; } 3>&2 2>"$phases.time" || return
+  awk -v n="$name" 'NF == 3 { printf "%s %s %.3f\n", n, $1, $2 + $3 }' "$phases.time" >>"$phases"
+}
+build_release() {
+  say "building Release in build/release"
+  cmake -S . -B build/release -DCMAKE_BUILD_TYPE=Release >build/release.configure.log 2>&1 ||
+    { cat build/release.configure.log; exit 1; }
+  # The program alone (not the tests and benchmarks), its progress shown: a first build takes
+  # minutes.
+  if [[ -n $quiet ]]; then
+    cmake --build build/release --target meshreuse -j"$(nproc 2>/dev/null || echo 2)" \
+      >build/release.build.log 2>&1 || { tail -n 40 build/release.build.log; exit 1; }
+  else
+    if ! cmake --build build/release --target meshreuse -j"$(nproc 2>/dev/null || echo 2)" 2>&1 |
+        tee build/release.build.log | { grep --line-buffered -E '^\[ *[0-9]+%\]' >&2 || true; }; then
+      tail -n 40 build/release.build.log
+      exit 1
+    fi
   fi
-fi
+}
+phase setup bash scripts/setup.sh --with-plots
+phase build build_release
 bin=build/release/cli/meshreuse
 "$bin" orderings --check "$orderings"  # exit 2 with the reason for an unknown one
 
@@ -109,22 +123,27 @@ mesh() {  # mesh SHAPE VERTICES DIR -> prints the .node path (meshed once, cache
 files=()
 args=(--orderings "$orderings" --repeat "$repeat" --label "$mode")
 [[ -n $threads ]] && args+=(--threads "$threads")
-case $mode in
-  full)
-    IFS=, read -r -a names <<<"$shapes"
-    for s in "${names[@]}"; do files+=("$(mesh "$s" "$vertices" "out/meshes/${vertices:-paper}")"); done ;;
-  quick)
-    IFS=, read -r -a names <<<"$shapes"
-    for s in "${names[@]}"; do files+=("$(mesh "$s" "${vertices:-20000}" "out/meshes/${vertices:-20000}")"); done
-    args+=(--machine-threads 1,4,32) ;;
-  scale)
-    for v in 10000 100000 1000000 10000000; do files+=("$(mesh ocean "$v" out/meshes/scale "ocean-$v")"); done
-    [[ -n $threads ]] || args+=(--threads 1)
-    args+=(--figure1-mesh none --profile-mesh none --machine none) ;;
-esac
+make_meshes() {
+  case $mode in
+    full)
+      IFS=, read -r -a names <<<"$shapes"
+      for s in "${names[@]}"; do files+=("$(mesh "$s" "$vertices" "out/meshes/${vertices:-paper}")"); done ;;
+    quick)
+      IFS=, read -r -a names <<<"$shapes"
+      for s in "${names[@]}"; do files+=("$(mesh "$s" "${vertices:-20000}" "out/meshes/${vertices:-20000}")"); done
+      args+=(--machine-threads 1,4,32) ;;
+    scale)
+      for v in 10000 100000 1000000 10000000; do files+=("$(mesh ocean "$v" out/meshes/scale "ocean-$v")"); done
+      [[ -n $threads ]] || args+=(--threads 1)
+      args+=(--figure1-mesh none --profile-mesh none --machine none) ;;
+  esac
+}
+phase meshing make_meshes
 
 say "running meshreuse report on ${#files[@]} meshes ($mode): orderings $orderings -> $out"
-"$bin" report "${files[@]}" "${args[@]}" --out "$out" $quiet >/dev/null  # it draws the figures too
+# It draws the figures too, and writes where the time went (these phases and its own) into
+# README.md and run.json.
+"$bin" report "${files[@]}" "${args[@]}" --prior-phases "$phases" --out "$out" $quiet >/dev/null
 elapsed=$(($(date +%s) - start))
 say "done in $((elapsed / 60)) min $((elapsed % 60)) s"
 

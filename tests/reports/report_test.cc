@@ -6,12 +6,14 @@
 
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <fstream>
 #include <limits>
 #include <map>
 #include <sstream>
 
 #include "analysis/reference.h"
+#include "core/error.h"
 #include "core/orderings/registry.h"
 #include "reports/run_info.h"
 #include "reports/simulate.h"
@@ -182,6 +184,42 @@ TEST(Report, SameConfigurationSameNonTimingFilesByteForByte) {
         "data/profile.csv", "data/misses.csv", "data/capacities.csv"})
     EXPECT_EQ(Slurp(out / ("a/" + std::string(file))), Slurp(out / ("b/" + std::string(file))))
         << file;
+}
+
+// Where the time went: the prior phases first, the report's own after, the figures' callback
+// timed before README.md and run.json are written; the same phases in both.
+TEST(Report, WhereTheTimeWentInTheReadmeAndRunJson) {
+  Fixture f;
+  testing::TempDir out;
+  const std::string prior = out / "phases.txt";
+  std::ofstream(prior) << "setup 0.5 0.25\nbuild 100 190\nmeshing 2 2\n";
+  ReportConfig c = f.Config();
+  c.prior_phases = prior;
+  bool drawn = false;
+  RunReport(c, out / "r", {}, [&] {
+    drawn = true;
+    EXPECT_TRUE(std::filesystem::exists(out / "r/manifest.json"));  // what the figures read
+    EXPECT_FALSE(std::filesystem::exists(out / "r/README.md"));
+  });
+  EXPECT_TRUE(drawn);
+  const Json run = Json::parse(Slurp(out / "r/run.json"));
+  std::vector<std::string> names;
+  for (const Json& p : run.at("phases")) names.push_back(p.at("phase"));
+  ASSERT_GE(names.size(), 6u);
+  EXPECT_EQ(std::vector<std::string>(names.begin(), names.begin() + 3),
+            (std::vector<std::string>{"setup", "build", "meshing"}));
+  for (const char* want :
+       {"reading the meshes", "reuse distances (Table 2, Figure 1, profiles)",
+        "misses (Table 3: the simulator, the model)", "many-core simulation (westmere-ex)",
+        "many-core simulation, 32 thread(s)", "tables and figure data",
+        "figures (scripts/plot_report.py)"})
+    EXPECT_NE(std::find(names.begin(), names.end(), want), names.end()) << want;
+  const std::string readme = Slurp(out / "r/README.md");
+  EXPECT_NE(readme.find("## Where the time went"), std::string::npos);
+  EXPECT_NE(readme.find("| build | 100.0 s | 190.0 s | 1.90 |"), std::string::npos);
+  c.prior_phases = out / "absent.txt";  // refused before any work, the folder left empty
+  EXPECT_THROW(RunReport(c, out / "s", {}), InputError);
+  EXPECT_FALSE(std::filesystem::exists(out / "s/README.md"));
 }
 
 TEST(Report, PapersValuesOnlyBesideAMeshOfThePapersSize) {
