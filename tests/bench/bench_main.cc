@@ -64,6 +64,20 @@ namespace {
 
 std::string g_mesh = "out/meshes/paper/carabiner.node";
 
+double Median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  return v.empty() ? 0.0 : v[v.size() / 2];
+}
+
+// Ratios measured pair by pair (both of a pair in the same iteration): their median as `name`,
+// and their range as name_min, name_max.
+void PutRatios(benchmark::State& state, const std::string& name, std::vector<double> r) {
+  std::sort(r.begin(), r.end());
+  state.counters[name] = r[r.size() / 2];
+  state.counters[name + "_min"] = r.front();
+  state.counters[name + "_max"] = r.back();
+}
+
 const Mesh& BaseMesh() {
   static const Mesh m = [] {
     if (std::filesystem::exists(g_mesh)) return ReadMesh(g_mesh);
@@ -280,18 +294,14 @@ void ApplyRatio(benchmark::State& state) {
     auto t3 = Clock::now();
     into.push_back(ms(t0, t1)), fresh.push_back(ms(t1, t2)), rebuild.push_back(ms(t2, t3));
   }
-  auto median = [](std::vector<double> v) {
-    std::sort(v.begin(), v.end());
-    return v.empty() ? 0.0 : v[v.size() / 2];
-  };
-  const double s = median(sweep);
+  const double s = Median(sweep);
   state.counters["sweep_ms"] = s;
-  state.counters["into_ms"] = median(into);
-  state.counters["fresh_ms"] = median(fresh);
-  state.counters["rebuild_ms"] = median(rebuild);
-  state.counters["into_sweeps"] = median(into) / s;
-  state.counters["fresh_sweeps"] = median(fresh) / s;
-  state.counters["rebuild_sweeps"] = median(rebuild) / s;
+  state.counters["into_ms"] = Median(into);
+  state.counters["fresh_ms"] = Median(fresh);
+  state.counters["rebuild_ms"] = Median(rebuild);
+  state.counters["into_sweeps"] = Median(into) / s;
+  state.counters["fresh_sweeps"] = Median(fresh) / s;
+  state.counters["rebuild_sweeps"] = Median(rebuild) / s;
 }
 
 // A Gauss-Seidel sweep written without any sink: what Smooth<NullSink> must match.
@@ -483,29 +493,19 @@ void Multicore(benchmark::State& state) {
     single_before.push_back(ns(t2, t3, one.all.size()));
     single.push_back(ns(t3, t4, one.all.size()));
   }
-  auto median = [](std::vector<double> v) {
-    std::sort(v.begin(), v.end());
-    return v[v.size() / 2];
-  };
   auto ratios = [](const std::vector<double>& x, const std::vector<double>& y) {
-    std::vector<double> r;  // pair by pair: both of a pair ran in the same iteration
+    std::vector<double> r;
     for (size_t i = 0; i < x.size(); ++i) r.push_back(x[i] / y[i]);
-    std::sort(r.begin(), r.end());
     return r;
   };
-  const std::vector<double> rm = ratios(multi_before, multi), rs = ratios(single_before, single);
-  state.counters["multicore_ns_per_access"] = median(multi);
-  state.counters["multicore_before_ns"] = median(multi_before);
-  state.counters["multicore_speedup"] = rm[rm.size() / 2];
-  state.counters["multicore_speedup_min"] = rm.front();
-  state.counters["multicore_speedup_max"] = rm.back();
-  state.counters["per_stream_ns_per_access"] = median(single);
-  state.counters["per_stream_before_ns"] = median(single_before);
-  state.counters["per_stream_speedup"] = rs[rs.size() / 2];
-  state.counters["per_stream_speedup_min"] = rs.front();
-  state.counters["per_stream_speedup_max"] = rs.back();
-  state.counters["ratio"] = median(multi) / median(single);
-  state.counters["read_stream_ns"] = median(scan);
+  state.counters["multicore_ns_per_access"] = Median(multi);
+  state.counters["multicore_before_ns"] = Median(multi_before);
+  PutRatios(state, "multicore_speedup", ratios(multi_before, multi));
+  state.counters["per_stream_ns_per_access"] = Median(single);
+  state.counters["per_stream_before_ns"] = Median(single_before);
+  PutRatios(state, "per_stream_speedup", ratios(single_before, single));
+  state.counters["ratio"] = Median(multi) / Median(single);
+  state.counters["read_stream_ns"] = Median(scan);
   CacheSimulation b(spec, 64);  // the levels' miss rates of the one-thread stream
   b.Begin(one.info);
   feed(b, one.all);
@@ -523,10 +523,6 @@ void OneRank(benchmark::State& state) {
   ho.max_iters = kSweeps, ho.tol = -1;
   SmoothOptions so = ExactSweeps(kSweeps);
   so.quality = QualityMode::kPerSweep;
-  auto median = [](std::vector<double> v) {
-    std::sort(v.begin(), v.end());
-    return v[v.size() / 2];
-  };
   std::vector<double> serial_ms, rank_ms, ratio, rank_q_ms, serial_q_ms;
   std::vector<double> wq;  // the serial smoother's interleaved weights (smoother.h)
   for (const double w : GlobalQualityWeights(base)) wq.push_back(w), wq.push_back(0.0);
@@ -542,8 +538,8 @@ void OneRank(benchmark::State& state) {
     for (int k = 1; k < kSweeps; ++k) b.push_back(1e3 * hr.sweeps[k].seconds);
     if (std::abs(hr.sweeps.back().quality - sr.sweeps.back().quality) > 1e-12)
       return state.SkipWithError("one rank's quality differs from the serial smoother's");
-    serial_ms.push_back(median(a));
-    rank_ms.push_back(median(b));
+    serial_ms.push_back(Median(a));
+    rank_ms.push_back(Median(b));
     // Where the difference is: each quality pass alone, on the same coordinates (the rank's
     // exact fixed-point sum of its triangles; the serial smoother's vectorised double sum).
     const auto c0 = std::chrono::steady_clock::now();
@@ -556,14 +552,11 @@ void OneRank(benchmark::State& state) {
     serial_q_ms.push_back(1e3 * std::chrono::duration<double>(c2 - c1).count());
     ratio.push_back(rank_ms.back() / serial_ms.back());
   }
-  std::sort(ratio.begin(), ratio.end());
-  state.counters["serial_ms_per_sweep"] = median(serial_ms);
-  state.counters["one_rank_ms_per_sweep"] = median(rank_ms);
-  state.counters["ratio"] = ratio[ratio.size() / 2];
-  state.counters["ratio_min"] = ratio.front();
-  state.counters["ratio_max"] = ratio.back();
-  state.counters["rank_quality_pass_ms"] = median(rank_q_ms);
-  state.counters["serial_quality_pass_ms"] = median(serial_q_ms);
+  state.counters["serial_ms_per_sweep"] = Median(serial_ms);
+  state.counters["one_rank_ms_per_sweep"] = Median(rank_ms);
+  PutRatios(state, "ratio", ratio);
+  state.counters["rank_quality_pass_ms"] = Median(rank_q_ms);
+  state.counters["serial_quality_pass_ms"] = Median(serial_q_ms);
 }
 
 // A fan: vertex 0 at the centre of n rim vertices, n triangles around it (its degree is n); or a
@@ -611,14 +604,10 @@ void Build(benchmark::State& state) {
       (r == &fan ? of : og).push_back(per * std::chrono::duration<double>(t2 - t1).count());
     }
   }
-  auto median = [](std::vector<double> v) {
-    std::sort(v.begin(), v.end());
-    return v[v.size() / 2];
-  };
-  state.counters["build_fan_ns_tri"] = median(bf);
-  state.counters["build_grid_ns_tri"] = median(bg);
-  state.counters["build_fan/grid"] = median(bf) / median(bg);
-  state.counters["rdr_fan/grid"] = median(of) / median(og);
+  state.counters["build_fan_ns_tri"] = Median(bf);
+  state.counters["build_grid_ns_tri"] = Median(bg);
+  state.counters["build_fan/grid"] = Median(bf) / Median(bg);
+  state.counters["rdr_fan/grid"] = Median(of) / Median(og);
 }
 
 }  // namespace
