@@ -650,8 +650,9 @@ std::string RunReport(const ReportConfig& in_cfg, const std::string& out_dir, co
   WriteTextFile(out_dir + "/README.md",
                 Readme(d, manifest, sections) +
                     "\n## Where the time went\n\nWall and CPU seconds per phase of this run "
-                    "(CPU: every thread of the process; the many-core configurations run two at "
-                    "a time, each shown with its own thread's CPU):\n\n" +
+                    "(CPU: every thread of the process, and the figures' python; the many-core "
+                    "thread counts run side by side on the host's cores, each shown with its own "
+                    "thread's CPU):\n\n" +
                     phases.Markdown());
   steps.Say("tables written to " + out_dir);
   return out_dir + "/README.md";
