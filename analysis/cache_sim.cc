@@ -52,8 +52,8 @@ SetAssociativeCache::SetAssociativeCache(uint64_t bytes, uint32_t ways, uint32_t
   CheckGeometry(bytes, ways, line_bytes);
   sets_ = bytes / line_bytes / ways;
   ways_ = ways;
-  padded_ = static_cast<uint32_t>((uint64_t{ways} + 3) / 4 * 4);
-  groups_ = padded_ / 4;
+  groups_ = GroupsOf(ways);
+  padded_ = 4 * groups_;
   block_bytes_ = 20 * uint64_t{padded_};
   pow2_ = (sets_ & (sets_ - 1)) == 0;
   mask_ = sets_ - 1;

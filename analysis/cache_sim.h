@@ -86,6 +86,9 @@ class SetAssociativeCache {
   // count where it is a common one (4 to 32 ways), else 0 (any count, known at run time): a loop
   // calling a lookup for many accesses dispatches once, and the lookup's loop unrolls.
   uint32_t groups() const { return groups_; }
+  static uint32_t GroupsOf(uint32_t ways) {
+    return static_cast<uint32_t>((uint64_t{ways} + 3) / 4);
+  }
   template <class F>
   static decltype(auto) WithGroups(uint32_t groups, F&& f) {
     using U = uint32_t;
@@ -226,7 +229,9 @@ class CacheHierarchy {
     ++stats_.front().accesses;
     return kHit;
   }
-  uint32_t FirstGroups() const { return (config_.empty() ? 0 : config_[0].ways + 3) / 4; }
+  uint32_t FirstGroups() const {
+    return config_.empty() ? 0 : SetAssociativeCache::GroupsOf(config_[0].ways);
+  }
   const std::vector<LevelStats>& stats() const { return stats_; }
   uint64_t distinct_lines() const { return seen_used_; }
   uint64_t accesses() const { return accesses_; }

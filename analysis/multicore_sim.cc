@@ -142,7 +142,7 @@ MulticoreSimulation::MulticoreSimulation(const Machine& m, Placement placement)
     : m_(m), placement_(placement), private_levels_(m.private_levels()) {
   shift_ = __builtin_ctz(m.line_bytes);
   fast_ = private_levels_ > 0 && !m.levels[0].prefetch;
-  if (!m.levels.empty()) l1_groups_ = (m.levels[0].cache.ways + 3) / 4;
+  if (!m.levels.empty()) l1_groups_ = SetAssociativeCache::GroupsOf(m.levels[0].cache.ways);
   cores_.resize(m.cores());
   sockets_.resize(m.sockets);
 }
