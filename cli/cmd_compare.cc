@@ -27,7 +27,11 @@ bool ParseCompare(const Args& args, CompareConfig& cfg, po::variables_map& vm,
   desc.add_options()("mesh", po::value(&cfg.meshes)->required()->multitoken(), "mesh file(s)")(
       "orderings", po::value(&orderings)->default_value(orderings),
       "comma-separated orderings (LABEL=SPEC names a row)")(
-      "threads,t", po::value(&threads)->default_value("1"), "comma-separated thread counts")(
+      "kernel", po::value(&cfg.kernel)->default_value("laplacian"),
+      (std::string(KernelOptionHelp()) +
+       "; a fixed-work kernel (assembly, spmv) runs 10 sweeps unless --max-iters says")
+          .c_str())("threads,t", po::value(&threads)->default_value("1"),
+                    "comma-separated thread counts")(
       "repeat", po::value(&repeat)->default_value("5"),
       "timed rounds (at least 3), or auto[:CAP]: rounds until every speedup is known within "
       "+-2% (at most CAP, default 15)")("seed", po::value(&seed)->default_value("1"),
@@ -73,6 +77,7 @@ bool ParseCompare(const Args& args, CompareConfig& cfg, po::variables_map& vm,
   if (cfg.smooth.max_iters < 1) throw UsageError("--max-iters must be at least 1");
   cfg.smooth.mode = ParseUpdateMode(mode);
   cfg.smooth.quality = ParseQualityMode(quality);
+  if (ParseKernel(cfg.kernel).fixed && vm["max-iters"].defaulted()) cfg.smooth.max_iters = 10;
   cfg.triangle_order = ParseTriangleOrder(triangle_order);
   if (!counters.empty() && counters != "none") {
     cfg.counter_events = counters == "default" ? DefaultCounterEvents() : SplitList(counters);

@@ -25,6 +25,7 @@ int TraceCommand(const Args& args) {
       "threads,t", po::value(&cfg.threads)->default_value(1),
       "streams: the static schedule's threads")(
       "mode", po::value(&mode)->default_value("gauss-seidel"), "gauss-seidel or jacobi")(
+      "kernel", po::value(&cfg.kernel)->default_value("laplacian"), KernelOptionHelp())(
       "element-bytes", po::value(&element_bytes)->default_value("66"),
       "element size recorded in the header")("output,o", po::value(&cfg.output)->required(),
                                              "trace file")(
@@ -39,10 +40,11 @@ int TraceCommand(const Args& args) {
   pos.add("mesh", 1);
   po::variables_map vm;
   if (!ParseOptions(args, "trace MESH [--ordering NAME] [--iterations K] [--threads P] -o FILE",
-                    "Writes every access of K smoothing sweeps (vertex id, byte address, kind, "
+                    "Writes every access of K smoothing sweeps (or of K sweeps of another "
+                    "--kernel) (vertex id, byte address, kind, "
                     "thread) to a binary trace (format in tracer/trace_format.h, 16 bytes per "
                     "access). The access sequence of one vertex visit is documented in "
-                    "core/smoother.h.",
+                    "core/smoother.h, each other kernel's at the head of its core/kernels/ file.",
                     desc, pos, vm))
     return 0;
   cfg.seed = ParseCount(seed, "--seed", 0, UINT64_MAX >> 1);

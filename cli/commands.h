@@ -24,6 +24,7 @@ int MeshRefine(const Args& args);
 int MeshPartition(const Args& args);
 int SmoothCommand(const Args& args);
 int OrderingsCommand(const Args& args);
+int KernelsCommand(const Args& args);
 int ReorderCommand(const Args& args);
 int CompareCommand(const Args& args);
 int TraceCommand(const Args& args);

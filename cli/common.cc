@@ -165,7 +165,8 @@ void AddSourceOptions(po::options_description& desc, StreamSource* src, SourceOp
   else
     desc.add_options()("threads,t", po::value(&src->threads)->default_value(1), help.threads);
   desc.add_options()("mode", po::value(&text->mode)->default_value("gauss-seidel"),
-                     "for meshes: gauss-seidel or jacobi");
+                     "for meshes: gauss-seidel or jacobi")(
+      "kernel", po::value(&text->kernel)->default_value("laplacian"), KernelOptionHelp());
   if (!help.format.empty())
     desc.add_options()("format", po::value(&src->format), help.format.c_str())("instructions",
                                                                                help.instructions);
@@ -181,6 +182,7 @@ void SourceOf(SourceOptionText& text, const po::variables_map& vm, StreamSource*
   src->orderings = ParseOrderingSpecs(SplitList(text.orderings));
   src->seed = ParseCount(text.seed, "--seed", 0, UINT64_MAX >> 1);
   src->mode = ParseUpdateMode(text.mode);
+  src->kernel = ParseKernel(text.kernel).name;
   src->triangle_order = ParseTriangleOrder(text.triangle_order);
   src->instructions = vm.count("instructions") > 0;
   if (vm.count("ranks") || vm.count("partition")) {

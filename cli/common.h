@@ -44,6 +44,8 @@ inline constexpr const char* kMeshOutputFormats =
     ".node/.ele";
 
 void AddTriangleOrderOption(po::options_description& desc, std::string* value);
+// --kernel's help: the registered kernels (cli/cmd_kernels.cc).
+const char* KernelOptionHelp();
 
 // --ranks P, --partition and --cut-placement of the per-rank runs (reports/rank_locality.h);
 // `ranks` describes what --ranks does for this command. RankOptionsOf reads them back, refusing
@@ -74,7 +76,8 @@ struct SourceHelp {
   bool thread_list = false;       // --threads takes a list (SourceOptionText::threads)
 };
 struct SourceOptionText {
-  std::string orderings = "ori", seed = "1", mode = "gauss-seidel", triangle_order;
+  std::string orderings = "ori", seed = "1", mode = "gauss-seidel", triangle_order,
+              kernel = "laplacian";
   RankOptionText ranks;
   std::string threads = "1";     // with SourceHelp::thread_list
   std::vector<int> thread_list;  // what SourceOf read from it

@@ -33,6 +33,7 @@ const Command kCommands[] = {
     {"mesh refine", "each triangle into 4^K, ids computable anywhere", MeshRefine},
     {"mesh partition", "parts for smoothing across ranks, and what they cost", MeshPartition},
     {"orderings", "list the vertex orderings", OrderingsCommand},
+    {"kernels", "list the mesh kernels (--kernel): laplacian, assembly, spmv, ...", KernelsCommand},
     {"reorder", "reorder a mesh's vertices, write the mesh and the permutation", ReorderCommand},
     {"smooth", "Laplacian smoothing, per-sweep quality and time", SmoothCommand},
     {"smooth-ranks", "the MPI smoother's P ranks as threads of one process, bit for bit",

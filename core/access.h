@@ -41,8 +41,16 @@ enum class Array : uint8_t {
   kSendBuffer = 12,  // their coordinates as sent
   kRecvIndex = 13,   // local ids of the ghosts received
   kRecvBuffer = 14,  // their coordinates as received
+  // The FEM kernels (core/kernels/assembly.cc, spmv.cc): the P1 stiffness matrix in CSR form, the
+  // per-triangle map to its entries, and the vectors of y = A x.
+  kMatOffsets = 15,  // row offsets
+  kMatColumns = 16,  // column ids
+  kMatValues = 17,   // values
+  kElementMap = 18,  // per triangle the 9 positions of its local matrix in `values`
+  kVectorIn = 19,    // x
+  kVectorOut = 20,   // y
 };
-inline constexpr int kArrays = 15;
+inline constexpr int kArrays = 21;
 
 struct MemRef {
   const void* address;
@@ -127,8 +135,9 @@ struct SweepRegion {
 
 inline const char* ArrayName(Array a) {
   static constexpr const char* kNames[kArrays] = {
-      "interior", "v2v.off", "v2v.idx", "v2t.off",  "v2t.idx",  "tri",      "tq",      "w",
-      "xy",       "xy.next", "bound",   "send.idx", "send.buf", "recv.idx", "recv.buf"};
+      "interior", "v2v.off", "v2v.idx", "v2t.off", "v2t.idx",  "tri",      "tq",
+      "w",        "xy",      "xy.next", "bound",   "send.idx", "send.buf", "recv.idx",
+      "recv.buf", "A.off",   "A.col",   "A.val",   "e2a",      "x",        "y"};
   const int i = static_cast<int>(a);
   return i >= 0 && i < kArrays ? kNames[i] : "?";
 }

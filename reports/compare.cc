@@ -10,6 +10,7 @@
 
 #include "analysis/papi_counters.h"
 #include "core/error.h"
+#include "core/kernels/kernel.h"
 #include "core/mesh_io.h"
 #include "core/orderings/registry.h"
 #include "core/permutation.h"
@@ -89,7 +90,7 @@ class MeshTiming {
           papi = std::make_unique<PapiCounters>(cfg_.counter_events, t);
           if (papi->available()) o.region = papi.get();
         }
-        const SmoothResult res = Smooth(work_, o);
+        const SmoothResult res = RunKernel(kernel_, work_, o);
         if (!timed) continue;
         if (papi && papi->available()) {
           if (!papi->error().empty()) throw std::runtime_error("counters failed: " + papi->error());
@@ -166,6 +167,7 @@ class MeshTiming {
   const Mesh& base_;
   std::vector<CompareRow>* rows_;
   const std::function<void(const std::string&)>& say_;
+  const KernelInfo& kernel_ = ParseKernel(cfg_.kernel);
   size_t first_;
   Mesh work_;
   std::vector<std::vector<int32_t>> perms_;
@@ -181,6 +183,11 @@ CompareResult RunCompare(const CompareConfig& cfg,
   };
   if (cfg.repeat < 3 && !cfg.repeat_auto)
     throw UsageError("--repeat must be at least 3 (a median and its interval need rounds)");
+  for (int t : cfg.threads) {
+    SmoothOptions o = cfg.smooth;
+    o.threads = t;
+    CheckKernelOptions(ParseKernel(cfg.kernel), o);
+  }
   CompareResult out;
   out.noise.cores = Cores();
   out.noise.load_before = LoadAverage();
@@ -493,6 +500,7 @@ Json CompareConfigJson(const CompareConfig& cfg) {
   Json j;
   j["meshes"] = cfg.meshes;
   j["orderings"] = cfg.orderings;
+  j["kernel"] = cfg.kernel;
   j["ordering_seeds"] = OrderingSeedsJson(ParseOrderingSpecs(cfg.orderings), cfg.seed);
   j["seed"] = cfg.seed;
   cfg.AddJson(&j);

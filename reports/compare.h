@@ -32,7 +32,8 @@ struct CompareConfig : TimingOptions {
   // TimingOptions: threads, rounds, the clock, the smoother's options, the triangle order.
   std::vector<std::string> meshes;
   std::vector<std::string> orderings = {"ori", "bfs", "rdr", "random"};
-  uint64_t seed = 1;  // seeded orderings and the bootstrap
+  std::string kernel = "laplacian";  // core/kernels/: what is timed
+  uint64_t seed = 1;                 // seeded orderings and the bootstrap
   // PAPI events to count around the sweeps of every run (empty: none); events this machine
   // cannot count are dropped.
   std::vector<std::string> counter_events;

@@ -21,6 +21,7 @@ namespace meshreuse {
 struct SmoothConfig {
   std::vector<std::string> meshes;
   std::string ordering = "ori";
+  std::string kernel = "laplacian";  // core/kernels/: what a sweep does
   uint64_t seed = 1;
   TriangleOrder triangle_order = TriangleOrder::kSorted;
   SmoothOptions smooth;                     // region is set by the runner (counters)
@@ -32,7 +33,7 @@ struct SmoothConfig {
 };
 
 struct SmoothRun {
-  std::string mesh, ordering;
+  std::string mesh, ordering, kernel = "laplacian";
   int32_t vertices = 0, triangles = 0;
   int threads = 1;
   UpdateMode mode = UpdateMode::kGaussSeidel;

@@ -29,6 +29,11 @@ void StreamSource::Check() const {
         "--ranks streams each rank's part of a mesh (one stream per rank): no --format or "
         "--threads with it");
   CheckRankParts(ranks, partition, inputs);
+  const KernelInfo& k = Kernel();
+  CheckKernelOptions(k, Sweeps());
+  if (ranks > 0 && std::string(k.name) != "laplacian")
+    throw UsageError("--ranks streams the distributed Laplacian smoother: no --kernel " +
+                     std::string(k.name) + " with it");
 }
 
 const TraceFormat* StreamSource::Format() const {
@@ -48,6 +53,7 @@ Json StreamSource::ToJson() const {
   j["orderings"] = OrderingTexts(orderings);
   j["seed"] = seed;
   j["ordering_seeds"] = OrderingSeedsJson(orderings, seed);
+  j["kernel"] = kernel;
   j["iterations"] = iterations;
   j["threads"] = threads;
   j["mode"] = UpdateModeName(mode);
@@ -93,13 +99,17 @@ void StreamMeshInput(const StreamSource& src, StreamJob job, StreamConsumer& c, 
           ? ApplyPermutation(*src.loaded, ComputeOrdering(*job.ordering, *src.loaded, src.seed),
                              src.triangle_order)
           : LayOut(job.input, *job.ordering, src.seed, src.triangle_order, log);
-  log.Say(c.Verb() + " " + std::to_string(src.iterations) + " sweep(s) of " + job.input + " in " +
+  const KernelInfo& kernel = src.Kernel();
+  const std::string what = std::string(kernel.name) == "laplacian"
+                               ? " sweep(s) of "
+                               : " " + std::string(kernel.name) + " sweep(s) of ";
+  log.Say(c.Verb() + " " + std::to_string(src.iterations) + what + job.input + " in " +
           job.ordering->text + " order" + c.Where());
   const auto t0 = std::chrono::steady_clock::now();
   job.mesh = &m;
   AccessConsumer& to = c.Start(job);
   job.mesh = nullptr;
-  StreamMesh(m, src.Sweeps(), job.input, job.ordering->label, to);
+  StreamMesh(m, src.Sweeps(), job.input, job.ordering->label, to, &kernel);
   c.Finish(job);
   log.Say("done in " +
           Fixed(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), 2) +

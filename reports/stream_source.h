@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "core/kernels/kernel.h"
 #include "core/mesh.h"
 #include "core/orderings/registry.h"
 #include "core/ranks/rank_part.h"
@@ -32,6 +33,7 @@ struct StreamSource {
   std::string format;               // "": meshes and meshreuse traces; else a TraceFormat name
   std::vector<OrderingSpec> orderings = {"ori"};  // for meshes, parsed once
   uint64_t seed = 1;                              // of seeded orderings (and of sampling)
+  std::string kernel = "laplacian";               // for meshes: which sweep (core/kernels/)
   int iterations = 1;                             // for meshes: exact sweeps
   int threads = 1;                                // for meshes: the smoother's streams
   UpdateMode mode = UpdateMode::kGaussSeidel;
@@ -54,7 +56,8 @@ struct StreamSource {
   uint64_t ids_count = 0;
   std::function<void()> poll;
 
-  // UsageError for what cannot be streamed, before any work: no input, an unknown format, no
+  // UsageError for what cannot be streamed, before any work: no input, an unknown format or kernel
+  // (or options it does not take: Jacobi, threads), no
   // ordering, sweeps or threads out of range, --instructions without lackey, --ranks with a trace
   // format or several threads, a partition method unknown.
   void Check() const;
@@ -65,10 +68,12 @@ struct StreamSource {
   bool IdsOf(const std::string& in) const { return ids && !inputs.empty() && in == inputs[0]; }
   // `format` parsed (nullptr: meshes and meshreuse traces).
   const TraceFormat* Format() const;
+  // The kernel named (checked by Check).
+  const KernelInfo& Kernel() const { return ParseKernel(kernel); }
   // The smoother's options for a mesh: exactly `iterations` sweeps on `threads` streams.
   SmoothOptions Sweeps() const;
-  // inputs, format, orderings, seed, ordering_seeds, iterations, threads, mode, triangle_order
-  // (run.json's configuration; a runner adds its own fields).
+  // inputs, format, orderings, seed, ordering_seeds, kernel, iterations, threads, mode,
+  // triangle_order (run.json's configuration; a runner adds its own fields).
   Json ToJson() const;
 };
 

@@ -72,6 +72,12 @@ void CheckTraceConfig(const TraceConfig& cfg) {
   if (cfg.threads < 1 || cfg.threads > kMaxThreads)
     throw UsageError("--threads must be 1.." + std::to_string(kMaxThreads));
   CheckStreamSweeps(cfg.iterations, cfg.threads);
+  const KernelInfo& k = ParseKernel(cfg.kernel);
+  SmoothOptions so = ExactSweeps(cfg.iterations, cfg.threads, cfg.mode);
+  CheckKernelOptions(k, so);
+  if (cfg.ranks > 0 && std::string(k.name) != "laplacian")
+    throw UsageError("--ranks traces the distributed Laplacian smoother: no --kernel " +
+                     std::string(k.name) + " with it");
   for (const std::string& f : TraceOutputs(cfg)) CheckOutputPath(f, "-o", InputFiles({cfg.mesh}));
 }
 
@@ -117,6 +123,8 @@ TraceRunResult RunTrace(const TraceConfig& cfg, const Log& log) {
   TraceHeader h;
   h.element_bytes = cfg.element_bytes;
   h.mesh = std::filesystem::path(cfg.mesh).filename().string();
+  const KernelInfo& kernel = ParseKernel(cfg.kernel);
+  if (std::string(kernel.name) != "laplacian") h.mesh += " [kernel " + cfg.kernel + "]";
   h.ordering = ParseOrderingSpec(cfg.ordering).label;
   const auto t0 = std::chrono::steady_clock::now();
   if (cfg.ranks > 0) {
@@ -162,9 +170,10 @@ TraceRunResult RunTrace(const TraceConfig& cfg, const Log& log) {
   WriteOneTrace(
       cfg.output, h, cfg.iterations, cfg.compress, log,
       [&](TraceWriter& w) {
-        log.Say("tracing " + std::to_string(cfg.iterations) + " sweep(s), about " +
-                Grouped(static_cast<long long>(MeshStreamInfo(m, so).records)) + " accesses");
-        StreamMesh(m, so, cfg.mesh, h.ordering, w);
+        log.Say("tracing " + std::to_string(cfg.iterations) + " " + cfg.kernel + " sweep(s), " +
+                Grouped(static_cast<long long>(MeshStreamInfo(m, so, &kernel).records)) +
+                " accesses");
+        StreamMesh(m, so, cfg.mesh, h.ordering, w, &kernel);
       },
       &r);
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

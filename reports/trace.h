@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "core/kernels/kernel.h"
 #include "core/permutation.h"
 #include "core/ranks/rank_part.h"
 #include "core/smoother.h"
@@ -16,6 +17,7 @@ namespace meshreuse {
 
 struct TraceConfig {
   std::string mesh, ordering = "ori", output;
+  std::string kernel = "laplacian";  // core/kernels/
   uint64_t seed = 1;
   int iterations = 1, threads = 1;
   UpdateMode mode = UpdateMode::kGaussSeidel;

@@ -13,6 +13,7 @@
 #include "analysis/reuse_analysis.h"
 #include "analysis/sweep_footprint.h"
 #include "core/error.h"
+#include "core/kernels/kernel.h"
 #include "core/orderings/registry.h"
 #include "core/schedule.h"
 #include "reports/inputs.h"
@@ -66,7 +67,7 @@ std::vector<double> CountMisses(const Mesh& laid, const ValidationConfig& cfg, c
   Mesh m = laid.Clone();
   SmoothOptions o = cfg.Sweeps();
   o.region = &papi;
-  Smooth(m, o);
+  RunKernel(cfg.Kernel(), m, o);
   if (!papi.error().empty()) throw std::runtime_error("counters failed: " + papi.error());
   const std::vector<long long> sum = papi.Sum();
   for (size_t i = 0; i < wanted.size(); ++i)

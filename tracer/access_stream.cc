@@ -84,7 +84,55 @@ static_assert(static_cast<uint64_t>(int64_t{-1}) == meshreuse::Access::kNoElemen
 
 }  // namespace
 
-StreamInfo MeshStreamInfo(const Mesh& mesh, const SmoothOptions& sweeps) {
+namespace {
+
+// The BatchSink behind the kernels' one sink interface.
+struct KernelBatchSink : KernelSink {
+  explicit KernelBatchSink(BatchSink& b) : to(b) { interleave = b.interleave; }
+  BatchSink& to;
+  void Bind(const ArrayLayout& l) override { to.Bind(l); }
+  void BeginSweep(int s) override { to.BeginSweep(s); }
+  void Access(int thread, const MemRef& r) override { to.Access(thread, r); }
+  void EndTurn() override { to.EndTurn(); }
+};
+
+// Accesses and element touches per sweep and thread.
+struct SweepCounter : KernelSink {
+  explicit SweepCounter(int t) : threads(t) {}
+  int threads;
+  std::vector<std::vector<uint64_t>> refs, elements;
+  void Bind(const ArrayLayout&) override {}
+  void BeginSweep(int) override {
+    refs.emplace_back(threads, 0);
+    elements.emplace_back(threads, 0);
+  }
+  void Access(int thread, const MemRef& r) override {
+    ++refs.back()[thread];
+    if (r.element != AccessKind::kNone) ++elements.back()[thread];
+  }
+};
+
+bool IsLaplacian(const KernelInfo* k) { return !k || std::string(k->name) == "laplacian"; }
+
+}  // namespace
+
+StreamInfo MeshStreamInfo(const Mesh& mesh, const SmoothOptions& sweeps, const KernelInfo* kernel) {
+  if (!IsLaplacian(kernel)) {
+    StreamInfo info;
+    info.threads = std::max(1, sweeps.threads);
+    info.vertices = mesh.NumVertices();
+    info.canonical = true;
+    // Counted, the element touches too; KernelInfo::refs, where a kernel has it, is the closed form
+    // its tests check against this.
+    Mesh copy = mesh.Clone();
+    SweepCounter count(info.threads);
+    kernel->traced(copy, sweeps, count);
+    info.sweep_records = count.refs;
+    info.sweep_elements = count.elements;
+    for (const auto& sweep : info.sweep_records)
+      for (uint64_t n : sweep) info.records += n;
+    return info;
+  }
   StreamInfo info;
   info.threads = std::max(1, sweeps.threads);
   info.vertices = mesh.NumVertices();
@@ -99,15 +147,21 @@ StreamInfo MeshStreamInfo(const Mesh& mesh, const SmoothOptions& sweeps) {
 }
 
 SmoothResult StreamMesh(Mesh& mesh, const SmoothOptions& sweeps, const std::string& label,
-                        const std::string& ordering, AccessConsumer& to) {
-  StreamInfo info = MeshStreamInfo(mesh, sweeps);
+                        const std::string& ordering, AccessConsumer& to, const KernelInfo* kernel) {
+  StreamInfo info = MeshStreamInfo(mesh, sweeps, kernel);
   info.input = label;
   info.ordering = ordering;
   to.Begin(info);
   std::vector<Access> buf(kBatch);
   BatchSink sink{to, buf.data(), 0, {}, sweeps.interleave, {}};
   if (sweeps.interleave == kAccessGrain && info.threads > 1) sink.queued.resize(info.threads);
-  SmoothResult r = Smooth(mesh, sweeps, sink);
+  SmoothResult r;
+  if (IsLaplacian(kernel)) {
+    r = Smooth(mesh, sweeps, sink);
+  } else {
+    KernelBatchSink ks(sink);
+    r = kernel->traced(mesh, sweeps, ks);
+  }
   sink.Flush();
   to.End();
   return r;

@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "core/kernels/kernel.h"
 #include "core/mesh.h"
 #include "core/ranks/halo_smoother.h"
 #include "core/smoother.h"
@@ -83,11 +84,16 @@ using ProgressFn = std::function<void(double done_fraction)>;
 
 // `sweeps` traced sweeps of `mesh` (laid out already; it is smoothed in place), each thread's
 // stream as the static schedule gives it (core/smoother.h). `label`, `ordering`: for StreamInfo.
-// Returns the smoother's result (each sweep's time is the traced sweep's, consumers included).
+// `kernel`: another kernel of core/kernels/ than the Laplacian (nullptr: the smoother itself).
+// Returns the kernel's result (each sweep's time is the traced sweep's, consumers included).
 SmoothResult StreamMesh(Mesh& mesh, const SmoothOptions& sweeps, const std::string& label,
-                        const std::string& ordering, AccessConsumer& to);
-// The info StreamMesh will announce, without running it (for memory checks before the work).
-StreamInfo MeshStreamInfo(const Mesh& mesh, const SmoothOptions& sweeps);
+                        const std::string& ordering, AccessConsumer& to,
+                        const KernelInfo* kernel = nullptr);
+// The info StreamMesh will announce (for memory checks before the work): for the Laplacian without
+// running it; for the other kernels by a counting run on a copy of the mesh (traced runs are
+// serial, so the counts are exact; a kernel's stream may depend on the values).
+StreamInfo MeshStreamInfo(const Mesh& mesh, const SmoothOptions& sweeps,
+                          const KernelInfo* kernel = nullptr);
 // One rank's part of a distributed run (core/ranks/halo_smoother.h) smoothed by SmoothRankPart with
 // `tx` as its transport: the rank's own loads and stores, its ghost messages' packs and unpacks
 // included, as one stream (thread 0) of local ids. Returns the smoother's result.

@@ -13,7 +13,7 @@ contains "no arguments" "usage: meshreuse <command>"
 check "--help" 0 "$bin" --help
 check "unknown command" 2 "$bin" frobnicate
 contains "unknown command" "unknown command 'frobnicate'"
-for c in "mesh info" "mesh generate" "mesh convert" "mesh refine" "mesh partition" "smooth" "orderings" "reorder" "compare" "trace" "analyze" "simulate" "validate"; do
+for c in "mesh info" "mesh generate" "mesh convert" "mesh refine" "mesh partition" "smooth" "orderings" "kernels" "reorder" "compare" "trace" "analyze" "simulate" "validate"; do
   check "$c --help" 0 "$bin" $c --help
   contains "$c --help" "usage: meshreuse $c"
 done
@@ -660,6 +660,32 @@ contains "report --measured, not a compare.csv: named" "notcompare.csv:1: no col
 [[ ! -e $tmp/mrep3 ]] && pass=$((pass + 1)) || { fail=$((fail + 1)); echo "FAIL report --measured: refused after making its folder"; }
 check "one thread count without a machine" 2 "$bin" simulate "$data/plate41.msh" --threads 1,4 --quiet
 contains "one thread count without a machine" "--threads and --placement take one value without --machine"
+
+# --kernel (core/kernels/): every command that sweeps takes it; what a kernel cannot do is refused
+# by name before any work.
+check "kernels" 0 "$bin" kernels
+contains "kernels" "smart-laplacian"
+check "unknown kernel" 2 "$bin" smooth "$data/plate41.msh" --kernel lapalcian
+contains "unknown kernel" "unknown kernel 'lapalcian' (known: laplacian, smart-laplacian"
+check "kernel without jacobi" 2 "$bin" analyze "$data/plate41.msh" --kernel untangle --mode jacobi --quiet
+contains "kernel without jacobi" "--kernel untangle has no Jacobi form"
+check "kernel without threads" 2 "$bin" compare "$data/plate41.msh" --kernel assembly --threads 1,2 --quiet
+contains "kernel without threads" "--kernel assembly runs on one thread only"
+check "kernel without ranks" 2 "$bin" simulate "$data/plate41.msh" --kernel spmv --ranks 2 --quiet
+contains "kernel without ranks" "no --kernel spmv with it"
+check "kernel moving nothing" 2 "$bin" smooth "$data/plate41.msh" --kernel spmv -o "$tmp/k.vtu" --quiet
+[[ ! -e $tmp/k.vtu ]] && pass=$((pass + 1)) || { fail=$((fail + 1)); echo "FAIL kernel moving nothing: wrote"; }
+for k in smart-laplacian local-opt untangle assembly spmv; do
+  check "smooth --kernel $k" 0 "$bin" smooth "$data/plate41.msh" --kernel "$k" --max-iters 3 --quiet
+  check "compare --kernel $k" 0 "$bin" compare "$data/plate41.msh" --kernel "$k" --orderings ori,bfs,rdr,grid-wave --repeat 3 --max-iters 3 --csv --quiet
+  check "analyze --kernel $k" 0 "$bin" analyze "$data/plate41.msh" --kernel "$k" --orderings ori,rdr -k 2 --csv --quiet
+  check "simulate --kernel $k" 0 "$bin" simulate "$data/plate41.msh" --kernel "$k" --orderings rdr -k 2 --cache L1=256/2,L2=1K/4 --csv --quiet
+done
+# A kernel's trace holds what analyze streams: the same numbers from the file as from the mesh.
+check "trace --kernel" 0 "$bin" trace "$data/plate41.msh" --kernel assembly --ordering rdr -k 2 -o "$tmp/asm.trace" --quiet
+"$bin" analyze "$tmp/asm.trace" --csv --quiet | cut -d, -f2- >"$tmp/asm_file.csv"
+"$bin" analyze "$data/plate41.msh" --kernel assembly --orderings rdr -k 2 --csv --quiet | cut -d, -f2- >"$tmp/asm_mesh.csv"
+cmp -s "$tmp/asm_file.csv" "$tmp/asm_mesh.csv" && pass=$((pass + 1)) || { fail=$((fail + 1)); echo "FAIL trace --kernel: the file's analysis differs from the mesh's"; diff "$tmp/asm_file.csv" "$tmp/asm_mesh.csv" | head -5; }
 
 echo "cli commands: $pass passed, $fail failed"
 [[ $fail -eq 0 ]]

@@ -1,0 +1,336 @@
+// The kernel registry (core/kernels/): each kernel against a naive reference written here from its
+// definition (gapbs-style), the traced and the timed instance agreeing, the documented access
+// counts, ordering invariance where it holds, hand-worked untangling, and --kernel's errors.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <map>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "core/error.h"
+#include "core/kernels/kernel.h"
+#include "core/kernels/stiffness.h"
+#include "core/kernels/untangle.h"
+#include "core/orderings/registry.h"
+#include "core/permutation.h"
+#include "core/quality.h"
+#include "tests/test_util.h"
+#include "tracer/sink.h"
+
+namespace meshreuse {
+namespace {
+
+using testing::MeshCorpus;
+using testing::Synthetic;
+
+std::vector<Mesh> Meshes() {
+  std::vector<Mesh> m;
+  m.push_back(testing::TwoInterior());
+  m.push_back(Synthetic(12, 9, 1, 3));
+  m.push_back(Synthetic(20, 14, 2, 7));
+  m.push_back(ReadMesh(testing::DataPath("plate41.msh")));
+  return m;
+}
+
+const KernelInfo& K(const char* name) { return ParseKernel(name); }
+
+TEST(KernelRegistry, FindsEveryKernelAndNamesTheKnownOnesForAnUnknownOne) {
+  for (const char* n :
+       {"laplacian", "smart-laplacian", "local-opt", "untangle", "assembly", "spmv"})
+    ASSERT_NE(FindKernel(n), nullptr) << n;
+  try {
+    ParseKernel("lapalcian");
+    FAIL();
+  } catch (const UsageError& e) {
+    EXPECT_TRUE(testing::HasText(e.what(), "unknown kernel 'lapalcian'"));
+    EXPECT_TRUE(testing::HasText(e.what(), "smart-laplacian"));
+  }
+  SmoothOptions o;
+  o.mode = UpdateMode::kJacobi;
+  EXPECT_THROW(CheckKernelOptions(K("smart-laplacian"), o), UsageError);
+  EXPECT_NO_THROW(CheckKernelOptions(K("laplacian"), o));
+  SmoothOptions t;
+  t.threads = 2;
+  EXPECT_THROW(CheckKernelOptions(K("assembly"), t), UsageError);
+  EXPECT_NO_THROW(CheckKernelOptions(K("spmv"), t));
+}
+
+// The traced instance (through a KernelSink) computes what the timed one does, bit for bit, on
+// one thread; and the counting run gives the closed form where a kernel has one.
+TEST(Kernels, TracedAndTimedAgreeAndCountsMatchTheDocumentedSequence) {
+  for (const KernelInfo& k : Kernels()) {
+    for (const Mesh& base : Meshes()) {
+      const SmoothOptions o = ExactSweeps(3);
+      Mesh a = base.Clone(), b = base.Clone();
+      const SmoothResult ra = RunKernel(k, a, o);
+      CountingSink count;
+      KernelSinkOf<CountingSink> sink(count);
+      const SmoothResult rb = RunKernel(k, b, o, sink);
+      EXPECT_EQ(a.xy, b.xy) << k.name;
+      ASSERT_EQ(ra.sweeps.size(), rb.sweeps.size()) << k.name;
+      for (size_t s = 0; s < ra.sweeps.size(); ++s)
+        EXPECT_EQ(ra.sweeps[s].quality, rb.sweeps[s].quality) << k.name << " sweep " << s;
+      EXPECT_GT(count.Refs(), 0u) << k.name;
+      // The untraced run reads each sweep's thread CPU time (compare's clock) around all its work.
+      for (const SweepRecord& rec : ra.sweeps) EXPECT_GT(rec.cpu_seconds, 0.0) << k.name;
+      const std::vector<uint64_t> refs = k.refs(base, o);
+      if (!refs.empty()) {
+        EXPECT_EQ(count.Refs(), refs[0] * rb.sweeps.size()) << k.name;
+      }
+    }
+  }
+}
+
+TEST(Kernels, LaplacianThroughTheRegistryIsTheSmootherBitForBit) {
+  for (const Mesh& base : Meshes()) {
+    Mesh a = base.Clone(), b = base.Clone();
+    SmoothOptions o;
+    const SmoothResult ra = Smooth(a, o);
+    const SmoothResult rb = RunKernel(K("laplacian"), b, o);
+    EXPECT_EQ(a.xy, b.xy);
+    EXPECT_EQ(ra.sweeps.size(), rb.sweeps.size());
+    EXPECT_EQ(ra.quality_after, rb.quality_after);
+  }
+}
+
+// Per-thread counts with the static split (spmv's rows), against the closed form.
+TEST(Kernels, SpmvCountsPerThreadAreTheClosedForms) {
+  const Mesh base = Synthetic(20, 14, 2, 7);
+  for (int threads : {1, 2, 3, 7}) {
+    Mesh m = base.Clone();
+    const SmoothOptions o = ExactSweeps(1, threads);
+    CountingSink count;
+    KernelSinkOf<CountingSink> sink(count);
+    RunKernel(K("spmv"), m, o, sink);
+    const std::vector<uint64_t> want = K("spmv").refs(base, o);
+    ASSERT_EQ(count.per_thread.size(), want.size());
+    for (int t = 0; t < threads; ++t) {
+      uint64_t got = 0;
+      for (const auto& a : count.per_thread[t].array) got += a[0] + a[1];
+      EXPECT_EQ(got, want[t]) << threads << " threads, thread " << t;
+    }
+  }
+}
+
+// smart-laplacian, as its definition reads: per interior vertex in storage order, the neighbours'
+// average; kept when the least quality of its triangles does not drop.
+void NaiveSmart(Mesh& m, int sweeps) {
+  for (int s = 0; s < sweeps; ++s) {
+    for (int32_t v : m.interior) {
+      double sx = 0, sy = 0;
+      for (const int32_t* u = m.v2v.RowBegin(v); u != m.v2v.RowEnd(v); ++u)
+        sx += m.xy[2 * *u], sy += m.xy[2 * *u + 1];
+      const double inv = 1.0 / static_cast<double>(m.v2v.RowSize(v));
+      const double x = sx * inv, y = sy * inv;
+      double old_min = 1, new_min = 1;
+      for (const int32_t* t = m.v2t.RowBegin(v); t != m.v2t.RowEnd(v); ++t) {
+        const int32_t* c = &m.tri[3 * *t];
+        old_min = std::min(old_min, TriangleQuality(m.xy.data(), c));
+        double p[6];
+        for (int j = 0; j < 3; ++j) {
+          p[2 * j] = c[j] == v ? x : m.xy[2 * c[j]];
+          p[2 * j + 1] = c[j] == v ? y : m.xy[2 * c[j] + 1];
+        }
+        new_min = std::min(new_min, TriangleQuality(p[0], p[1], p[2], p[3], p[4], p[5]));
+      }
+      if (new_min >= old_min) m.xy[2 * v] = x, m.xy[2 * v + 1] = y;
+    }
+  }
+}
+
+TEST(Kernels, SmartLaplacianIsItsDefinitionAndNeverLowersAVertexsLeastQuality) {
+  for (const Mesh& base : Meshes()) {
+    Mesh a = base.Clone(), b = base.Clone();
+    const SmoothResult r = RunKernel(K("smart-laplacian"), a, ExactSweeps(4));
+    NaiveSmart(b, 4);
+    EXPECT_EQ(a.xy, b.xy);  // the same arithmetic in the same order
+    EXPECT_NEAR(r.sweeps.back().quality, GlobalQuality(a), 1e-12);
+    EXPECT_GE(r.quality_after, r.quality_before - 1e-12);
+    // The least triangle quality of the mesh does not drop.
+    auto least = [](const Mesh& m) {
+      double q = 1;
+      for (double x : TriangleQualities(m)) q = std::min(q, x);
+      return q;
+    };
+    EXPECT_GE(least(a), least(base));
+  }
+}
+
+TEST(Kernels, LocalOptImprovesQualityAndTurnsNoTriangleOver) {
+  for (const Mesh& base : Meshes()) {
+    Mesh a = base.Clone();
+    SmoothOptions o;
+    o.max_iters = 20;
+    const SmoothResult r = RunKernel(K("local-opt"), a, o);
+    EXPECT_EQ(CountInverted(a, 1.0), CountInverted(base, 1.0));
+    EXPECT_NEAR(r.sweeps.back().quality, GlobalQuality(a), 1e-12);
+    if (!base.interior.empty()) {
+      EXPECT_GT(r.quality_after, r.quality_before);
+    }
+  }
+}
+
+// A unit square around a centre vertex (4 triangles, counter-clockwise): the centre moved out
+// past the right edge turns two triangles over; one untangle sweep brings it back inside.
+Mesh Star(double cx, double cy) {
+  RawMesh raw;
+  raw.xy = {0, 0, 1, 0, 1, 1, 0, 1, 0.5, 0.5};
+  raw.tri = {0, 1, 4, 1, 2, 4, 2, 3, 4, 3, 0, 4};
+  Mesh m = BuildMesh(std::move(raw));
+  m.xy[8] = cx, m.xy[9] = cy;
+  return m;
+}
+
+TEST(Kernels, TangleMovesTheChosenVerticesPastANeighbourWhateverTheNumbering) {
+  // share 1: every interior vertex moves; the star's centre goes 1.5 times the way to (0, 0).
+  Mesh s = Star(0.5, 0.5);
+  const TangleStats st = TangleMesh(s, 1.0, 1);
+  EXPECT_EQ(st.moved, 1);
+  EXPECT_EQ(s.xy[8], 0.5 + 1.5 * (0.0 - 0.5));
+  EXPECT_EQ(st.inverted, 2);  // the two triangles on the edge to (0, 0)
+  // The same tangle in every ordering: the moved positions are the same set.
+  const Mesh base = Synthetic(20, 14, 2, 7);
+  auto positions = [](const Mesh& m) {
+    std::vector<std::pair<double, double>> p;
+    for (int32_t v = 0; v < m.NumVertices(); ++v) p.emplace_back(m.xy[2 * v], m.xy[2 * v + 1]);
+    std::sort(p.begin(), p.end());
+    return p;
+  };
+  Mesh ori = base.Clone();
+  const TangleStats a = TangleMesh(ori, kTangleShare, kTangleSeed);
+  for (const char* ord : {"rdr", "bfs", "random"}) {
+    Mesh m = ApplyPermutation(base, ComputeOrdering(ord, base, 5));
+    const TangleStats b = TangleMesh(m, kTangleShare, kTangleSeed);
+    EXPECT_EQ(a.moved, b.moved) << ord;
+    EXPECT_EQ(a.inverted, b.inverted) << ord;
+    EXPECT_EQ(positions(ori), positions(m)) << ord;
+  }
+  EXPECT_GT(a.inverted, 0);
+}
+
+TEST(Kernels, UntangleLeavesNoTriangleTurnedOver) {
+  // The hand-worked star: the centre out past the right edge turns (1, 0), (1, 1), centre over.
+  Mesh s = Star(1.4, 0.5);
+  EXPECT_EQ(CountInverted(s, 1.0), 1);
+  for (const Mesh& base : Meshes()) {
+    Mesh m = base.Clone();
+    SmoothOptions o;
+    o.max_iters = 50;
+    const SmoothResult r = RunKernel(K("untangle"), m, o);
+    EXPECT_EQ(CountInverted(m, 1.0), 0)
+        << m.NumVertices() << " vertices, " << r.sweeps.size() << " sweeps";
+    EXPECT_EQ(r.quality_after, 1.0);
+    EXPECT_EQ(r.quality_after, r.sweeps.back().quality);  // the incremental count is the count
+    EXPECT_EQ(r.sweeps.back().quality, 1.0);
+    if (base.NumVertices() > 100) {
+      EXPECT_LT(r.quality_before, 1.0);  // it was tangled
+    }
+  }
+}
+
+// The stiffness matrix as a map (i, j) -> value, from the definition, triangles in storage order.
+std::map<std::pair<int32_t, int32_t>, double> NaiveStiffness(const Mesh& m) {
+  std::map<std::pair<int32_t, int32_t>, double> a;
+  for (int32_t t = 0; t < m.NumTriangles(); ++t) {
+    const int32_t* c = &m.tri[3 * t];
+    double p[6];
+    for (int j = 0; j < 3; ++j) p[2 * j] = m.xy[2 * c[j]], p[2 * j + 1] = m.xy[2 * c[j] + 1];
+    double area2 = (p[2] - p[0]) * (p[5] - p[1]) - (p[3] - p[1]) * (p[4] - p[0]);
+    for (int r = 0; r < 3; ++r)
+      for (int s = 0; s < 3; ++s) {
+        // edges opposite r and s: p[r+2] - p[r+1]
+        const int r1 = (r + 1) % 3, r2 = (r + 2) % 3, s1 = (s + 1) % 3, s2 = (s + 2) % 3;
+        const double ex = p[2 * r2] - p[2 * r1], ey = p[2 * r2 + 1] - p[2 * r1 + 1];
+        const double fx = p[2 * s2] - p[2 * s1], fy = p[2 * s2 + 1] - p[2 * s1 + 1];
+        a[{c[r], c[s]}] += (ex * fx + ey * fy) / (2 * std::fabs(area2));
+      }
+  }
+  return a;
+}
+
+TEST(Kernels, AssemblyIsTheStiffnessMatrixAndItsRowsSumToZero) {
+  for (const Mesh& base : Meshes()) {
+    Mesh m = base.Clone();
+    StiffnessMatrix a = StiffnessPattern(m);
+    NullSink none;
+    const double trace = AssembleStiffness(m, a, none);
+    const auto want = NaiveStiffness(m);
+    ASSERT_EQ(static_cast<size_t>(a.nnz()), want.size());
+    double naive_trace = 0;
+    for (int32_t i = 0; i < m.NumVertices(); ++i) {
+      double row = 0, scale = 0;
+      for (int64_t j = a.off[i]; j < a.off[i + 1]; ++j) {
+        const auto it = want.find({i, a.col[j]});
+        ASSERT_NE(it, want.end());
+        EXPECT_NEAR(a.val[j], it->second, 1e-12 * std::fabs(it->second) + 1e-15);
+        row += a.val[j], scale += std::fabs(a.val[j]);
+        if (a.col[j] == i) naive_trace += a.val[j];
+      }
+      EXPECT_NEAR(row, 0.0, 1e-12 * scale);
+    }
+    EXPECT_NEAR(trace, naive_trace, 1e-10 * naive_trace);
+    // A second sweep starts from zero: the same values.
+    const AlignedVector<double> first = a.val;
+    AssembleStiffness(m, a, none);
+    EXPECT_EQ(first, a.val);
+  }
+}
+
+TEST(Kernels, SpmvIsTheMatrixTimesTheCoordinatesAndItsEnergyIsTheArea) {
+  for (const Mesh& base : Meshes()) {
+    Mesh m = base.Clone();
+    const SmoothResult r = RunKernel(K("spmv"), m, ExactSweeps(2));
+    const auto a = NaiveStiffness(m);
+    double energy = 0, area = 0;
+    for (int32_t t = 0; t < m.NumTriangles(); ++t) {
+      const int32_t* c = &m.tri[3 * t];
+      const double* p = &m.xy[2 * c[0]];
+      const double* q = &m.xy[2 * c[1]];
+      const double* s = &m.xy[2 * c[2]];
+      area += 0.5 * std::fabs((q[0] - p[0]) * (s[1] - p[1]) - (q[1] - p[1]) * (s[0] - p[0]));
+    }
+    for (const auto& [ij, v] : a) energy += m.xy[2 * ij.first] * v * m.xy[2 * ij.second];
+    EXPECT_NEAR(r.sweeps.back().quality, energy, 1e-9 * area);
+    EXPECT_NEAR(r.sweeps.back().quality, area, 1e-9 * area);  // the Dirichlet energy of x
+  }
+}
+
+// Ordering invariance: the FEM kernels' measures are the same in every ordering (up to the
+// rounding of a sum taken in another order); the smoothers' are not (Gauss-Seidel).
+TEST(Kernels, AssemblyAndSpmvMeasuresDoNotDependOnTheOrdering) {
+  const Mesh base = Synthetic(20, 14, 2, 7);
+  for (const char* k : {"assembly", "spmv"}) {
+    Mesh ori = base.Clone();
+    const double want = RunKernel(K(k), ori, ExactSweeps(1)).sweeps[0].quality;
+    for (const char* ord : {"bfs", "rdr", "random", "hilbert"}) {
+      Mesh m = ApplyPermutation(base, ComputeOrdering(ord, base, 3));
+      EXPECT_NEAR(RunKernel(K(k), m, ExactSweeps(1)).sweeps[0].quality, want, 1e-12 * want)
+          << k << " " << ord;
+    }
+  }
+}
+
+// The first row of spmv's stream on the two-interior mesh, access by access, as spmv.cc says.
+TEST(Kernels, SpmvStreamIsTheDocumentedSequence) {
+  Mesh m = testing::TwoInterior();
+  RecordingSink rec;
+  KernelSinkOf<RecordingSink> sink(rec);
+  RunKernel(K("spmv"), m, ExactSweeps(1), sink);
+  const int64_t nnz0 = m.v2v.RowSize(0) + 1;
+  std::vector<Array> want = {Array::kLoopBound, Array::kMatOffsets, Array::kMatOffsets};
+  for (int64_t j = 0; j < nnz0; ++j)
+    for (Array a : {Array::kMatColumns, Array::kMatValues, Array::kVectorIn}) want.push_back(a);
+  want.push_back(Array::kVectorOut);
+  want.push_back(Array::kVectorIn);
+  want.push_back(Array::kLoopBound);  // row 1 begins
+  ASSERT_GE(rec.refs.size(), want.size());
+  for (size_t i = 0; i < want.size(); ++i)
+    EXPECT_EQ(rec.refs[i].ref.array, want[i]) << "access " << i;
+  EXPECT_TRUE(rec.refs[want.size() - 3].ref.write);  // y[0]
+  EXPECT_EQ(rec.refs[want.size() - 3].ref.vertex, 0);
+}
+
+}  // namespace
+}  // namespace meshreuse
