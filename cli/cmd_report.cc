@@ -55,7 +55,9 @@ int ReportCommand(const Args& args) {
   std::string orderings = "ori,bfs,rdr", threads, out_dir, triangle_order, cache = "westmere-ex",
               counters = "PAPI_L1_DCM,PAPI_L2_DCM,PAPI_L3_TCM", fig1_orderings = "random,ori,bfs",
               seed = "1", repeat = "3", clock = "wall", machine = "westmere-ex",
-              machine_threads = "1,2,4,8,16,24,32", prefetch = "L1,L2";
+              machine_threads = "1,2,4,8,16,24,32", prefetch = "L1,L2",
+              kernels = "laplacian,smart-laplacian,untangle,assembly,spmv",
+              kernel_orderings = "ori,bfs,rdr,grid-wave,rcm,hilbert";
   ReportConfig cfg;
   desc.add_options()("mesh", po::value(&cfg.meshes)->required()->multitoken(), "mesh file(s)")(
       "orderings", po::value(&orderings)->default_value(orderings),
@@ -93,6 +95,14 @@ int ReportCommand(const Args& args) {
       "traced sweeps per simulation (the last, warm, is counted)")(
       "prefetch", po::value(&prefetch)->default_value(prefetch),
       "levels with a next-line prefetcher in the one-thread prefetch table; none: no table")(
+      "kernels", po::value(&kernels)->default_value(kernels),
+      "the other-kernels part (the paper's conjecture): these kernels of `meshreuse kernels` in "
+      "--kernel-orderings on every mesh, simulated and timed (local-opt, ten Laplacian sweeps' "
+      "cost a sweep, only when named); none: no such part")(
+      "kernel-orderings", po::value(&kernel_orderings)->default_value(kernel_orderings),
+      "the orderings of the kernels part")(
+      "kernel-sweeps", po::value(&cfg.kernel_sweeps)->default_value(cfg.kernel_sweeps),
+      "timed sweeps per run in the kernels part")(
       "no-timing", "skip the timed runs (tables 1-3, misses and figure data only)")(
       "label", po::value(&cfg.label), "a name for the run (README title, run.json)")(
       "measured", po::value(&cfg.measured),
@@ -135,6 +145,8 @@ int ReportCommand(const Args& args) {
   cfg.cache = ParseCacheSpec(cache);
   cfg.counter_events = counters == "none" ? std::vector<std::string>{} : SplitList(counters);
   cfg.timing = vm.count("no-timing") == 0;
+  cfg.kernels = kernels == "none" ? std::vector<std::string>{} : SplitList(kernels);
+  cfg.kernel_orderings = SplitList(kernel_orderings);
   cfg.machine = machine == "none" ? "" : CanonicalMachine(machine);
   cfg.machine_threads = ParseThreadList(machine_threads);
   cfg.prefetch_levels = prefetch == "none" ? "" : prefetch;

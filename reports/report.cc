@@ -18,6 +18,7 @@
 #include "analysis/papi_counters.h"
 #include "analysis/reuse_analysis.h"
 #include "core/error.h"
+#include "core/kernels/kernel.h"
 #include "core/orderings/registry.h"
 #include "core/output_file.h"
 #include "core/schedule.h"
@@ -55,7 +56,8 @@ bool Contains(const std::vector<std::string>& v, const std::string& x) {
 // sweeps, into the analyzer and the simulator 70-130; a run to convergence takes about 65 sweeps.
 class Steps {
  public:
-  static constexpr double kAnalysis = 15, kSimulation = 100, kSweepsToConverge = 65, kMachine = 60;
+  static constexpr double kAnalysis = 15, kSimulation = 100, kSweepsToConverge = 65, kMachine = 60,
+                          kKernel = 30;
   Steps(const Log& log, const ReportConfig& cfg, const std::vector<ReportMesh>& meshes)
       : log_(log), t0_(Clock::now()) {
     double p_sum = 0;
@@ -68,6 +70,7 @@ class Steps {
         for (const std::string& o : cfg.figure1_orderings)
           if (!Contains(cfg.orderings, o)) total_ += m.weight * kAnalysis;
       if (cfg.timing) total_ += m.weight * no * cfg.repeat * kSweepsToConverge * p_sum;
+      total_ += KernelUnits(cfg, m);
       if (!cfg.machine.empty())
         for (int p : cfg.machine_threads)
           total_ += m.weight * no * kMachine * cfg.machine_sweeps *
@@ -82,6 +85,13 @@ class Steps {
     log_.Say(what + " [" + Duration(el) + " elapsed, ~" + left + " left]");
   }
   void Done(double units) { done_ += units; }
+  // The kernels part of one mesh: its simulated and its timed sweeps.
+  static double KernelUnits(const ReportConfig& cfg, const ReportMesh& m) {
+    return m.weight * kKernel * static_cast<double>(cfg.kernels.size()) *
+           static_cast<double>(cfg.kernel_orderings.size()) *
+           (cfg.validate_sweeps * kSimulation / kKernel +
+            (cfg.timing ? (cfg.repeat + 1) * cfg.kernel_sweeps : 0));
+  }
 
  private:
   const Log& log_;
@@ -402,6 +412,9 @@ Json ConfigurationJson(const ReportConfig& cfg) {
   j["figure1_orderings"] = cfg.figure1_orderings;
   j["profile_mesh"] = cfg.profile_mesh;
   j["timing"] = cfg.timing;
+  j["kernels"] = cfg.kernels;
+  j["kernel_orderings"] = cfg.kernel_orderings;
+  j["kernel_sweeps"] = cfg.kernel_sweeps;
   return j;
 }
 
@@ -570,6 +583,18 @@ void CheckReportConfig(const ReportConfig& cfg) {
     throw UsageError("figure 1 time bins must be 1..100000");
   for (const CacheLevel& l : cfg.cache.levels)
     if (l.ways == 0) throw UsageError("cache level " + l.name + " needs its ways (e.g. L1=32K/8)");
+  for (const std::string& k : cfg.kernels) {
+    SmoothOptions o = ExactSweeps(cfg.kernel_sweeps);
+    CheckKernelOptions(ParseKernel(k), o);
+  }
+  if (!cfg.kernels.empty()) {
+    if (cfg.kernel_orderings.empty()) throw UsageError("--kernel-orderings: no ordering given");
+    for (const std::string& m : cfg.meshes)
+      for (const std::string& o : cfg.kernel_orderings)
+        CheckOrderingSpec(ForMesh(o, MeshShortName(m)));
+    if (cfg.kernel_sweeps < 1 || cfg.kernel_sweeps > 1000)
+      throw UsageError("--kernel-sweeps must be 1..1000");
+  }
 }
 
 // The figure meshes among the meshes: a configured name that is absent falls back to the first
@@ -630,6 +655,29 @@ std::string RunReport(const ReportConfig& in_cfg, const std::string& out_dir, co
     const PhaseTimes::Scope t = phases.Time("timed runs (Table 4, speedups)");
     MeasureTiming(cfg, &d, steps);
     if (const std::string busy = BusyNote(d); !busy.empty()) log.Warn(busy);
+  }
+  if (!cfg.kernels.empty()) {
+    const PhaseTimes::Scope t = phases.Time("other kernels (simulated and timed)");
+    for (const ReportMesh& m : d.meshes) {
+      KernelRunsConfig kc;
+      kc.kernels = cfg.kernels;
+      for (const std::string& o : cfg.kernel_orderings) {
+        kc.orderings.push_back(ForMesh(o, m.name));
+        kc.labels.push_back(ParseOrderingSpec(kc.orderings.back()).label);
+      }
+      kc.sweeps = cfg.kernel_sweeps;
+      kc.traced_sweeps = cfg.validate_sweeps;
+      kc.rounds = cfg.repeat;
+      kc.timing = cfg.timing;
+      kc.clock = cfg.clock;
+      kc.seed = cfg.seed;
+      kc.triangle_order = cfg.triangle_order;
+      kc.cache = cfg.cache;
+      kc.line_bytes = cfg.line_bytes;
+      const Mesh base = LoadMesh(m.path, log);
+      MeasureKernels(kc, m.name, base, &d.kernels, [&](const std::string& s) { steps.Say(s); });
+      steps.Done(Steps::KernelUnits(cfg, m));
+    }
   }
 
   std::string sections;

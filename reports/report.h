@@ -65,6 +65,14 @@ struct ReportConfig : TimingOptions {
   // A compare.csv measured elsewhere (reports/measured.h), drawn beside the many-core
   // prediction; "": none.
   std::string measured;
+  // The kernels part (reports/kernel_runs.h): each of `kernels` in each of `kernel_orderings` on
+  // every mesh, simulated (`validate_sweeps` sweeps through `cache`) and timed (`kernel_sweeps`
+  // sweeps per run, `repeat` rounds, one thread). local-opt is left out by default: a sweep of it
+  // costs about ten Laplacian sweeps, and the full run keeps its time. Empty: no kernels part.
+  std::vector<std::string> kernels = {"laplacian", "smart-laplacian", "untangle", "assembly",
+                                      "spmv"};
+  std::vector<std::string> kernel_orderings = {"ori", "bfs", "rdr", "grid-wave", "rcm", "hilbert"};
+  int kernel_sweeps = 5;
   // Phases before the report (scripts/reproduce.sh: setup, build, meshing), "NAME WALL CPU" per
   // line: put first in the README's and run.json's breakdown of the time.
   std::string prior_phases;

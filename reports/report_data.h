@@ -13,6 +13,7 @@
 #include "analysis/reuse_histogram.h"
 #include "core/table.h"
 #include "reports/compare.h"
+#include "reports/kernel_runs.h"
 #include "reports/machine_runs.h"
 #include "reports/measured.h"
 #include "reports/report.h"
@@ -54,6 +55,7 @@ struct ReportData {
   std::vector<CompareRow> timing;            // empty without timing
   std::vector<MachineRun> machine;           // empty without the many-core part
   std::optional<MeasuredSpeedups> measured;  // --measured
+  std::vector<KernelRun> kernels;            // the kernels part, empty without it
   // The run of (mesh, ordering, placement, threads, prefetch), or nullptr.
   const MachineRun* Machine(const std::string& mesh, const std::string& ordering,
                             const std::string& placement, int threads, bool prefetch = false) const;

@@ -9,7 +9,8 @@
 # (ours | paper | difference, every figure).
 #
 # Usage: scripts/reproduce.sh [--quick | --scale] [--orderings ori,bfs,rdr,file:my.perm,...]
-#          [--threads 1,2] [--repeat 3|auto] [--vertices N] [--shapes a,b,...] [--out DIR] [--quiet]
+#          [--threads 1,2] [--repeat 3|auto] [--vertices N] [--shapes a,b,...] [--kernels LIST]
+#          [--out DIR] [--quiet]
 #   --quick   the same pipeline on 20,000-vertex meshes, three rounds, the machine simulated at
 #             1, 4 and 32 threads (a minute; CI runs it): too small for the paper's columns,
 #             which the default run on the paper's sizes fills
@@ -20,24 +21,30 @@
 #             old vertex id per line in new order; {mesh} in PATH stands for each mesh's name,
 #             e.g. file:perms/{mesh}.perm; LABEL=file:PATH names its rows); ori is always run
 #             (the speedups need it). Relative paths (here and --out) are from where you run it.
+#   --kernels the other-kernels part (the paper's conjecture, reports/docs/kernels.md): which
+#             kernels of `meshreuse kernels` race ORI, BFS, RDR, grid-wave, RCM and Hilbert on every
+#             mesh; none: no such part. Default: laplacian, smart-laplacian, untangle, assembly and
+#             spmv with --quick; smart-laplacian and untangle (the two the paper names) on the
+#             paper's sizes, to keep the full run's time; none with --scale.
 set -euo pipefail
 caller=$PWD
 cd "$(dirname "$0")/.."
 
-mode=full vertices="" quiet="" orderings="ori,bfs,rdr" threads="" repeat=3 out=""
+mode=full vertices="" quiet="" orderings="ori,bfs,rdr" threads="" repeat=3 out="" kernels=""
 shapes="carabiner,crake,dialog,lake,riverflow,ocean,stress,valve,wrench"
 source scripts/lib.sh
-usage() { lib_usage 2 22; }
+usage() { lib_usage 2 28; }
 LIB_USAGE=usage
 quick=0 scale=0 q=0
 lib_options --quick=quick! --scale=scale! --vertices=vertices --orderings=orderings \
-  --threads=threads --repeat=repeat --shapes=shapes --out=out --quiet=q! -- "$@"
+  --threads=threads --repeat=repeat --shapes=shapes --kernels=kernels --out=out --quiet=q! -- "$@"
 ((q)) && quiet=--quiet
 ((quick)) && mode=quick
 ((scale)) && mode=scale
 [[ -z $vertices || $vertices =~ ^[0-9]+$ ]] || lib_die "--vertices takes a number, found '$vertices'"
 [[ $repeat =~ ^(auto(:[0-9]+)?|[0-9]+)$ ]] || lib_die "--repeat takes a number >= 3 or auto, found '$repeat'"
 [[ $repeat == auto* || $repeat -ge 3 ]] || lib_die "--repeat must be at least 3: a median and its interval need rounds"
+[[ -z $kernels || $kernels =~ ^[a-z-]+(,[a-z-]+)*$ ]] || lib_die "--kernels takes names like untangle,spmv or none, found '$kernels'"
 [[ -z $threads || $threads =~ ^[0-9]+(,[0-9]+)*$ ]] || lib_die "--threads takes numbers like 1,2, found '$threads'"
 [[ ,$orderings, == *,ori,* ]] || orderings="ori,$orderings"
 # file:PATH and LABEL=file:PATH resolved from the caller's folder; {mesh} in PATH is each mesh's
@@ -126,16 +133,18 @@ args=(--orderings "$orderings" --repeat "$repeat" --label "$mode")
 make_meshes() {
   case $mode in
     full)
+      args+=(--kernels "${kernels:-smart-laplacian,untangle}")
       IFS=, read -r -a names <<<"$shapes"
       for s in "${names[@]}"; do files+=("$(mesh "$s" "$vertices" "out/meshes/${vertices:-paper}")"); done ;;
     quick)
       IFS=, read -r -a names <<<"$shapes"
       for s in "${names[@]}"; do files+=("$(mesh "$s" "${vertices:-20000}" "out/meshes/${vertices:-20000}")"); done
+      [[ -n $kernels ]] && args+=(--kernels "$kernels")
       args+=(--machine-threads 1,4,32) ;;
     scale)
       for v in 10000 100000 1000000 10000000; do files+=("$(mesh ocean "$v" out/meshes/scale "ocean-$v")"); done
       [[ -n $threads ]] || args+=(--threads 1)
-      args+=(--figure1-mesh none --profile-mesh none --machine none) ;;
+      args+=(--figure1-mesh none --profile-mesh none --machine none --kernels "${kernels:-none}") ;;
   esac
 }
 phase meshing make_meshes

@@ -43,7 +43,7 @@ rm -rf build/quick-report
 bash scripts/reproduce.sh --quick --quiet --out build/quick-report >/dev/null
 /usr/bin/python3 tests/scripts/check_report.py build/quick-report figure1 profile histograms \
   miss-rates time speedup speedup-mean gain meshes smoothing orderings figure11 machine-misses \
-  predicted-speedup
+  predicted-speedup kernels
 if ((quick == 0)); then
   # -O1: ASan's advice for a usable speed (the tests run about 3x faster than at -O0); Debug keeps
   # the assertions.

@@ -14,6 +14,7 @@
 
 #include "analysis/reference.h"
 #include "core/error.h"
+#include "core/kernels/kernel.h"
 #include "core/orderings/registry.h"
 #include "reports/run_info.h"
 #include "reports/simulate.h"
@@ -158,9 +159,9 @@ TEST(Report, Table2MatchesTheTextbookStackDistance) {
   const Json manifest = Json::parse(Slurp(out / "r/manifest.json"));
   std::vector<std::string> tables, figures;
   for (const Json& t : manifest["tables"]) tables.push_back(t["name"]);
-  EXPECT_EQ(tables,
-            (std::vector<std::string>{"table1", "table2", "table3", "misses", "miss_reduction",
-                                      "machine_misses", "predicted_speedup", "prefetch"}));
+  EXPECT_EQ(tables, (std::vector<std::string>{
+                        "table1", "table2", "table3", "misses", "miss_reduction", "machine_misses",
+                        "predicted_speedup", "prefetch", "kernels", "kernels_mean"}));
   for (const Json& d : manifest["data"])
     EXPECT_TRUE(std::filesystem::exists(out / ("r/" + d["file"].get<std::string>()))) << d;
   for (const Json& fig : manifest["figures"]) {
@@ -170,7 +171,39 @@ TEST(Report, Table2MatchesTheTextbookStackDistance) {
   }
   EXPECT_EQ(figures, (std::vector<std::string>{"figure1", "profile", "histograms", "miss-rates",
                                                "meshes", "smoothing", "orderings", "figure11",
-                                               "machine-misses", "predicted-speedup"}));
+                                               "machine-misses", "predicted-speedup", "kernels"}));
+}
+
+// The kernels part (the paper's conjecture): a row per mesh x kernel x ordering; the simulated
+// sweep's accesses are the kernels' closed forms where they have one; misses never below the
+// floor; the README answers kernel by kernel.
+TEST(Report, KernelsPartCountsEveryAccessAndStaysAboveTheFloor) {
+  Fixture f;
+  ReportConfig c = f.Config();
+  c.machine = "";
+  c.kernels = {"laplacian", "assembly", "spmv", "untangle"};
+  c.kernel_orderings = {"ori", "bfs", "rdr"};
+  std::filesystem::path out = f.dir.path();
+  RunReport(c, out / "k", Log{});
+  const auto rows = Csv(out / "k/tables/kernels.csv");
+  ASSERT_EQ(rows.size(), 2u * 4 * 3);
+  for (const auto& r : rows) {
+    const Mesh base = ReadMesh(r.at("mesh") == "ocean" ? f.meshes[0] : f.meshes[1]);
+    const KernelInfo& k = ParseKernel(r.at("kernel"));
+    const std::vector<uint64_t> refs = k.refs(base, ExactSweeps(1));
+    if (!refs.empty() && r.at("kernel") != "laplacian") {  // the same in every ordering
+      EXPECT_EQ(std::stoull(r.at("accesses")), refs[0])
+          << r.at("kernel") << " " << r.at("ordering");
+    }
+    for (const char* lv : {"L1", "L2", "L3"})
+      EXPECT_GE(std::stoull(r.at(std::string(lv) + "_misses")),
+                std::stoull(r.at(std::string(lv) + "_floor")))
+          << r.at("kernel") << " " << lv;
+    EXPECT_EQ(r.at("ms_per_sweep"), "");  // not timed
+  }
+  const std::string readme = Slurp(out / "k/README.md");
+  for (const char* k : {"**laplacian**", "**assembly**", "**spmv**", "**untangle**"})
+    EXPECT_NE(readme.find(k), std::string::npos) << k;
 }
 
 TEST(Report, SameConfigurationSameNonTimingFilesByteForByte) {

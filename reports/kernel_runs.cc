@@ -1,0 +1,140 @@
+// MeasureKernels; see kernel_runs.h.
+#include "reports/kernel_runs.h"
+
+#include <omp.h>
+
+#include <algorithm>
+#include <exception>
+
+#include "analysis/cache_sim.h"
+#include "analysis/reuse_analysis.h"
+#include "analysis/sweep_footprint.h"
+#include "core/kernels/kernel.h"
+#include "core/orderings/registry.h"
+#include "reports/speedup.h"
+#include "tracer/access_stream.h"
+
+namespace meshreuse {
+
+namespace {
+
+double MedianOf(const SmoothResult& r, double SweepRecord::*field) {
+  std::vector<double> v;
+  for (const SweepRecord& s : r.sweeps) v.push_back(s.*field);
+  return Median(v);
+}
+
+// The simulated part of one run: misses and floor of the last traced sweep, line quantiles.
+void Simulate(const KernelRunsConfig& cfg, const KernelInfo& k, Mesh& work, KernelRun* r) {
+  CacheSimulation sim(cfg.cache, cfg.line_bytes);
+  SweepFootprint footprint(cfg.line_bytes);
+  ReuseOptions ro;
+  ro.granularity = Granularity::kLine;
+  ro.line_bytes = cfg.line_bytes;
+  ro.profile = false;
+  ReuseAnalysis reuse(ro);
+  FanOut all({&sim, &footprint, &reuse});
+  StreamMesh(work, ExactSweeps(cfg.traced_sweeps), r->mesh, r->ordering, all, &k);
+  const std::vector<LevelStats> last = sim.SweepStats(0, sim.sweeps() - 1);
+  r->accesses = last.empty() ? 0 : last[0].accesses;
+  for (const LevelStats& s : last) r->misses.push_back(s.misses);
+  // The floor is a sum over sweeps: the last sweep's is the whole minus the sweeps before it.
+  std::vector<std::vector<uint64_t>> lines = footprint.lines();
+  const std::vector<uint64_t> all_floor = MissFloor(lines, cfg.cache, cfg.line_bytes);
+  for (auto& t : lines)
+    if (!t.empty()) t.pop_back();
+  const std::vector<uint64_t> before = MissFloor(lines, cfg.cache, cfg.line_bytes);
+  for (size_t i = 0; i < all_floor.size(); ++i)
+    r->floor.push_back(all_floor[i] - (i < before.size() ? before[i] : 0));
+  if (const StreamAnalysis* s = reuse.line(0)) {
+    r->q50 = s->hist.Quantile(0.5);
+    r->q90 = s->hist.Quantile(0.9);
+  }
+}
+
+}  // namespace
+
+void MeasureKernels(const KernelRunsConfig& cfg, const std::string& mesh, const Mesh& base,
+                    std::vector<KernelRun>* out,
+                    const std::function<void(const std::string&)>& say) {
+  const size_t first = out->size();
+  std::vector<Permutation> perms;
+  for (const std::string& o : cfg.orderings) perms.push_back(ComputeOrdering(o, base, cfg.seed));
+  // The simulations, side by side on the host's cores (each job its own layout, stream and
+  // simulators; results in job order, so nothing depends on the schedule).
+  for (const std::string& kn : cfg.kernels)
+    for (size_t o = 0; o < cfg.orderings.size(); ++o) {
+      KernelRun r;
+      r.mesh = mesh, r.kernel = kn, r.ordering = cfg.labels[o];
+      r.time.mesh = mesh, r.time.ordering = cfg.labels[o];
+      r.time.vertices = base.NumVertices(), r.time.triangles = base.NumTriangles();
+      r.time.final_quality = NAN;  // known once timed
+      out->push_back(std::move(r));
+    }
+  say("kernels: " + mesh + ", " + std::to_string(cfg.kernels.size()) + " kernels x " +
+      std::to_string(cfg.orderings.size()) + " orderings x " + std::to_string(cfg.traced_sweeps) +
+      " simulated sweeps");
+  const int jobs = static_cast<int>(out->size() - first);
+  std::exception_ptr failed;
+#pragma omp parallel for schedule(dynamic, 1) \
+    num_threads(std::max(1, std::min(jobs, omp_get_max_threads())))
+  for (int j = 0; j < jobs; ++j) {
+    try {
+      KernelRun& r = (*out)[first + j];
+      const size_t o = static_cast<size_t>(j) % cfg.orderings.size();
+      Mesh laid;
+      ApplyPermutationInto(base, perms[o], cfg.triangle_order, &laid);
+      Simulate(cfg, ParseKernel(r.kernel), laid, &r);
+    } catch (...) {
+#pragma omp critical(meshreuse_kernel_runs_failed)
+      if (!failed) failed = std::current_exception();
+    }
+  }
+  if (failed) std::rethrow_exception(failed);
+  Mesh work;
+  if (!cfg.timing) return;
+  // Round 0 warms up (untimed); then every kernel x ordering once per round, from the layout.
+  for (int round = 0; round <= cfg.rounds; ++round) {
+    say("kernels: " + mesh + (round == 0 ? ", warm-up round" : ", round " + std::to_string(round)) +
+        " of " + std::to_string(cfg.rounds));
+    size_t i = first;
+    for (const std::string& kn : cfg.kernels) {
+      const KernelInfo& k = ParseKernel(kn);
+      for (size_t o = 0; o < cfg.orderings.size(); ++o, ++i) {
+        ApplyPermutationInto(base, perms[o], cfg.triangle_order, &work);
+        const SmoothResult res = RunKernel(k, work, ExactSweeps(cfg.sweeps));
+        if (round == 0) continue;
+        CompareRound c;
+        c.sweeps = static_cast<int>(res.sweeps.size());
+        c.total_wall = res.seconds, c.total_cpu = res.cpu_seconds;
+        c.sweep_wall = MedianOf(res, &SweepRecord::seconds);
+        c.sweep_cpu = MedianOf(res, &SweepRecord::cpu_seconds);
+        CompareRow& t = (*out)[i].time;
+        if (round == 1) t.final_quality = res.sweeps.empty() ? NAN : res.sweeps.back().quality;
+        t.rounds.push_back(c);
+      }
+    }
+  }
+  for (size_t i = first; i < out->size(); ++i) {
+    CompareRow& t = (*out)[i].time;
+    const uint64_t s = cfg.seed + i;
+    t.sweep = SpreadOf(t.Values(&CompareRound::sweep_wall), s);
+    t.sweep_cpu = SpreadOf(t.Values(&CompareRound::sweep_cpu), s + 1);
+    t.total = SpreadOf(t.Values(&CompareRound::total_wall), s + 2);
+  }
+  // Against ORI and BFS of the same kernel.
+  for (size_t i = first; i < out->size(); ++i) {
+    KernelRun& r = (*out)[i];
+    const CompareRow *ori = nullptr, *bfs = nullptr;
+    for (size_t j = first; j < out->size(); ++j) {
+      const KernelRun& x = (*out)[j];
+      if (x.kernel != r.kernel) continue;
+      if (x.ordering == "ori") ori = &x.time;
+      if (x.ordering == "bfs") bfs = &x.time;
+    }
+    r.time.speedup_vs_ori1 = Speedup(ori, &r.time, cfg.seed + i, cfg.clock);
+    r.time.gain_vs_bfs = Gain(bfs, &r.time, cfg.seed + i, cfg.clock);
+  }
+}
+
+}  // namespace meshreuse

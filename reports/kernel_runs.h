@@ -1,0 +1,61 @@
+// The report's kernels part (issue 41: the paper's conjecture that its ordering helps "mesh
+// untangling, constraint mesh smoothing, and mesh swapping"): per mesh, each kernel of
+// core/kernels/ in each ordering, simulated and timed on one thread.
+//   - simulated: `traced_sweeps` sweeps streamed through the cache levels (analysis/cache_sim.h),
+//     the sweep footprint (the floor no layout can beat, analysis/sweep_footprint.h) and the exact
+//     line-level reuse analysis; the last (warm) sweep's misses and floor, the quantiles of every
+//     traced access;
+//   - timed: after an untimed warm-up, `rounds` rounds, each running every kernel in every
+//     ordering once from the same layout (so noise hits all alike, as compare's rounds), each run
+//     exactly `sweeps` sweeps: the per-sweep median of each run, its spread over the rounds, and
+//     the speedups against ORI and BFS of the same kernel with their intervals (speedup.h).
+// Each ordering is computed once per mesh and applied into a working copy before every run; the
+// simulations run side by side on the host's cores, the timed runs one at a time.
+#pragma once
+
+#include <cmath>
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "analysis/cache_model.h"
+#include "core/mesh.h"
+#include "core/permutation.h"
+#include "reports/timed_runs.h"
+#include "reports/timing.h"
+
+namespace meshreuse {
+
+struct KernelRunsConfig {
+  std::vector<std::string> kernels;
+  std::vector<std::string> orderings;  // specs (a mesh's own file:PATH made already)
+  std::vector<std::string> labels;     // as the tables name them, one per ordering
+  int sweeps = 5;                      // timed sweeps per run
+  int traced_sweeps = 2;               // simulated sweeps; the last is counted
+  int rounds = 3;
+  bool timing = true;
+  TimeClock clock = TimeClock::kWall;
+  uint64_t seed = 1;
+  TriangleOrder triangle_order = TriangleOrder::kSorted;
+  CacheSpec cache;
+  uint32_t line_bytes = 64;
+};
+
+struct KernelRun {
+  std::string mesh, kernel, ordering;  // ordering: its label
+  // The timed rounds: rounds (sweep_wall, sweep_cpu: per-sweep medians), sweep and sweep_cpu
+  // spreads, speedup_vs_ori1 = T_ori / T and gain_vs_bfs, both against the same kernel on one
+  // thread; final_quality: the kernel's measure after the first round.
+  CompareRow time;
+  std::vector<uint64_t> misses, floor;  // per cache level, the last traced sweep
+  uint64_t accesses = 0;                // loads and stores of the last traced sweep
+  uint64_t q50 = 0, q90 = 0;            // line-level reuse distances, every traced access
+};
+
+// Appends one row per kernel x ordering of `base` (named `mesh`) to `out`; `say` gets progress.
+void MeasureKernels(const KernelRunsConfig& cfg, const std::string& mesh, const Mesh& base,
+                    std::vector<KernelRun>* out,
+                    const std::function<void(const std::string&)>& say);
+
+}  // namespace meshreuse
