@@ -56,7 +56,7 @@ int ReportCommand(const Args& args) {
               counters = "PAPI_L1_DCM,PAPI_L2_DCM,PAPI_L3_TCM", fig1_orderings = "random,ori,bfs",
               seed = "1", repeat = "3", clock = "wall", machine = "westmere-ex",
               machine_threads = "1,2,4,8,16,24,32", prefetch = "L1,L2",
-              kernels = "laplacian,smart-laplacian,untangle,assembly,spmv",
+              kernels = "laplacian,smart-laplacian,untangle,edge-swap,assembly,spmv",
               kernel_orderings = "ori,bfs,rdr,grid-wave,rcm,hilbert";
   ReportConfig cfg;
   desc.add_options()("mesh", po::value(&cfg.meshes)->required()->multitoken(), "mesh file(s)")(

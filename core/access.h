@@ -49,8 +49,10 @@ enum class Array : uint8_t {
   kElementMap = 18,  // per triangle the 9 positions of its local matrix in `values`
   kVectorIn = 19,    // x
   kVectorOut = 20,   // y
+  // The edge flips (core/kernels/edge_swap.cc): per triangle the triangle across each edge.
+  kTriNeighbours = 21,
 };
-inline constexpr int kArrays = 21;
+inline constexpr int kArrays = 22;
 
 struct MemRef {
   const void* address;
@@ -135,9 +137,9 @@ struct SweepRegion {
 
 inline const char* ArrayName(Array a) {
   static constexpr const char* kNames[kArrays] = {
-      "interior", "v2v.off", "v2v.idx", "v2t.off", "v2t.idx",  "tri",      "tq",
-      "w",        "xy",      "xy.next", "bound",   "send.idx", "send.buf", "recv.idx",
-      "recv.buf", "A.off",   "A.col",   "A.val",   "e2a",      "x",        "y"};
+      "interior", "v2v.off", "v2v.idx", "v2t.off",  "v2t.idx",  "tri",      "tq",       "w",
+      "xy",       "xy.next", "bound",   "send.idx", "send.buf", "recv.idx", "recv.buf", "A.off",
+      "A.col",    "A.val",   "e2a",     "x",        "y",        "t2t"};
   const int i = static_cast<int>(a);
   return i >= 0 && i < kArrays ? kNames[i] : "?";
 }

@@ -69,8 +69,8 @@ struct ReportConfig : TimingOptions {
   // every mesh, simulated (`validate_sweeps` sweeps through `cache`) and timed (`kernel_sweeps`
   // sweeps per run, `repeat` rounds, one thread). local-opt is left out by default: a sweep of it
   // costs about ten Laplacian sweeps, and the full run keeps its time. Empty: no kernels part.
-  std::vector<std::string> kernels = {"laplacian", "smart-laplacian", "untangle", "assembly",
-                                      "spmv"};
+  std::vector<std::string> kernels = {"laplacian", "smart-laplacian", "untangle", "edge-swap",
+                                      "assembly",  "spmv"};
   std::vector<std::string> kernel_orderings = {"ori", "bfs", "rdr", "grid-wave", "rcm", "hilbert"};
   int kernel_sweeps = 5;
   // Phases before the report (scripts/reproduce.sh: setup, build, meshing), "NAME WALL CPU" per

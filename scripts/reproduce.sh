@@ -23,9 +23,10 @@
 #             (the speedups need it). Relative paths (here and --out) are from where you run it.
 #   --kernels the other-kernels part (the paper's conjecture, reports/docs/kernels.md): which
 #             kernels of `meshreuse kernels` race ORI, BFS, RDR, grid-wave, RCM and Hilbert on every
-#             mesh; none: no such part. Default: laplacian, smart-laplacian, untangle, assembly and
-#             spmv with --quick; smart-laplacian and untangle (the two the paper names) on the
-#             paper's sizes, to keep the full run's time; none with --scale.
+#             mesh; none: no such part. Default: laplacian, smart-laplacian, untangle, edge-swap,
+#             assembly and spmv with --quick; smart-laplacian, untangle and edge-swap (the three
+#             the paper names) on the paper's sizes, to keep the full run's time; none with
+#             --scale.
 set -euo pipefail
 caller=$PWD
 cd "$(dirname "$0")/.."
@@ -133,7 +134,7 @@ args=(--orderings "$orderings" --repeat "$repeat" --label "$mode")
 make_meshes() {
   case $mode in
     full)
-      args+=(--kernels "${kernels:-smart-laplacian,untangle}")
+      args+=(--kernels "${kernels:-smart-laplacian,untangle,edge-swap}")
       IFS=, read -r -a names <<<"$shapes"
       for s in "${names[@]}"; do files+=("$(mesh "$s" "$vertices" "out/meshes/${vertices:-paper}")"); done ;;
     quick)

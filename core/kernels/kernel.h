@@ -46,7 +46,7 @@ struct KernelSinkOf : KernelSink {
   void Access(int thread, const MemRef& r) override { to.Access(thread, r); }
 };
 
-enum class VisitUnit { kVertex, kTriangle, kRow };
+enum class VisitUnit { kVertex, kEdge, kTriangle, kRow };
 const char* VisitUnitName(VisitUnit u);
 
 using KernelTimedFn = SmoothResult (*)(Mesh&, const SmoothOptions&);

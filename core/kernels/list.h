@@ -32,6 +32,12 @@ MESHREUSE_KERNEL(KernelUntangle, "untangle", VisitUnit::kVertex, false, true, tr
                  "mesh untangling: the input tangled on purpose (5% of interior vertices moved "
                  "past a neighbour), then per vertex a Newton step on the untangle-beta objective",
                  "Freitag and Plassmann 2000; Mesquite's untangle-beta metric")
+MESHREUSE_KERNEL(KernelEdgeSwap, "edge-swap", VisitUnit::kEdge, false, false, true, false,
+                 "1 - flips / interior edges in the sweep (1: every edge locally Delaunay)",
+                 "none: two flips sharing a triangle would race",
+                 "mesh swapping: the input jittered on purpose (valid, no longer Delaunay), then "
+                 "Lawson flips of every edge not locally Delaunay, triangles in storage order",
+                 "Lawson 1977; Freitag and Ollivier-Gooch 1997 (edge swapping)")
 MESHREUSE_KERNEL(KernelAssembly, "assembly", VisitUnit::kTriangle, false, false, false, true,
                  "the assembled matrix's trace",
                  "none yet: triangles sharing a vertex add to the same entries (a colouring or "

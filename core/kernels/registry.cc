@@ -30,6 +30,8 @@ const char* VisitUnitName(VisitUnit u) {
   switch (u) {
     case VisitUnit::kVertex:
       return "vertex";
+    case VisitUnit::kEdge:
+      return "edge";
     case VisitUnit::kTriangle:
       return "triangle";
     case VisitUnit::kRow:

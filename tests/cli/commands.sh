@@ -675,7 +675,7 @@ check "kernel without ranks" 2 "$bin" simulate "$data/plate41.msh" --kernel spmv
 contains "kernel without ranks" "no --kernel spmv with it"
 check "kernel moving nothing" 2 "$bin" smooth "$data/plate41.msh" --kernel spmv -o "$tmp/k.vtu" --quiet
 [[ ! -e $tmp/k.vtu ]] && pass=$((pass + 1)) || { fail=$((fail + 1)); echo "FAIL kernel moving nothing: wrote"; }
-for k in smart-laplacian local-opt untangle assembly spmv; do
+for k in smart-laplacian local-opt untangle edge-swap assembly spmv; do
   check "smooth --kernel $k" 0 "$bin" smooth "$data/plate41.msh" --kernel "$k" --max-iters 3 --quiet
   check "compare --kernel $k" 0 "$bin" compare "$data/plate41.msh" --kernel "$k" --orderings ori,bfs,rdr,grid-wave --repeat 3 --max-iters 3 --csv --quiet
   check "analyze --kernel $k" 0 "$bin" analyze "$data/plate41.msh" --kernel "$k" --orderings ori,rdr -k 2 --csv --quiet

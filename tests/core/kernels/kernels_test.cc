@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "core/kernels/edge_swap.h"
 #include "core/kernels/kernel.h"
 #include "core/kernels/stiffness.h"
 #include "core/kernels/untangle.h"
@@ -69,6 +70,7 @@ TEST(Kernels, TracedAndTimedAgreeAndCountsMatchTheDocumentedSequence) {
       KernelSinkOf<CountingSink> sink(count);
       const SmoothResult rb = RunKernel(k, b, o, sink);
       EXPECT_EQ(a.xy, b.xy) << k.name;
+      EXPECT_EQ(a.tri, b.tri) << k.name;
       ASSERT_EQ(ra.sweeps.size(), rb.sweeps.size()) << k.name;
       for (size_t s = 0; s < ra.sweeps.size(); ++s)
         EXPECT_EQ(ra.sweeps[s].quality, rb.sweeps[s].quality) << k.name << " sweep " << s;
@@ -227,6 +229,60 @@ TEST(Kernels, UntangleLeavesNoTriangleTurnedOver) {
     if (base.NumVertices() > 100) {
       EXPECT_LT(r.quality_before, 1.0);  // it was tangled
     }
+  }
+}
+
+// The kite A(0,0) B(4,0) C(2,1) D(2,-1) split along AB: D lies inside the circumcircle of ABC
+// (centre (2,-1.5), radius 2.5), so one flip makes CD the diagonal: t = (C, A, D), u = (C, D, B).
+TEST(Kernels, EdgeSwapFlipsTheKitesLongDiagonal) {
+  RawMesh raw;
+  raw.xy = {0, 0, 4, 0, 2, 1, 2, -1};
+  raw.tri = {0, 1, 2, 1, 0, 3};
+  Mesh m = BuildMesh(std::move(raw));
+  EXPECT_FALSE(IsDelaunay(m));
+  const SmoothResult r = RunKernel(K("edge-swap"), m, ExactSweeps(10));
+  EXPECT_EQ(m.tri, (AlignedVector<int32_t>{2, 0, 3, 2, 3, 1}));
+  ASSERT_EQ(r.sweeps.size(), 2u);             // one flip, then a sweep that flips nothing
+  EXPECT_EQ(r.sweeps[0].quality, 1.0 - 1.0);  // the one interior edge flipped
+  EXPECT_EQ(r.sweeps[1].quality, 1.0);
+  EXPECT_TRUE(r.converged);
+  EXPECT_TRUE(IsDelaunay(m));
+}
+
+// On every mesh the flips end Delaunay with no triangle turned over, and (the points in general
+// position after the jitter) at the one Delaunay triangulation, whatever the numbering.
+TEST(Kernels, EdgeSwapEndsAtTheDelaunayTriangulationInEveryOrdering) {
+  auto triangles = [](const Mesh& m) {
+    std::vector<std::vector<std::pair<double, double>>> t;
+    for (int32_t i = 0; i < m.NumTriangles(); ++i) {
+      std::vector<std::pair<double, double>> c;
+      for (int j = 0; j < 3; ++j)
+        c.emplace_back(m.xy[2 * m.tri[3 * i + j]], m.xy[2 * m.tri[3 * i + j] + 1]);
+      std::sort(c.begin(), c.end());
+      t.push_back(c);
+    }
+    std::sort(t.begin(), t.end());
+    return t;
+  };
+  for (const Mesh& base : Meshes()) {
+    Mesh m = base.Clone();
+    SmoothOptions o;
+    const SmoothResult r = RunKernel(K("edge-swap"), m, o);
+    EXPECT_TRUE(r.converged);
+    EXPECT_TRUE(IsDelaunay(m));
+    EXPECT_EQ(r.quality_after, 1.0);
+    EXPECT_EQ(CountInverted(m, 1.0), CountInverted(base, 1.0));
+    EXPECT_EQ(m.NumTriangles(), base.NumTriangles());
+  }
+  const Mesh base = Synthetic(20, 14, 2, 7);
+  Mesh ori = base.Clone();
+  const SmoothResult r = RunKernel(K("edge-swap"), ori, SmoothOptions{});
+  EXPECT_GT(r.sweeps[0].quality, 0.0);
+  EXPECT_LT(r.sweeps[0].quality, 1.0);  // the jitter left edges to flip
+  for (const char* ord : {"bfs", "rdr", "random"}) {
+    Mesh m = ApplyPermutation(base, ComputeOrdering(ord, base, 5));
+    RunKernel(K("edge-swap"), m, SmoothOptions{});
+    EXPECT_EQ(triangles(m), triangles(ori)) << ord;
   }
 }
 

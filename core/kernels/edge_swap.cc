@@ -1,0 +1,241 @@
+// edge-swap: quality-driven edge flips, the paper's "mesh swapping" (Lawson 1977: flipping every
+// edge that is not locally Delaunay ends at the Delaunay triangulation, which maximises the least
+// angle; Freitag and Ollivier-Gooch 1997 for swapping in mesh improvement). The kernel first
+// perturbs its input (JitterMesh, below: outside the timed and traced sweeps), then each sweep
+// visits the triangles in storage order (the order of the triangles follows the vertex ordering,
+// --triangle-order), and each edge of triangle t, in corner-slot order, whose other triangle u has
+// a higher id (each edge once, from its lower-numbered triangle): when the corner of u opposite the
+// edge lies strictly inside t's circumcircle (the incircle determinant, signed by t's orientation,
+// above 1e-12 of its magnitude: a near-cocircular quad is left, so round-off cannot flip an edge
+// back and forth), the edge is flipped in place: t and u keep their slots, their corners and the
+// triangles across their four outer edges are rewritten. The topology changes as it goes; the
+// sweeps stop after one that flips nothing (every edge locally Delaunay), at most max_iters (tol
+// does not apply). The measure: 1 - flips / interior edges in the sweep (1: none flipped). The
+// mesh's vertex adjacency is rebuilt after the last sweep (untimed). Serial: two flips sharing a
+// triangle would race (--threads 1 only).
+// Access sequence of a visit of triangle t (besides the loop bound, smoother.h ForStatic):
+// tri[3t..3t+2] 4 B each, x then y of each corner 8 B each (kCoordRead on the x); then per slot j:
+// t2t[3t+j] 4 B; when u = t2t[3t+j] > t: tri[3u..3u+2] 4 B each and x then y of u's corner
+// opposite the edge (kCoordRead on the x); when flipped: stores tri[3t..3t+2], tri[3u..3u+2],
+// t2t[3t..3t+2], t2t[3u..3u+2] (4 B each), and for each of the two outer triangles whose
+// neighbour changes, its t2t entries read up to the one that pointed back (4 B each) and that one
+// stored. Its length depends on the flips (KernelInfo::refs is empty).
+#include "core/kernels/edge_swap.h"
+
+#include <cmath>
+#include <cstring>
+#include <utility>
+#include <vector>
+
+#include "core/kernels/common.h"
+#include "core/mix.h"
+
+namespace meshreuse {
+
+namespace {
+
+using kernel_detail::Area2;
+using kernel_detail::Load;
+using kernel_detail::Report;
+
+// Whether d lies strictly inside the circumcircle of (a, b, c), whatever its orientation, beyond
+// round-off (1e-12 of the determinant's magnitude).
+bool InCircle(const double* a, const double* b, const double* c, const double* d) {
+  const double ax = a[0] - d[0], ay = a[1] - d[1], bx = b[0] - d[0], by = b[1] - d[1];
+  const double cx = c[0] - d[0], cy = c[1] - d[1];
+  const double a2 = ax * ax + ay * ay, b2 = bx * bx + by * by, c2 = cx * cx + cy * cy;
+  const double det = ax * (by * c2 - b2 * cy) - ay * (bx * c2 - b2 * cx) + a2 * (bx * cy - by * cx);
+  const double mag = std::fabs(ax) * (std::fabs(by * c2) + std::fabs(b2 * cy)) +
+                     std::fabs(ay) * (std::fabs(bx * c2) + std::fabs(b2 * cx)) +
+                     a2 * (std::fabs(bx * cy) + std::fabs(by * cx));
+  const double orient = Area2(a[0], a[1], b[0], b[1], c[0], c[1]) >= 0.0 ? 1.0 : -1.0;
+  return orient * det > 1e-12 * mag;
+}
+
+// Per triangle the triangle across the edge opposite each corner (-1 on the boundary).
+AlignedVector<int32_t> TriangleNeighbours(const Mesh& m) {
+  AlignedVector<int32_t> n(m.tri.size(), -1);
+  for (int32_t t = 0; t < m.NumTriangles(); ++t)
+    for (int j = 0; j < 3; ++j) {
+      const int32_t q = m.tri[3 * int64_t{t} + (j + 1) % 3],
+                    r = m.tri[3 * int64_t{t} + (j + 2) % 3];
+      for (const int32_t* u = m.v2t.RowBegin(q); u != m.v2t.RowEnd(q); ++u) {
+        if (*u == t) continue;
+        const int32_t* c = &m.tri[3 * int64_t{*u}];
+        if (c[0] == r || c[1] == r || c[2] == r) n[3 * int64_t{t} + j] = *u;
+      }
+    }
+  return n;
+}
+
+// In triangle x's neighbour slots, the one that holds `from`, now `to` (read until found).
+template <class Sink>
+void Repoint(int32_t* nbr, int32_t x, int32_t from, int32_t to, Sink& sink) {
+  if (x < 0) return;
+  for (int k = 0; k < 3; ++k)
+    if (Load(sink, 0, Array::kTriNeighbours, nbr + 3 * int64_t{x} + k) == from) {
+      Report(sink, 0, nbr + 3 * int64_t{x} + k, 4, Array::kTriNeighbours, true);
+      nbr[3 * int64_t{x} + k] = to;
+      return;
+    }
+}
+
+template <class Sink>
+double VisitTriangle(const double* xy, int32_t* tri, int32_t* nbr, const int32_t* c, Sink& sink) {
+  const int32_t t = static_cast<int32_t>((c - tri) / 3);
+  int32_t v[3];
+  double p[3][2];
+  for (int j = 0; j < 3; ++j) v[j] = Load(sink, 0, Array::kTriangles, tri + 3 * int64_t{t} + j);
+  for (int j = 0; j < 3; ++j) {
+    const double* q = xy + 2 * int64_t{v[j]};
+    Report(sink, 0, q, 8, Array::kCoords, false, AccessKind::kCoordRead, v[j]);
+    Report(sink, 0, q + 1, 8, Array::kCoords, false);
+    p[j][0] = q[0], p[j][1] = q[1];
+  }
+  double flips = 0.0;
+  for (int j = 0; j < 3; ++j) {
+    const int32_t u = Load(sink, 0, Array::kTriNeighbours, nbr + 3 * int64_t{t} + j);
+    if (u <= t) continue;
+    // t = (P, Q, R) from slot j, the edge QR; u holds R, Q and S, S opposite the edge.
+    const int jq = (j + 1) % 3, jr = (j + 2) % 3;
+    int32_t w[3];
+    for (int k = 0; k < 3; ++k) w[k] = Load(sink, 0, Array::kTriangles, tri + 3 * int64_t{u} + k);
+    const int ks = w[0] != v[jq] && w[0] != v[jr] ? 0 : w[1] != v[jq] && w[1] != v[jr] ? 1 : 2;
+    const int32_t s = w[ks];
+    const double* ps = xy + 2 * int64_t{s};
+    Report(sink, 0, ps, 8, Array::kCoords, false, AccessKind::kCoordRead, s);
+    Report(sink, 0, ps + 1, 8, Array::kCoords, false);
+    const double sp[2] = {ps[0], ps[1]};
+    if (!InCircle(p[j], p[jq], p[jr], sp)) continue;
+    // u's outer neighbours: across (Q, S) and (S, R), by the slot opposite R and Q in u.
+    const int ur = w[0] == v[jr] ? 0 : w[1] == v[jr] ? 1 : 2;
+    const int uq = w[0] == v[jq] ? 0 : w[1] == v[jq] ? 1 : 2;
+    const int32_t across_qs = Load(sink, 0, Array::kTriNeighbours, nbr + 3 * int64_t{u} + ur);
+    const int32_t across_sr = Load(sink, 0, Array::kTriNeighbours, nbr + 3 * int64_t{u} + uq);
+    const int32_t across_rp = Load(sink, 0, Array::kTriNeighbours, nbr + 3 * int64_t{t} + jq);
+    const int32_t across_pq = Load(sink, 0, Array::kTriNeighbours, nbr + 3 * int64_t{t} + jr);
+    // t' = (P, Q, S), u' = (P, S, R): the orientation kept (the quad is convex when S is inside).
+    const int32_t pv = v[j], qv = v[jq], rv = v[jr];
+    const int32_t nt[3] = {pv, qv, s}, nu[3] = {pv, s, rv};
+    const int32_t bt[3] = {across_qs, u, across_pq}, bu[3] = {across_sr, across_rp, t};
+    for (int k = 0; k < 3; ++k) {
+      Report(sink, 0, tri + 3 * int64_t{t} + k, 4, Array::kTriangles, true);
+      tri[3 * int64_t{t} + k] = nt[k];
+    }
+    for (int k = 0; k < 3; ++k) {
+      Report(sink, 0, tri + 3 * int64_t{u} + k, 4, Array::kTriangles, true);
+      tri[3 * int64_t{u} + k] = nu[k];
+    }
+    for (int k = 0; k < 3; ++k) {
+      Report(sink, 0, nbr + 3 * int64_t{t} + k, 4, Array::kTriNeighbours, true);
+      nbr[3 * int64_t{t} + k] = bt[k];
+    }
+    for (int k = 0; k < 3; ++k) {
+      Report(sink, 0, nbr + 3 * int64_t{u} + k, 4, Array::kTriNeighbours, true);
+      nbr[3 * int64_t{u} + k] = bu[k];
+    }
+    Repoint(nbr, across_qs, u, t, sink);  // (Q, S) now belongs to t
+    Repoint(nbr, across_rp, t, u, sink);  // (R, P) now belongs to u
+    flips += 1.0;
+    // Go on with t as it now is: its corners in slot order are P, Q, S.
+    v[0] = pv, v[1] = qv, v[2] = s;
+    const double pp[2] = {p[j][0], p[j][1]}, pq[2] = {p[jq][0], p[jq][1]};
+    p[0][0] = pp[0], p[0][1] = pp[1], p[1][0] = pq[0], p[1][1] = pq[1];
+    p[2][0] = sp[0], p[2][1] = sp[1];
+  }
+  return flips;
+}
+
+}  // namespace
+
+int64_t JitterMesh(Mesh& m, double amount, uint64_t seed) {
+  std::vector<double> least(static_cast<size_t>(m.NumVertices()), INFINITY);
+  for (int32_t t = 0; t < m.NumTriangles(); ++t) {
+    const int32_t* c = &m.tri[3 * int64_t{t}];
+    const double* a = &m.xy[2 * int64_t{c[0]}];
+    const double* b = &m.xy[2 * int64_t{c[1]}];
+    const double* d = &m.xy[2 * int64_t{c[2]}];
+    const double a2 = std::fabs(Area2(a[0], a[1], b[0], b[1], d[0], d[1]));
+    const double e =
+        std::max({std::hypot(b[0] - a[0], b[1] - a[1]), std::hypot(d[0] - b[0], d[1] - b[1]),
+                  std::hypot(a[0] - d[0], a[1] - d[1])});
+    const double h = e > 0 ? a2 / e : 0.0;  // the least altitude: over the longest edge
+    for (int j = 0; j < 3; ++j) least[c[j]] = std::min(least[c[j]], h);
+  }
+  std::vector<std::pair<int32_t, std::pair<double, double>>> moves;
+  for (int32_t v : m.interior) {
+    uint64_t bx, by;
+    std::memcpy(&bx, &m.xy[2 * int64_t{v}], 8);
+    std::memcpy(&by, &m.xy[2 * int64_t{v} + 1], 8);
+    const double angle =
+        static_cast<double>(Mix64(seed ^ bx ^ Mix64(by)) >> 11) * 0x1p-53 * 2 * M_PI;
+    const double r = amount * least[v];
+    moves.push_back({v,
+                     {m.xy[2 * int64_t{v}] + r * std::cos(angle),
+                      m.xy[2 * int64_t{v} + 1] + r * std::sin(angle)}});
+  }
+  for (const auto& [v, p] : moves)
+    m.xy[2 * int64_t{v}] = p.first, m.xy[2 * int64_t{v} + 1] = p.second;
+  return static_cast<int64_t>(moves.size());
+}
+
+bool IsDelaunay(const Mesh& m) { return NotDelaunayEdges(m) == 0; }
+
+int64_t NotDelaunayEdges(const Mesh& m) {
+  const AlignedVector<int32_t> n = TriangleNeighbours(m);
+  int64_t bad = 0;
+  for (int32_t t = 0; t < m.NumTriangles(); ++t)
+    for (int j = 0; j < 3; ++j) {
+      const int32_t u = n[3 * int64_t{t} + j];
+      if (u < 0) continue;
+      const int32_t* c = &m.tri[3 * int64_t{t}];
+      const int32_t* w = &m.tri[3 * int64_t{u}];
+      int32_t s = -1;
+      for (int k = 0; k < 3; ++k)
+        if (w[k] != c[(j + 1) % 3] && w[k] != c[(j + 2) % 3]) s = w[k];
+      bad += InCircle(&m.xy[2 * int64_t{c[0]}], &m.xy[2 * int64_t{c[1]}], &m.xy[2 * int64_t{c[2]}],
+                      &m.xy[2 * int64_t{s}]);
+    }
+  return bad;  // each edge seen from either side that finds the other's corner inside
+}
+
+template <class Sink>
+SmoothResult KernelEdgeSwap(Mesh& m, const SmoothOptions& o, Sink& sink) {
+  SmoothResult r;
+  JitterMesh(m, kJitterAmount, kJitterSeed);
+  AlignedVector<int32_t> nbr = TriangleNeighbours(m);
+  int64_t edges = 0;  // interior edges, each counted from both sides
+  for (int32_t x : nbr) edges += x >= 0;
+  const double interior_edges = edges > 0 ? static_cast<double>(edges / 2) : 1.0;
+  kernel_detail::BindArrays(
+      sink, {kernel_detail::Of(Array::kTriangles, m.tri), kernel_detail::Of(Array::kCoords, m.xy),
+             kernel_detail::Of(Array::kTriNeighbours, nbr)});
+  SmoothOptions until = o;
+  until.tol = -INFINITY;
+  r.quality_before = 1.0 - static_cast<double>(NotDelaunayEdges(m)) / (2 * interior_edges);
+  const double* xy = m.xy.data();
+  int32_t* tri = m.tri.data();
+  int32_t* n = nbr.data();
+  double flips = 0.0;
+  kernel_detail::DriveSweeps(
+      until, 1.0, sink, &r,
+      [&](int, SweepRegion* region) {
+        flips = smoother_detail::ForStatic<3>(
+            tri, m.NumTriangles(), 1, sink, region,
+            [xy, tri, n, &sink](int32_t* c, int) { return VisitTriangle(xy, tri, n, c, sink); });
+        return 1.0 - flips / interior_edges;
+      },
+      [&](double) { return flips == 0.0; });
+  // The flips changed the triangles: the vertex adjacency anew (untimed).
+  RawMesh raw;
+  raw.xy = std::move(m.xy);
+  raw.tri = std::move(m.tri);
+  m = BuildMesh(std::move(raw));
+  r.quality_after = 1.0 - static_cast<double>(NotDelaunayEdges(m)) / (2 * interior_edges);
+  return r;
+}
+MESHREUSE_KERNEL_ENTRIES(KernelEdgeSwap)
+
+std::vector<uint64_t> KernelEdgeSwapRefs(const Mesh&, const SmoothOptions&) { return {}; }
+
+}  // namespace meshreuse
