@@ -196,14 +196,20 @@ ReportPart ReportKernelsMean(const ReportData& d) {
           Num(MeanOf(d, k, o, [](const KernelRun& r) { return static_cast<double>(r.q90); }), 1));
       p.table.AddRow(row);
     }
+  const std::string timed =
+      d.cfg.timing ? std::to_string(d.cfg.kernel_sweeps) + " sweeps per run, " +
+                         std::to_string(d.cfg.repeat) +
+                         " interleaved rounds after a warm-up, one thread, speedups on per-sweep "
+                         "medians (" +
+                         ClockName(d.cfg.clock) +
+                         " clock) against ORI and BFS of the same kernel, means over the meshes "
+                         "with 95% intervals; "
+                   : "nothing timed (--no-timing); ";
   std::string n =
       "The paper ends with a conjecture it does not test: that its ordering \"could improve other "
       "mesh application performances such as mesh untangling, constraint mesh smoothing, and mesh "
       "swapping\". Each kernel of `meshreuse kernels` here, in each ordering, on every mesh: " +
-      std::to_string(d.cfg.kernel_sweeps) + " sweeps per run, " + std::to_string(d.cfg.repeat) +
-      " interleaved rounds after a warm-up, one thread, speedups on per-sweep medians (" +
-      ClockName(d.cfg.clock) + " clock) against ORI and BFS of the same kernel, means over the " +
-      "meshes with 95% intervals; misses of the last of " + std::to_string(d.cfg.validate_sweeps) +
+      timed + "misses of the last of " + std::to_string(d.cfg.validate_sweeps) +
       " traced sweeps simulated on the configured caches, over the floor no layout can beat. Per "
       "mesh: [tables/kernels.md](tables/kernels.md).\n\n";
   for (const std::string& k : kernels) n += Paragraph(d, k, ords) + "\n";
