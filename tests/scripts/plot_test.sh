@@ -16,7 +16,7 @@ trap 'rm -rf "$tmp"' EXIT
 cp -r "$fixture" "$tmp/r"
 $py "$root/scripts/plot_report.py" "$tmp/r"
 for f in figure1 profile histograms miss-rates time speedup speedup-mean gain meshes smoothing \
-  orderings figure11 machine-misses predicted-speedup; do
+  orderings figure11 machine-misses predicted-speedup kernels; do
   head -c 8 "$tmp/r/figures/$f.png" | od -An -c | grep -q 'P   N   G' || { echo "$f.png: not a PNG"; exit 1; }
   head -c 5 "$tmp/r/figures/$f.pdf" | grep -q '%PDF-' || { echo "$f.pdf: not a PDF"; exit 1; }
 done
