@@ -9,6 +9,7 @@
 
 #include "cli/python/module.h"
 #include "core/error.h"
+#include "core/kernels/kernel.h"
 #include "core/mesh_io.h"
 #include "core/orderings/registry.h"
 #include "core/permutation.h"
@@ -258,7 +259,8 @@ void BindMesh(py::module_& m) {
   m.def(
       "_smooth",
       [](const PyMesh& p, const std::string& mode, const std::string& quality, int max_iters,
-         double tol, int threads) {
+         double tol, int threads, const std::string& kernel) {
+        const KernelInfo& k = ParseKernel(kernel);
         SmoothOptions o;
         o.mode = ParseUpdateMode(mode);
         o.quality = ParseQualityMode(quality);
@@ -267,11 +269,12 @@ void BindMesh(py::module_& m) {
         if (threads < 1 || threads > kMaxThreads)
           throw UsageError("threads must be 1.." + std::to_string(kMaxThreads));
         o.max_iters = max_iters, o.tol = tol, o.threads = threads;
+        CheckKernelOptions(k, o);
         Mesh work = p.mesh->Clone();
         SmoothResult r;
         {
           LongWork long_work;
-          r = Smooth(work, o);
+          r = RunKernel(k, work, o);
         }
         py::dict d = SweepDict(r);
         std::vector<double> xy(work.xy.begin(), work.xy.end());
@@ -280,31 +283,48 @@ void BindMesh(py::module_& m) {
         return d;
       },
       py::arg("mesh"), py::arg("mode"), py::arg("quality"), py::arg("max_iters"), py::arg("tol"),
-      py::arg("threads"));
+      py::arg("threads"), py::arg("kernel"));
+  m.def("_kernels", [] {
+    py::list out;
+    for (const KernelInfo& k : Kernels()) {
+      py::dict d;
+      d["name"] = k.name;
+      d["visits"] = VisitUnitName(k.unit);
+      d["measure"] = k.measure;
+      d["threads"] = k.threads;
+      d["jacobi"] = k.jacobi;
+      d["description"] = k.description;
+      d["reference"] = k.reference;
+      out.append(d);
+    }
+    return out;
+  });
   m.def(
       "_trace",
       [](const PyMesh& p, const std::string& ordering, uint64_t seed, int iterations, int threads,
-         const std::string& mode, const std::string& triangle_order) {
+         const std::string& mode, const std::string& triangle_order, const std::string& kernel) {
         const OrderingSpec spec = ParseOrderingSpec(ordering);
+        const KernelInfo& k = ParseKernel(kernel);
         if (iterations < 1 || iterations > kMaxStreamSweeps)
           throw UsageError("iterations must be 1.." + std::to_string(kMaxStreamSweeps));
         if (threads < 1 || threads > kMaxThreads)
           throw UsageError("threads must be 1.." + std::to_string(kMaxThreads));
         CheckStreamSweeps(iterations, threads);
         const SmoothOptions o = ExactSweeps(iterations, threads, ParseUpdateMode(mode));
+        CheckKernelOptions(k, o);
         const TriangleOrder order = ParseTriangleOrder(triangle_order);
         auto* held = new Collect;
         py::capsule free(held, [](void* q) { delete static_cast<Collect*>(q); });
         {
           LongWork work;
           Mesh laid = ApplyPermutation(*p.mesh, ComputeOrdering(spec, *p.mesh, seed), order);
-          StreamMesh(laid, o, p.name, spec.label, *held);
+          StreamMesh(laid, o, p.name, spec.label, *held, &k);
         }
         return py::array_t<Access>(static_cast<py::ssize_t>(held->out.size()), held->out.data(),
                                    free);
       },
       py::arg("mesh"), py::arg("ordering"), py::arg("seed"), py::arg("iterations"),
-      py::arg("threads"), py::arg("mode"), py::arg("triangle_order"));
+      py::arg("threads"), py::arg("mode"), py::arg("triangle_order"), py::arg("kernel"));
 }
 
 }  // namespace meshreuse::python

@@ -181,6 +181,32 @@ def test_permutation_from_python_checked_and_applied(tmp_path):
 
 # ---- smoothing ----
 
+# Another mesh kernel (meshreuse kernels): the module's smoothing and trace are the command's.
+@pytest.mark.parametrize("kernel", ["untangle", "smart-laplacian", "edge-swap"])
+def test_a_kernel_smooths_as_the_command(tmp_path, kernel):
+    assert kernel in [k["name"] for k in mr.kernels()]
+    m = mr.Mesh.read(PLATE)
+    r = mr.smooth(m, kernel=kernel, max_iters=5)
+    # The mesh as read: its own triangle order (the command sorts them by default).
+    cli("smooth", PLATE, "--kernel", kernel, "--max-iters", 5, "--triangle-order", "file", "-o",
+        tmp_path / "k.mrm")
+    theirs = mr.Mesh.read(str(tmp_path / "k.mrm"))
+    assert np.array_equal(r.points, theirs.points)
+    assert r.sweeps == len(r.quality) <= 5
+
+
+def test_a_kernels_trace_is_the_commands(tmp_path):
+    m = mr.Mesh.read(PLATE)
+    a = mr.trace(m, ordering="rdr", iterations=2, kernel="assembly")
+    out = cli("trace", PLATE, "--ordering", "rdr", "-k", 2, "--kernel", "assembly", "-o",
+              tmp_path / "a.trace")
+    assert f"{len(a):,}".replace(",", "") in out.replace(",", "")
+    with pytest.raises(ValueError, match="unknown kernel"):
+        mr.smooth(m, kernel="nope")
+    with pytest.raises(ValueError, match="one thread only"):
+        mr.trace(m, kernel="assembly", threads=2)
+
+
 @pytest.mark.parametrize("mode", ["gauss-seidel", "jacobi"])
 def test_smooth_equals_the_command_bit_for_bit(tmp_path, mode):
     m = mr.Mesh.read(PLATE)

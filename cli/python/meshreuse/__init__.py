@@ -85,21 +85,29 @@ class SmoothResult:
                 f"{self.quality_after:.6f}, converged={self.converged})")
 
 
-def smooth(mesh, *, mode="gauss-seidel", quality="per-move", max_iters=100, tol=5e-6, threads=1):
+def smooth(mesh, *, mode="gauss-seidel", quality="per-move", max_iters=100, tol=5e-6, threads=1,
+           kernel="laplacian"):
     """Laplacian smoothing of the mesh as stored (the mesh itself is not changed): the paper's
-    sweep, ``meshreuse smooth``'s options. To smooth in an ordering, permute first:
-    ``smooth(mesh.permute(mesh.ordering("bfs")))``."""
+    sweep, ``meshreuse smooth``'s options; ``kernel`` runs another mesh kernel instead
+    (``kernels()``; its own measure per sweep in ``quality``). To smooth in an ordering, permute
+    first: ``smooth(mesh.permute(mesh.ordering("bfs")))``."""
     return SmoothResult(_meshreuse._smooth(mesh, mode, quality, int(max_iters), float(tol),
-                                           int(threads)))
+                                           int(threads), kernel))
+
+
+def kernels():
+    """The registered mesh kernels (``meshreuse kernels``): name, visit unit, measure, threads."""
+    return _meshreuse._kernels()
 
 
 def trace(mesh, *, ordering="ori", seed=1, iterations=1, threads=1, mode="gauss-seidel",
-          triangle_order="sorted"):
+          triangle_order="sorted", kernel="laplacian"):
     """The access stream of ``iterations`` exact sweeps of the mesh laid out in ``ordering``, as
     the analyzer receives it (``meshreuse trace``'s accesses): a structured array of
-    ACCESS_DTYPE, threads' streams as the static schedule deals them."""
+    ACCESS_DTYPE, threads' streams as the static schedule deals them; ``kernel``: another mesh
+    kernel's sweeps."""
     a = _meshreuse._trace(mesh, ordering, int(seed), int(iterations), int(threads), mode,
-                          triangle_order)
+                          triangle_order, kernel)
     return a.view(ACCESS_DTYPE)
 
 
