@@ -171,6 +171,12 @@ ZstdWalk WalkZstdFrames(std::FILE* f, int64_t file_bytes) {
     if (fcs == 2) content += 256;
     if (content > static_cast<uint64_t>(INT64_MAX - total)) return broken();
     if (first < 0) first = static_cast<int64_t>(content);
+    // A frame that names a dictionary: the decompressor (no dictionary loaded) refuses it, or
+    // what follows it in the same session, so a chunk entering past it must not read on where a
+    // whole read fails. Like damage: entered only at the start, the decompressor judging.
+    uint32_t dict = 0;
+    for (size_t i = 0; i < did; ++i) dict |= uint32_t{h[5 + (single ? 0 : 1) + i]} << (8 * i);
+    if (dict != 0) return broken();
     list.Frame(static_cast<uint64_t>(total), static_cast<uint64_t>(off));
     total += static_cast<int64_t>(content);
     off += static_cast<int64_t>(header);
