@@ -338,24 +338,39 @@ inline double ForStatic(T* items, int64_t n, int threads, Sink& sink, SweepRegio
   return sum;
 }
 
+// Triangle t's stored quality replaced by q: its old quality and weight read, q stored; returns
+// the change of the global quality (w_t (q - old)).
+template <class Sink>
+inline double StoreQuality(double* wq, int64_t t, double q, int tid, Sink& sink) {
+  const double old = Load(sink, tid, Array::kTriQuality, wq + 2 * t + 1);
+  const double wt = Load(sink, tid, Array::kWeights, wq + 2 * t);
+  Report(sink, tid, wq + 2 * t + 1, 8, Array::kTriQuality, true);
+  wq[2 * t + 1] = q;
+  return wt * (q - old);
+}
+
+// The qualities of the triangles v2t.idx[b..e) anew from the coordinates, stored: the change of
+// the global quality.
+template <class Sink>
+inline double RequalifyTriangles(const Arrays& a, int64_t b, int64_t e, double* wq, int tid,
+                                 Sink& sink) {
+  double dq = 0.0;
+  for (int64_t i = b; i < e; ++i) {
+    const int64_t t = Load(sink, tid, Array::kTriIndex, a.tris + i);
+    const double q = TracedTriangleQuality(a.xy, a.tri, t, tid, sink);
+    dq += StoreQuality(wq, t, q, tid, sink);
+  }
+  return dq;
+}
+
 template <class Sink>
 inline double VisitGaussSeidel(const Arrays& a, const int32_t* item, double* wq, int tid,
                                Sink& sink) {
   const int32_t v = Load(sink, tid, Array::kInterior, item);
   MoveToAverage(a, a.xy, a.xy, Array::kCoords, v, tid, sink);
-  double dq = 0.0;
   const int64_t b = Load(sink, tid, Array::kTriOffsets, a.toff + v);
   const int64_t e = Load(sink, tid, Array::kTriOffsets, a.toff + v + 1);
-  for (int64_t i = b; i < e; ++i) {
-    const int64_t t = Load(sink, tid, Array::kTriIndex, a.tris + i);
-    const double q = TracedTriangleQuality(a.xy, a.tri, t, tid, sink);
-    const double old = Load(sink, tid, Array::kTriQuality, wq + 2 * t + 1);
-    const double wt = Load(sink, tid, Array::kWeights, wq + 2 * t);
-    dq += wt * (q - old);
-    Report(sink, tid, wq + 2 * t + 1, 8, Array::kTriQuality, true);
-    wq[2 * t + 1] = q;
-  }
-  return dq;
+  return RequalifyTriangles(a, b, e, wq, tid, sink);
 }
 
 template <class Sink>

@@ -154,15 +154,9 @@ inline double StoreMove(const smoother_detail::Arrays& a, const Patch& p, int32_
   a.xy[2 * int64_t{v}] = x;
   a.xy[2 * int64_t{v} + 1] = y;
   double dq = 0.0;
-  for (int k = 0; k < p.n; ++k) {
-    const int64_t t = p.t[k];
-    const double q = TriangleQuality(x, y, p.bx[k], p.by[k], p.cx[k], p.cy[k]);
-    const double old = Load(sink, tid, Array::kTriQuality, wq + 2 * t + 1);
-    const double wt = Load(sink, tid, Array::kWeights, wq + 2 * t);
-    dq += wt * (q - old);
-    Report(sink, tid, wq + 2 * t + 1, 8, Array::kTriQuality, true);
-    wq[2 * t + 1] = q;
-  }
+  for (int k = 0; k < p.n; ++k)
+    dq += smoother_detail::StoreQuality(
+        wq, p.t[k], TriangleQuality(x, y, p.bx[k], p.by[k], p.cx[k], p.cy[k]), tid, sink);
   return dq;
 }
 
@@ -173,6 +167,31 @@ void BindSmoothingArrays(Sink& sink, const Mesh& m, const AlignedVector<double>&
                     Of(Array::kAdjIndex, m.v2v.idx), Of(Array::kTriOffsets, m.v2t.off),
                     Of(Array::kTriIndex, m.v2t.idx), Of(Array::kTriangles, m.tri),
                     Of(Array::kTriQuality, wq), Of(Array::kWeights, wq), Of(Array::kCoords, m.xy)});
+}
+
+// The smoothing kernels' sweeps (smart-laplacian, local-opt): the global quality kept as the
+// smoother keeps it, each sweep `visit(arrays, interior item, wq, thread)` -> its change over the
+// interior list split as schedule(static), the smoother's stop rule.
+template <class Sink, class Visit>
+SmoothResult RunSmoothingKernel(Mesh& m, const SmoothOptions& o, Sink& sink, const Visit& visit) {
+  SmoothResult r;
+  r.quality_before = GlobalQuality(m);
+  double q = 0.0;
+  AlignedVector<double> wq = WeightsAndQualities(m, &q);
+  BindSmoothingArrays(sink, m, wq);
+  const smoother_detail::Arrays a = smoother_detail::ArraysOf(m);
+  DriveSweeps(
+      o, q, sink, &r,
+      [&](int threads, SweepRegion* region) {
+        double* w = wq.data();
+        q += smoother_detail::ForStatic<1>(
+            m.interior.data(), static_cast<int64_t>(m.interior.size()), threads, sink, region,
+            [a, w, &visit](const int32_t* item, int tid) { return visit(a, item, w, tid); });
+        return q;
+      },
+      [](double) { return false; });
+  r.quality_after = GlobalQuality(m);
+  return r;
 }
 
 }  // namespace meshreuse::kernel_detail

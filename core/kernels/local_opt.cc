@@ -86,32 +86,16 @@ bool Descend(const Patch& p, double* x, double* y) {
 
 template <class Sink>
 SmoothResult KernelLocalOpt(Mesh& m, const SmoothOptions& o, Sink& sink) {
-  SmoothResult r;
-  r.quality_before = GlobalQuality(m);
-  double q0 = 0.0;
-  AlignedVector<double> wq = kernel_detail::WeightsAndQualities(m, &q0);
-  kernel_detail::BindSmoothingArrays(sink, m, wq);
-  const smoother_detail::Arrays a = smoother_detail::ArraysOf(m);
-  double q = q0;
-  kernel_detail::DriveSweeps(
-      o, q0, sink, &r,
-      [&](int threads, SweepRegion* region) {
-        double* w = wq.data();
-        q += smoother_detail::ForStatic<1>(
-            m.interior.data(), static_cast<int64_t>(m.interior.size()), threads, sink, region,
-            [a, w, &sink](const int32_t* item, int tid) {
-              const int32_t v = Load(sink, tid, Array::kInterior, item);
-              Patch p;
-              if (!kernel_detail::GatherPatch(a, v, tid, sink, &p)) return 0.0;
-              double x, y;
-              if (!Descend(p, &x, &y)) return 0.0;
-              return kernel_detail::StoreMove(a, p, v, x, y, w, tid, sink);
-            });
-        return q;
-      },
-      [](double) { return false; });
-  r.quality_after = GlobalQuality(m);
-  return r;
+  return kernel_detail::RunSmoothingKernel(
+      m, o, sink,
+      [&sink](const smoother_detail::Arrays& a, const int32_t* item, double* wq, int tid) {
+        const int32_t v = Load(sink, tid, Array::kInterior, item);
+        Patch p;
+        if (!kernel_detail::GatherPatch(a, v, tid, sink, &p)) return 0.0;
+        double x, y;
+        if (!Descend(p, &x, &y)) return 0.0;
+        return kernel_detail::StoreMove(a, p, v, x, y, wq, tid, sink);
+      });
 }
 MESHREUSE_KERNEL_ENTRIES(KernelLocalOpt)
 

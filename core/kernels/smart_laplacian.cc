@@ -67,44 +67,17 @@ inline double VisitSmart(const Arrays& a, const int32_t* item, double* wq, int t
   Report(sink, tid, a.xy + 2 * int64_t{v}, 16, Array::kCoords, true, AccessKind::kCoordWrite, v);
   a.xy[2 * int64_t{v}] = x;
   a.xy[2 * int64_t{v} + 1] = y;
-  double dq = 0.0;
-  for (int64_t i = b; i < e; ++i) {
-    const int64_t t = Load(sink, tid, Array::kTriIndex, a.tris + i);
-    const double q = smoother_detail::TracedTriangleQuality(a.xy, a.tri, t, tid, sink);
-    const double old = Load(sink, tid, Array::kTriQuality, wq + 2 * t + 1);
-    const double wt = Load(sink, tid, Array::kWeights, wq + 2 * t);
-    dq += wt * (q - old);
-    Report(sink, tid, wq + 2 * t + 1, 8, Array::kTriQuality, true);
-    wq[2 * t + 1] = q;
-  }
-  return dq;
+  return smoother_detail::RequalifyTriangles(a, b, e, wq, tid, sink);
 }
 
 }  // namespace
 
 template <class Sink>
 SmoothResult KernelSmartLaplacian(Mesh& m, const SmoothOptions& o, Sink& sink) {
-  SmoothResult r;
-  r.quality_before = GlobalQuality(m);
-  double q0 = 0.0;
-  AlignedVector<double> wq = kernel_detail::WeightsAndQualities(m, &q0);
-  kernel_detail::BindSmoothingArrays(sink, m, wq);
-  const Arrays a = smoother_detail::ArraysOf(m);
-  double q = q0;
-  kernel_detail::DriveSweeps(
-      o, q0, sink, &r,
-      [&](int threads, SweepRegion* region) {
-        double* w = wq.data();
-        q += smoother_detail::ForStatic<1>(m.interior.data(),
-                                           static_cast<int64_t>(m.interior.size()), threads, sink,
-                                           region, [a, w, &sink](const int32_t* item, int tid) {
-                                             return VisitSmart(a, item, w, tid, sink);
-                                           });
-        return q;
-      },
-      [](double) { return false; });
-  r.quality_after = GlobalQuality(m);
-  return r;
+  return kernel_detail::RunSmoothingKernel(
+      m, o, sink, [&sink](const Arrays& a, const int32_t* item, double* wq, int tid) {
+        return VisitSmart(a, item, wq, tid, sink);
+      });
 }
 MESHREUSE_KERNEL_ENTRIES(KernelSmartLaplacian)
 
