@@ -25,7 +25,8 @@
 //                            communicator) and the serial smoother with --quality per-sweep, the
 //                            same sweeps in turn: ms per sweep (sweeps 2-6, median) and their
 //                            ratio pair by pair (issue 40's goal: <= 1.15), the quality equal
-//   Kernel/spmv, Kernel/assembly  the registry's timed kernel (its template on NullSink) and a
+//   Kernel/spmv, Kernel/assembly, Kernel/smart-laplacian  the registry's timed kernel (its template
+//   on NullSink) and a
 //                            hand-written loop of the same arithmetic with no sink, alternated: ms
 //                            per sweep (sweeps 2-5, median) and their ratio pair by pair (issue
 //                            41's goal: within 2%)
@@ -567,10 +568,45 @@ void OneRank(benchmark::State& state) {
 
 // The registry's kernel against the same arithmetic written by hand with no sink: NullSink must
 // cost nothing in every kernel (spmv: range(0) = 0; assembly: 1).
+// A smart-laplacian sweep written plainly (core/kernels/smart_laplacian.cc's definition): the
+// global quality kept from the stored per-triangle qualities; returns it after the sweep.
+double HandSmartSweep(Mesh& m, std::vector<double>& w, std::vector<double>& tq, double q) {
+  for (const int32_t v : m.interior) {
+    double sx = 0.0, sy = 0.0;
+    for (int64_t i = m.v2v.off[v]; i < m.v2v.off[v + 1]; ++i) {
+      const int32_t u = m.v2v.idx[i];
+      sx += m.xy[2 * int64_t{u}], sy += m.xy[2 * int64_t{u} + 1];
+    }
+    const double inv = 1.0 / static_cast<double>(m.v2v.off[v + 1] - m.v2v.off[v]);
+    const double x = sx * inv, y = sy * inv;
+    double old_min = 1.0, new_min = 1.0;
+    for (int64_t i = m.v2t.off[v]; i < m.v2t.off[v + 1]; ++i) {
+      const int32_t t = m.v2t.idx[i];
+      const int32_t* c = &m.tri[3 * int64_t{t}];
+      double p[6];
+      for (int j = 0; j < 3; ++j) {
+        p[2 * j] = c[j] == v ? x : m.xy[2 * int64_t{c[j]}];
+        p[2 * j + 1] = c[j] == v ? y : m.xy[2 * int64_t{c[j]} + 1];
+      }
+      old_min = std::min(old_min, tq[t]);
+      new_min = std::min(new_min, TriangleQuality(p[0], p[1], p[2], p[3], p[4], p[5]));
+    }
+    if (!(new_min >= old_min)) continue;
+    m.xy[2 * int64_t{v}] = x, m.xy[2 * int64_t{v} + 1] = y;
+    for (int64_t i = m.v2t.off[v]; i < m.v2t.off[v + 1]; ++i) {
+      const int32_t t = m.v2t.idx[i];
+      const double nq = TriangleQuality(m.xy.data(), &m.tri[3 * int64_t{t}]);
+      q += w[t] * (nq - tq[t]);
+      tq[t] = nq;
+    }
+  }
+  return q;
+}
+
 void KernelVsHand(benchmark::State& state) {
-  const bool spmv = state.range(0) == 0;
+  const bool spmv = state.range(0) == 0, smart = state.range(0) == 2;
   const Mesh& base = BaseMesh();
-  const KernelInfo& k = ParseKernel(spmv ? "spmv" : "assembly");
+  const KernelInfo& k = ParseKernel(spmv ? "spmv" : smart ? "smart-laplacian" : "assembly");
   constexpr int kSweeps = 5;
   StiffnessMatrix a = StiffnessPattern(base);
   NullSink null;
@@ -608,9 +644,19 @@ void KernelVsHand(benchmark::State& state) {
     const SmoothResult r = RunKernel(k, m, ExactSweeps(kSweeps));
     std::vector<double> h, g;
     double last = 0.0;
+    // smart-laplacian's state: a mesh of its own, weights, stored qualities, the global quality.
+    Mesh hm = smart ? base.Clone() : Mesh();
+    std::vector<double> w, tq;
+    double q = 0.0;
+    if (smart)
+      for (int32_t t = 0; t < hm.NumTriangles(); ++t) {
+        w.push_back(GlobalQualityWeight(hm, t));
+        tq.push_back(TriangleQuality(hm.xy.data(), &hm.tri[3 * int64_t{t}]));
+        q += w.back() * tq.back();
+      }
     for (int s = 0; s < kSweeps; ++s) {
       const auto t0 = std::chrono::steady_clock::now();
-      last = hand_sweep();
+      last = smart ? (q = HandSmartSweep(hm, w, tq, q)) : hand_sweep();
       const double ms =
           1e3 * std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
       if (s > 0) h.push_back(ms), g.push_back(1e3 * r.sweeps[s].seconds);
@@ -739,9 +785,11 @@ int main(int argc, char** argv) {
       ->Iterations(5)
       ->Unit(benchmark::kMillisecond);
   benchmark::RegisterBenchmark("OneRank", OneRank)->Iterations(7)->Unit(benchmark::kMillisecond);
-  for (const char* k : {"spmv", "assembly"})
+  for (const char* k : {"spmv", "assembly", "smart-laplacian"})
     benchmark::RegisterBenchmark((std::string("Kernel/") + k).c_str(), KernelVsHand)
-        ->Arg(std::string(k) == "spmv" ? 0 : 1)
+        ->Arg(std::string(k) == "spmv"       ? 0
+              : std::string(k) == "assembly" ? 1
+                                             : 2)
         ->Iterations(9)
         ->Unit(benchmark::kMillisecond);
   benchmark::RegisterBenchmark("Build", Build)
