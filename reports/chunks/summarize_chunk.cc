@@ -261,6 +261,13 @@ SummaryFile SummarizeMeshChunk(const ReuseJob& cfg, uint32_t r, uint32_t p, bool
                                const Log& log) {
   const std::string& in = cfg.inputs[0];
   const OrderingSpec& ord = cfg.orderings[0];
+  // The Laplacian's stream is a closed form of the mesh (the chunk starts at its sweep); another
+  // kernel's may depend on the values (a move kept or not), so a chunk cannot start mid-stream.
+  if (cfg.kernel != "laplacian")
+    throw UsageError("a chunk of a mesh's stream regenerates the Laplacian's sweeps from their "
+                     "closed form: for --kernel " +
+                     cfg.kernel + ", write its trace (meshreuse trace --kernel " + cfg.kernel +
+                     ") and analyse the file in chunks");
   Mesh m = LayOut(in, ord, cfg.seed, cfg.triangle_order, log);
   const SmoothOptions sweeps = cfg.Sweeps();
   SummaryFile s;

@@ -681,6 +681,8 @@ for k in smart-laplacian local-opt untangle edge-swap assembly spmv; do
   check "analyze --kernel $k" 0 "$bin" analyze "$data/plate41.msh" --kernel "$k" --orderings ori,rdr -k 2 --csv --quiet
   check "simulate --kernel $k" 0 "$bin" simulate "$data/plate41.msh" --kernel "$k" --orderings rdr -k 2 --cache L1=256/2,L2=1K/4 --csv --quiet
 done
+check "kernel chunk of a mesh" 2 "$bin" analyze "$data/plate41.msh" --kernel spmv --chunk 0/2 --summary-out "$tmp/kchunk" --quiet
+contains "kernel chunk of a mesh" "for --kernel spmv, write its trace"
 # A kernel's trace holds what analyze streams: the same numbers from the file as from the mesh.
 check "trace --kernel" 0 "$bin" trace "$data/plate41.msh" --kernel assembly --ordering rdr -k 2 -o "$tmp/asm.trace" --quiet
 "$bin" analyze "$tmp/asm.trace" --csv --quiet | cut -d, -f2- >"$tmp/asm_file.csv"
