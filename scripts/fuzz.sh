@@ -160,7 +160,7 @@ for h in "${harnesses[@]}"; do
 done
 if ((failed)); then
   for h in "${harnesses[@]}"; do
-    [[ $(cat "build/fuzz/logs/$h.rc") == 0 ]] || { echo "--- $h"; grep -B6 -A30 -m1 -E "ERROR|runtime error|==[0-9]+==" "build/fuzz/logs/$h.log" | head -46; }
+    [[ $(cat "build/fuzz/logs/$h.rc") == 0 ]] || { echo "--- $h"; grep -B6 -A30 -m1 -E "ERROR|runtime error|==[0-9]+==" "build/fuzz/logs/$h.log" | awk 'NR <= 46'; }
   done
   exit 1
 fi

@@ -158,7 +158,7 @@ elapsed=$(($(date +%s) - start))
 say "done in $((elapsed / 60)) min $((elapsed % 60)) s"
 
 echo
-sed -n '/^## Table 2/,/^Files/p' "$out/README.md" | head -n 20
+sed -n '/^## Table 2/,/^Files/p' "$out/README.md" | awk 'NR <= 20'  # not head: its early exit would SIGPIPE sed under pipefail
 echo
 [[ $mode == quick ]] && echo "(20,000-vertex meshes: too small for the paper's columns, which stay empty; scripts/reproduce.sh without --quick runs the paper's sizes and fills them)"
 echo "Every table and figure: $out/README.md"

@@ -28,7 +28,7 @@ pkgs=(build-essential cmake pkg-config libgtest-dev libbenchmark-dev libboost-pr
 
 missing=()
 for p in "${pkgs[@]}"; do
-  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q 'install ok installed' || missing+=("$p")
+  [[ $(dpkg-query -W -f='${Status}' "$p" 2>/dev/null) == *'install ok installed'* ]] || missing+=("$p")
 done
 if ((${#missing[@]} == 0)); then
   exit 0

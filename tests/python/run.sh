@@ -15,7 +15,10 @@ if ! "$py" -c 'import pytest, numpy' 2>/dev/null; then
   exit 77
 fi
 module=$(ls "$pydir"/meshreuse/_meshreuse*.so)
-if ldd "$module" | grep -q libasan; then
+# Not `ldd | grep -q` under pipefail: grep leaving at the first match can kill ldd with SIGPIPE,
+# the pipeline then fails, and the module loads without the runtimes (an abort at import, 1 run in 2
+# under a loaded `ctest -j2`).
+if [[ $(ldd "$module") == *libasan* ]]; then
   export LD_PRELOAD="$(gcc -print-file-name=libasan.so) $(gcc -print-file-name=libubsan.so)"
   export ASAN_OPTIONS=detect_leaks=0:quarantine_size_mb=4:abort_on_error=1
 fi

@@ -30,7 +30,7 @@ m["figures"].append({"name": "scale", "paper": "-", "title": "scale", "script": 
                                                "data/misses.csv"]})
 json.dump(m, open(sys.argv[1], "w"))
 PY
-$py "$root/scripts/plot_report.py" "$tmp/r" | grep -q scale
+[[ $($py "$root/scripts/plot_report.py" "$tmp/r") == *scale* ]]
 head -c 5 "$tmp/r/figures/scale.pdf" | grep -q '%PDF-'
 # The one histogram and profile schemas: analyze's own files plot with the same scripts.
 $py "$root/scripts/plot_histograms.py" "$fixture/data/histogram.csv" "$tmp/h"
