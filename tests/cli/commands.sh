@@ -47,6 +47,16 @@ contains "mesh info" "boundary vertices  6"
 check "mesh info json" 0 "$bin" mesh info "$data/two_interior22.msh" --json --quiet
 contains "mesh info json" '"vertices":8,"triangles":8,"boundary_vertices":6'
 contains "mesh info json" "dropped 1 vertices"  # the warning, on stderr
+# --kernels: the working set of one sweep per kernel (exact values: tests/reports/working_set_test.cc).
+check "mesh info kernels" 0 "$bin" mesh info "$data/two_interior.node" --kernels spmv,laplacian --quiet
+contains "mesh info kernels" "working set of one sweep"
+contains "mesh info kernels" "spmv                        155           13"
+contains "mesh info kernels" "A.off 2, A.col 3, A.val 5, x 1, y 1"
+check "mesh info kernels json" 0 "$bin" mesh info "$data/two_interior.node" --kernels all --json --quiet
+contains "mesh info kernels json" '"kernel":"spmv","accesses":155,"lines":13,"bytes":832'
+contains "mesh info kernels json" '"kernel":"edge-swap"'
+check "mesh info unknown kernel" 2 "$bin" mesh info "$data/two_interior.node" --kernels laplacian,nope --quiet
+contains "mesh info unknown kernel" "--kernels: unknown kernel 'nope' (known: laplacian,"
 
 check "convert vtk" 0 "$bin" mesh convert "$data/two_interior41.msh" -o "$tmp/m.vtk" --quiet
 [[ -s $tmp/m.vtk ]] && pass=$((pass + 1)) || { fail=$((fail + 1)); echo "FAIL convert: no m.vtk"; }
