@@ -27,7 +27,7 @@ bool ParseCompare(const Args& args, CompareConfig& cfg, po::variables_map& vm,
   desc.add_options()("mesh", po::value(&cfg.meshes)->required()->multitoken(), "mesh file(s)")(
       "orderings", po::value(&orderings)->default_value(orderings),
       "comma-separated orderings (LABEL=SPEC names a row)")(
-      "kernel", po::value(&cfg.kernel)->default_value("laplacian"),
+      "kernel", po::value(&cfg.kernel)->default_value(kPaperKernel),
       (std::string(KernelOptionHelp()) +
        "; a fixed-work kernel (assembly, spmv) runs 10 sweeps unless --max-iters says")
           .c_str())("threads,t", po::value(&threads)->default_value("1"),

@@ -23,7 +23,7 @@ int SmoothCommand(const Args& args) {
       "ordering", po::value(&cfg.ordering)->default_value("ori"),
       ("reorder the vertices first: " + OrderingNames()).c_str())(
       "seed", po::value(&seed)->default_value("1"), "seed of seeded orderings")(
-      "kernel", po::value(&cfg.kernel)->default_value("laplacian"), KernelOptionHelp())(
+      "kernel", po::value(&cfg.kernel)->default_value(kPaperKernel), KernelOptionHelp())(
       "threads,t", po::value(&cfg.smooth.threads)->default_value(1),
       "OpenMP threads (static schedule)")(
       "tol", po::value(&cfg.smooth.tol)->default_value(5e-6, "5e-6"),

@@ -25,7 +25,7 @@ int TraceCommand(const Args& args) {
       "threads,t", po::value(&cfg.threads)->default_value(1),
       "streams: the static schedule's threads")(
       "mode", po::value(&mode)->default_value("gauss-seidel"), "gauss-seidel or jacobi")(
-      "kernel", po::value(&cfg.kernel)->default_value("laplacian"), KernelOptionHelp())(
+      "kernel", po::value(&cfg.kernel)->default_value(kPaperKernel), KernelOptionHelp())(
       "element-bytes", po::value(&element_bytes)->default_value("66"),
       "element size recorded in the header")("output,o", po::value(&cfg.output)->required(),
                                              "trace file")(

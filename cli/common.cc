@@ -166,7 +166,7 @@ void AddSourceOptions(po::options_description& desc, StreamSource* src, SourceOp
     desc.add_options()("threads,t", po::value(&src->threads)->default_value(1), help.threads);
   desc.add_options()("mode", po::value(&text->mode)->default_value("gauss-seidel"),
                      "for meshes: gauss-seidel or jacobi")(
-      "kernel", po::value(&text->kernel)->default_value("laplacian"), KernelOptionHelp());
+      "kernel", po::value(&text->kernel)->default_value(kPaperKernel), KernelOptionHelp());
   if (!help.format.empty())
     desc.add_options()("format", po::value(&src->format), help.format.c_str())("instructions",
                                                                                help.instructions);

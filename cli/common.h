@@ -77,7 +77,7 @@ struct SourceHelp {
 };
 struct SourceOptionText {
   std::string orderings = "ori", seed = "1", mode = "gauss-seidel", triangle_order,
-              kernel = "laplacian";
+              kernel = kPaperKernel;
   RankOptionText ranks;
   std::string threads = "1";     // with SourceHelp::thread_list
   std::vector<int> thread_list;  // what SourceOf read from it

@@ -525,8 +525,8 @@ RunOutput CompareOutput(const CompareResult& result, const CompareConfig& cfg) {
   o.csv = t;
   o.text.emplace_back(RunOutput::Share(CompareTextTable(rows, cfg.clock)));
   o.text.emplace_back(
-      std::string(cfg.kernel == "laplacian" ? "" : "(kernel " + cfg.kernel + ") ") + "(seed " +
-      std::to_string(cfg.seed) +
+      std::string(IsPaperSweep(ParseKernel(cfg.kernel)) ? "" : "(kernel " + cfg.kernel + ") ") +
+      "(seed " + std::to_string(cfg.seed) +
       "; medians over the rounds after a warm-up, [95% interval of the median]; speedup = "
       "T_ori(1)/T, gain = (T_bfs-T)/T_bfs on per-sweep medians (" +
       ClockName(cfg.clock) +

@@ -18,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include "core/kernels/kernel.h"
 #include "core/permutation.h"
 #include "core/smoother.h"
 #include "core/table.h"
@@ -32,8 +33,8 @@ struct CompareConfig : TimingOptions {
   // TimingOptions: threads, rounds, the clock, the smoother's options, the triangle order.
   std::vector<std::string> meshes;
   std::vector<std::string> orderings = {"ori", "bfs", "rdr", "random"};
-  std::string kernel = "laplacian";  // core/kernels/: what is timed
-  uint64_t seed = 1;                 // seeded orderings and the bootstrap
+  std::string kernel = kPaperKernel;  // core/kernels/: what is timed
+  uint64_t seed = 1;                  // seeded orderings and the bootstrap
   // PAPI events to count around the sweeps of every run (empty: none); events this machine
   // cannot count are dropped.
   std::vector<std::string> counter_events;

@@ -36,7 +36,7 @@ void CheckSmoothConfig(const SmoothConfig& cfg) {
     throw UsageError("--visit-order names vertices by the mesh's own ids: it takes --ordering ori");
   const KernelInfo& k = ParseKernel(cfg.kernel);
   CheckKernelOptions(k, cfg.smooth);
-  if (std::string(k.name) != "laplacian" && !cfg.visit_order.empty())
+  if (!IsPaperSweep(k) && !cfg.visit_order.empty())
     throw UsageError("--visit-order takes --kernel laplacian");
   if (!k.moves && !cfg.output.empty())
     throw UsageError("--kernel " + cfg.kernel + " moves no vertex: no -o with it");
@@ -71,7 +71,7 @@ std::vector<SmoothRun> RunSmooth(const SmoothConfig& cfg, const Log& log,
     run.vertices = m.NumVertices(), run.triangles = m.NumTriangles();
     if (hooks.start) hooks.start(run);
     const KernelInfo& kernel = ParseKernel(cfg.kernel);
-    if (std::string(kernel.name) == "laplacian") {
+    if (IsPaperSweep(kernel)) {
       log.Say("smoothing " + path);
       NullSink untraced;
       run.result = Smooth(m, opt, untraced,

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "analysis/papi_counters.h"
+#include "core/kernels/kernel.h"
 #include "core/permutation.h"
 #include "core/smoother.h"
 #include "core/table.h"
@@ -21,7 +22,7 @@ namespace meshreuse {
 struct SmoothConfig {
   std::vector<std::string> meshes;
   std::string ordering = "ori";
-  std::string kernel = "laplacian";  // core/kernels/: what a sweep does
+  std::string kernel = kPaperKernel;  // core/kernels/: what a sweep does
   uint64_t seed = 1;
   TriangleOrder triangle_order = TriangleOrder::kSorted;
   SmoothOptions smooth;                     // region is set by the runner (counters)
@@ -33,7 +34,7 @@ struct SmoothConfig {
 };
 
 struct SmoothRun {
-  std::string mesh, ordering, kernel = "laplacian";
+  std::string mesh, ordering, kernel = kPaperKernel;
   int32_t vertices = 0, triangles = 0;
   int threads = 1;
   UpdateMode mode = UpdateMode::kGaussSeidel;

@@ -31,7 +31,7 @@ void StreamSource::Check() const {
   CheckRankParts(ranks, partition, inputs);
   const KernelInfo& k = Kernel();
   CheckKernelOptions(k, Sweeps());
-  if (ranks > 0 && std::string(k.name) != "laplacian")
+  if (ranks > 0 && !IsPaperSweep(k))
     throw UsageError("--ranks streams the distributed Laplacian smoother: no --kernel " +
                      std::string(k.name) + " with it");
 }
@@ -100,9 +100,8 @@ void StreamMeshInput(const StreamSource& src, StreamJob job, StreamConsumer& c, 
                              src.triangle_order)
           : LayOut(job.input, *job.ordering, src.seed, src.triangle_order, log);
   const KernelInfo& kernel = src.Kernel();
-  const std::string what = std::string(kernel.name) == "laplacian"
-                               ? " sweep(s) of "
-                               : " " + std::string(kernel.name) + " sweep(s) of ";
+  const std::string what =
+      IsPaperSweep(kernel) ? " sweep(s) of " : " " + std::string(kernel.name) + " sweep(s) of ";
   log.Say(c.Verb() + " " + std::to_string(src.iterations) + what + job.input + " in " +
           job.ordering->text + " order" + c.Where());
   const auto t0 = std::chrono::steady_clock::now();

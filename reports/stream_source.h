@@ -33,7 +33,7 @@ struct StreamSource {
   std::string format;               // "": meshes and meshreuse traces; else a TraceFormat name
   std::vector<OrderingSpec> orderings = {"ori"};  // for meshes, parsed once
   uint64_t seed = 1;                              // of seeded orderings (and of sampling)
-  std::string kernel = "laplacian";               // for meshes: which sweep (core/kernels/)
+  std::string kernel = kPaperKernel;              // for meshes: which sweep (core/kernels/)
   int iterations = 1;                             // for meshes: exact sweeps
   int threads = 1;                                // for meshes: the smoother's streams
   UpdateMode mode = UpdateMode::kGaussSeidel;

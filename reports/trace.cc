@@ -75,7 +75,7 @@ void CheckTraceConfig(const TraceConfig& cfg) {
   const KernelInfo& k = ParseKernel(cfg.kernel);
   SmoothOptions so = ExactSweeps(cfg.iterations, cfg.threads, cfg.mode);
   CheckKernelOptions(k, so);
-  if (cfg.ranks > 0 && std::string(k.name) != "laplacian")
+  if (cfg.ranks > 0 && !IsPaperSweep(k))
     throw UsageError("--ranks traces the distributed Laplacian smoother: no --kernel " +
                      std::string(k.name) + " with it");
   for (const std::string& f : TraceOutputs(cfg)) CheckOutputPath(f, "-o", InputFiles({cfg.mesh}));
@@ -124,7 +124,7 @@ TraceRunResult RunTrace(const TraceConfig& cfg, const Log& log) {
   h.element_bytes = cfg.element_bytes;
   h.mesh = std::filesystem::path(cfg.mesh).filename().string();
   const KernelInfo& kernel = ParseKernel(cfg.kernel);
-  if (std::string(kernel.name) != "laplacian") h.mesh += " [kernel " + cfg.kernel + "]";
+  if (!IsPaperSweep(kernel)) h.mesh += " [kernel " + cfg.kernel + "]";
   h.ordering = ParseOrderingSpec(cfg.ordering).label;
   const auto t0 = std::chrono::steady_clock::now();
   if (cfg.ranks > 0) {

@@ -17,7 +17,7 @@ namespace meshreuse {
 
 struct TraceConfig {
   std::string mesh, ordering = "ori", output;
-  std::string kernel = "laplacian";  // core/kernels/
+  std::string kernel = kPaperKernel;  // core/kernels/
   uint64_t seed = 1;
   int iterations = 1, threads = 1;
   UpdateMode mode = UpdateMode::kGaussSeidel;

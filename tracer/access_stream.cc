@@ -112,7 +112,7 @@ struct SweepCounter : KernelSink {
   }
 };
 
-bool IsLaplacian(const KernelInfo* k) { return !k || std::string(k->name) == "laplacian"; }
+bool IsLaplacian(const KernelInfo* k) { return !k || IsPaperSweep(*k); }
 
 }  // namespace
 

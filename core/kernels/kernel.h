@@ -71,6 +71,12 @@ struct KernelInfo {
   const char* reference;
 };
 
+// The paper's sweep (core/smoother.h itself), every command's default: the one kernel with a
+// distributed form (--ranks), a visit order (--visit-order), a per-sweep callback, and a stream
+// that is a closed form of the mesh (so a chunk of it can start mid-stream).
+inline constexpr const char* kPaperKernel = "laplacian";
+bool IsPaperSweep(const KernelInfo& k);
+
 const std::vector<KernelInfo>& Kernels();
 const KernelInfo* FindKernel(const std::string& name);  // nullptr when unknown
 std::string KernelNames();                              // "laplacian, smart-laplacian, ..."

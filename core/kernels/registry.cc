@@ -40,6 +40,8 @@ const char* VisitUnitName(VisitUnit u) {
   return "?";
 }
 
+bool IsPaperSweep(const KernelInfo& k) { return std::string(k.name) == kPaperKernel; }
+
 const KernelInfo* FindKernel(const std::string& name) {
   for (const KernelInfo& k : Kernels())
     if (name == k.name) return &k;

@@ -8,6 +8,7 @@
 #include "core/access.h"
 #include "core/error.h"
 #include "core/input_file.h"
+#include "core/kernels/kernel.h"
 #include "core/mix.h"
 #include "core/smoother.h"
 #include "reports/inputs.h"
@@ -263,11 +264,12 @@ SummaryFile SummarizeMeshChunk(const ReuseJob& cfg, uint32_t r, uint32_t p, bool
   const OrderingSpec& ord = cfg.orderings[0];
   // The Laplacian's stream is a closed form of the mesh (the chunk starts at its sweep); another
   // kernel's may depend on the values (a move kept or not), so a chunk cannot start mid-stream.
-  if (cfg.kernel != "laplacian")
-    throw UsageError("a chunk of a mesh's stream regenerates the Laplacian's sweeps from their "
-                     "closed form: for --kernel " +
-                     cfg.kernel + ", write its trace (meshreuse trace --kernel " + cfg.kernel +
-                     ") and analyse the file in chunks");
+  if (!IsPaperSweep(ParseKernel(cfg.kernel)))
+    throw UsageError(
+        "a chunk of a mesh's stream regenerates the Laplacian's sweeps from their "
+        "closed form: for --kernel " +
+        cfg.kernel + ", write its trace (meshreuse trace --kernel " + cfg.kernel +
+        ") and analyse the file in chunks");
   Mesh m = LayOut(in, ord, cfg.seed, cfg.triangle_order, log);
   const SmoothOptions sweeps = cfg.Sweeps();
   SummaryFile s;
