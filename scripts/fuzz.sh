@@ -21,8 +21,11 @@ bash scripts/setup.sh --with-fuzz
 mkdir -p build  # its logs go there, on a fresh clone too
 
 echo "== configure and build build/fuzz (clang, libFuzzer)" >&2
-CC=clang CXX=clang++ cmake -S . -B build/fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo -DMESHREUSE_FUZZ=ON \
-  -DMESHREUSE_PAPI=OFF >build/fuzz.configure.log 2>&1 || { cat build/fuzz.configure.log; exit 1; }
+# Ninja for a fresh folder (see test.sh); -g1: line tables, all a finding's stack needs.
+gen=()
+[[ ! -f build/fuzz/CMakeCache.txt ]] && command -v ninja >/dev/null && gen=(-G Ninja)
+CC=clang CXX=clang++ cmake "${gen[@]}" -S . -B build/fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+  -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O2 -g1" -DMESHREUSE_FUZZ=ON -DMESHREUSE_PAPI=OFF >build/fuzz.configure.log 2>&1 || { cat build/fuzz.configure.log; exit 1; }
 cmake --build build/fuzz -j"$(nproc 2>/dev/null || echo 2)" >build/fuzz.build.log 2>&1 ||
   { tail -n 40 build/fuzz.build.log; exit 1; }
 

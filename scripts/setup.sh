@@ -12,7 +12,7 @@ for a in "$@"; do
   [[ $a == --with-fuzz ]] && want_fuzz=1
 done
 
-pkgs=(build-essential cmake pkg-config libgtest-dev libbenchmark-dev libboost-program-options-dev
+pkgs=(build-essential cmake ninja-build pkg-config libgtest-dev libbenchmark-dev libboost-program-options-dev
       libpapi-dev libzstd-dev zstd zlib1g-dev libmetis-dev libboost-graph-dev triangle-bin time
       nlohmann-json3-dev libopenmpi-dev openmpi-bin libscotch-dev libptscotch-dev gmsh
       pybind11-dev python3-dev python3-numpy)
