@@ -25,11 +25,10 @@
 //                            communicator) and the serial smoother with --quality per-sweep, the
 //                            same sweeps in turn: ms per sweep (sweeps 2-6, median) and their
 //                            ratio pair by pair (issue 40's goal: <= 1.15), the quality equal
-//   Kernel/spmv, Kernel/assembly, Kernel/smart-laplacian  the registry's timed kernel (its template
-//   on NullSink) and a
-//                            hand-written loop of the same arithmetic with no sink, alternated: ms
-//                            per sweep (sweeps 2-5, median) and their ratio pair by pair (issue
-//                            41's goal: within 2%)
+//   Kernel/NAME              every kernel but the Laplacian (kernel_bench.cc): the registry's
+//                            timed kernel (its template on NullSink) and a hand-written loop of
+//                            the same arithmetic with no sink, alternated: ms per sweep (sweeps
+//                            2.., median) and their ratio pair by pair (issue 41's goal: within 2%)
 //   Build/fan/N, Build/grid/N  BuildMesh and RDR on a fan (one vertex in N triangles) and on a
 //                            grid of N triangles, alternated: ns per triangle, and fan/grid
 //                            (linear in any degree: the fan within 3x of the grid at 10^5 and
@@ -51,8 +50,6 @@
 #include "analysis/reuse_histogram.h"
 #include "analysis/stack_distance.h"
 #include "analysis/synthetic_trace.h"
-#include "core/kernels/kernel.h"
-#include "core/kernels/stiffness.h"
 #include "core/mesh_io.h"
 #include "core/orderings/registry.h"
 #include "core/quality.h"
@@ -63,21 +60,21 @@
 #include "core/smoother.h"
 #include "core/synthetic.h"
 #include "tests/bench/before/multicore_sim.h"
+#include "tests/bench/bench_util.h"
 #include "tracer/access_stream.h"
 #include "tracer/foreign_trace.h"
 
 namespace meshreuse {
-namespace {
 
+namespace {
 std::string g_mesh = "out/meshes/paper/carabiner.node";
+}  // namespace
 
 double Median(std::vector<double> v) {
   std::sort(v.begin(), v.end());
   return v.empty() ? 0.0 : v[v.size() / 2];
 }
 
-// Ratios measured pair by pair (both of a pair in the same iteration): their median as `name`,
-// and their range as name_min, name_max.
 void PutRatios(benchmark::State& state, const std::string& name, std::vector<double> r) {
   std::sort(r.begin(), r.end());
   state.counters[name] = r[r.size() / 2];
@@ -94,6 +91,8 @@ const Mesh& BaseMesh() {
   }();
   return m;
 }
+
+namespace {
 
 const Mesh& Ordered(const std::string& ordering) {
   static std::map<std::string, Mesh> cache;
@@ -566,112 +565,6 @@ void OneRank(benchmark::State& state) {
   state.counters["serial_quality_pass_ms"] = Median(serial_q_ms);
 }
 
-// The registry's kernel against the same arithmetic written by hand with no sink: NullSink must
-// cost nothing in every kernel (spmv: range(0) = 0; assembly: 1).
-// A smart-laplacian sweep written plainly (core/kernels/smart_laplacian.cc's definition): the
-// global quality kept from the stored per-triangle qualities; returns it after the sweep.
-double HandSmartSweep(Mesh& m, std::vector<double>& w, std::vector<double>& tq, double q) {
-  for (const int32_t v : m.interior) {
-    double sx = 0.0, sy = 0.0;
-    for (int64_t i = m.v2v.off[v]; i < m.v2v.off[v + 1]; ++i) {
-      const int32_t u = m.v2v.idx[i];
-      sx += m.xy[2 * int64_t{u}], sy += m.xy[2 * int64_t{u} + 1];
-    }
-    const double inv = 1.0 / static_cast<double>(m.v2v.off[v + 1] - m.v2v.off[v]);
-    const double x = sx * inv, y = sy * inv;
-    double old_min = 1.0, new_min = 1.0;
-    for (int64_t i = m.v2t.off[v]; i < m.v2t.off[v + 1]; ++i) {
-      const int32_t t = m.v2t.idx[i];
-      const int32_t* c = &m.tri[3 * int64_t{t}];
-      double p[6];
-      for (int j = 0; j < 3; ++j) {
-        p[2 * j] = c[j] == v ? x : m.xy[2 * int64_t{c[j]}];
-        p[2 * j + 1] = c[j] == v ? y : m.xy[2 * int64_t{c[j]} + 1];
-      }
-      old_min = std::min(old_min, tq[t]);
-      new_min = std::min(new_min, TriangleQuality(p[0], p[1], p[2], p[3], p[4], p[5]));
-    }
-    if (!(new_min >= old_min)) continue;
-    m.xy[2 * int64_t{v}] = x, m.xy[2 * int64_t{v} + 1] = y;
-    for (int64_t i = m.v2t.off[v]; i < m.v2t.off[v + 1]; ++i) {
-      const int32_t t = m.v2t.idx[i];
-      const double nq = TriangleQuality(m.xy.data(), &m.tri[3 * int64_t{t}]);
-      q += w[t] * (nq - tq[t]);
-      tq[t] = nq;
-    }
-  }
-  return q;
-}
-
-void KernelVsHand(benchmark::State& state) {
-  const bool spmv = state.range(0) == 0, smart = state.range(0) == 2;
-  const Mesh& base = BaseMesh();
-  const KernelInfo& k = ParseKernel(spmv ? "spmv" : smart ? "smart-laplacian" : "assembly");
-  constexpr int kSweeps = 5;
-  StiffnessMatrix a = StiffnessPattern(base);
-  NullSink null;
-  AssembleStiffness(base, a, null);
-  const int32_t nv = base.NumVertices();
-  std::vector<double> x(static_cast<size_t>(nv)), y(static_cast<size_t>(nv));
-  for (int32_t i = 0; i < nv; ++i) x[i] = base.xy[2 * int64_t{i}];
-  auto hand_sweep = [&]() {
-    double e = 0.0;
-    if (spmv) {
-      for (int32_t i = 0; i < nv; ++i) {
-        double s = 0.0;
-        for (int64_t j = a.off[i]; j < a.off[i + 1]; ++j) s += a.val[j] * x[a.col[j]];
-        y[i] = s;
-        e += s * x[i];
-      }
-      return e;
-    }
-    std::fill(a.val.begin(), a.val.end(), 0.0);
-    for (int32_t t = 0; t < base.NumTriangles(); ++t) {
-      const int32_t* c = &base.tri[3 * int64_t{t}];
-      const double* p = &base.xy[2 * int64_t{c[0]}];
-      const double* q = &base.xy[2 * int64_t{c[1]}];
-      const double* r = &base.xy[2 * int64_t{c[2]}];
-      double m[9];
-      LocalStiffness(p[0], p[1], q[0], q[1], r[0], r[1], m);
-      for (int j = 0; j < 9; ++j) a.val[a.map[9 * int64_t{t} + j]] += m[j];
-      e += m[0] + m[4] + m[8];
-    }
-    return e;
-  };
-  std::vector<double> reg_ms, hand_ms, ratio;
-  for (auto _ : state) {
-    Mesh m = base.Clone();
-    const SmoothResult r = RunKernel(k, m, ExactSweeps(kSweeps));
-    std::vector<double> h, g;
-    double last = 0.0;
-    // smart-laplacian's state: a mesh of its own, weights, stored qualities, the global quality.
-    Mesh hm = smart ? base.Clone() : Mesh();
-    std::vector<double> w, tq;
-    double q = 0.0;
-    if (smart)
-      for (int32_t t = 0; t < hm.NumTriangles(); ++t) {
-        w.push_back(GlobalQualityWeight(hm, t));
-        tq.push_back(TriangleQuality(hm.xy.data(), &hm.tri[3 * int64_t{t}]));
-        q += w.back() * tq.back();
-      }
-    for (int s = 0; s < kSweeps; ++s) {
-      const auto t0 = std::chrono::steady_clock::now();
-      last = smart ? (q = HandSmartSweep(hm, w, tq, q)) : hand_sweep();
-      const double ms =
-          1e3 * std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-      if (s > 0) h.push_back(ms), g.push_back(1e3 * r.sweeps[s].seconds);
-    }
-    if (std::abs(last - r.sweeps.back().quality) > 1e-9 * std::abs(last))
-      return state.SkipWithError("the hand-written loop's measure differs from the kernel's");
-    reg_ms.push_back(Median(g));
-    hand_ms.push_back(Median(h));
-    ratio.push_back(reg_ms.back() / hand_ms.back());
-  }
-  state.counters["kernel_ms_per_sweep"] = Median(reg_ms);
-  state.counters["hand_ms_per_sweep"] = Median(hand_ms);
-  PutRatios(state, "kernel/hand", ratio);
-}
-
 // A fan: vertex 0 at the centre of n rim vertices, n triangles around it (its degree is n); or a
 // grid of about n triangles (degree 6). The same triangle count, the one difference the degree.
 RawMesh FanOrGrid(bool fan, int64_t n) {
@@ -785,13 +678,7 @@ int main(int argc, char** argv) {
       ->Iterations(5)
       ->Unit(benchmark::kMillisecond);
   benchmark::RegisterBenchmark("OneRank", OneRank)->Iterations(7)->Unit(benchmark::kMillisecond);
-  for (const char* k : {"spmv", "assembly", "smart-laplacian"})
-    benchmark::RegisterBenchmark((std::string("Kernel/") + k).c_str(), KernelVsHand)
-        ->Arg(std::string(k) == "spmv"       ? 0
-              : std::string(k) == "assembly" ? 1
-                                             : 2)
-        ->Iterations(9)
-        ->Unit(benchmark::kMillisecond);
+  RegisterKernelBenchmarks();
   benchmark::RegisterBenchmark("Build", Build)
       ->Arg(100000)
       ->Arg(1000000)
