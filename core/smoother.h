@@ -69,6 +69,7 @@ QualityMode ParseQualityMode(const std::string& s);  // per-move | per-sweep
 // Accepts "gs", "gauss-seidel", "jacobi"; throws UsageError otherwise.
 UpdateMode ParseUpdateMode(const std::string& s);
 
+struct SweepRecord;
 struct SmoothOptions {
   int max_iters = 100;
   double tol = 5e-6;
@@ -87,6 +88,9 @@ struct SmoothOptions {
   //   k > 0: k vertex visits of each thread in turn (1: a visit each; 64: blocks of 64);
   //   kAccessGrain (-1): a visit of each thread in turn, their accesses dealt one at a time.
   int interleave = 0;
+  // Optional, not owned: called after each sweep by the kernels of core/kernels/ (progress while
+  // they run; Smooth itself takes its callback as an argument).
+  const std::function<void(const SweepRecord&)>* on_sweep = nullptr;
 };
 inline constexpr int kSerialShares = 0;
 inline constexpr int kAccessGrain = -1;

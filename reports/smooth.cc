@@ -77,11 +77,10 @@ std::vector<SmoothRun> RunSmooth(const SmoothConfig& cfg, const Log& log,
       run.result = Smooth(m, opt, untraced,
                           hooks.sweep ? hooks.sweep : std::function<void(const SweepRecord&)>());
     } else {
-      // The registry's kernels report their sweeps when they are done.
       log.Say("running " + cfg.kernel + " on " + path);
-      run.result = RunKernel(kernel, m, opt);
-      if (hooks.sweep)
-        for (const SweepRecord& s : run.result.sweeps) hooks.sweep(s);
+      SmoothOptions each = opt;
+      each.on_sweep = &hooks.sweep;  // each sweep's line as it ends, as the Laplacian's
+      run.result = RunKernel(kernel, m, each);
     }
     if (papi && papi->available()) {
       if (!papi->error().empty()) throw std::runtime_error("counters failed: " + papi->error());

@@ -13,6 +13,7 @@
 #include <functional>
 #include <limits>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/kernels/kernel.h"
@@ -78,6 +79,25 @@ class FanOut : public AccessConsumer {
 
  private:
   std::vector<AccessConsumer*> to_;
+};
+
+// Passes everything on to `to`, calling `told` with the StreamInfo first (a progress line that
+// needs the stream's length, without asking a source to count it twice).
+class Announced : public AccessConsumer {
+ public:
+  Announced(AccessConsumer& to, std::function<void(const StreamInfo&)> told)
+      : to_(to), told_(std::move(told)) {}
+  void Begin(const StreamInfo& i) override {
+    told_(i);
+    to_.Begin(i);
+  }
+  void BeginSweep(int s) override { to_.BeginSweep(s); }
+  void Consume(const Access* a, size_t n) override { to_.Consume(a, n); }
+  void End() override { to_.End(); }
+
+ private:
+  AccessConsumer& to_;
+  std::function<void(const StreamInfo&)> told_;
 };
 
 using ProgressFn = std::function<void(double done_fraction)>;

@@ -58,6 +58,7 @@ void DriveSweeps(const SmoothOptions& opt, double q0, Sink& sink, SmoothResult* 
     r->sweeps.push_back(rec);
     r->seconds += secs;
     r->cpu_seconds += rec.cpu_seconds;
+    if (opt.on_sweep && *opt.on_sweep) (*opt.on_sweep)(rec);
     q = q_new;
     if (done(q) || rec.improvement < opt.tol) {
       r->converged = true;

@@ -7,7 +7,7 @@ namespace meshreuse {
 
 template <class Sink>
 SmoothResult KernelLaplacian(Mesh& m, const SmoothOptions& o, Sink& sink) {
-  return Smooth(m, o, sink);
+  return Smooth(m, o, sink, o.on_sweep ? *o.on_sweep : std::function<void(const SweepRecord&)>());
 }
 MESHREUSE_KERNEL_ENTRIES(KernelLaplacian)
 

@@ -28,7 +28,10 @@ using kernel_detail::Patch;
 constexpr int kSteps = 2;
 constexpr int kHalvings = 10;
 
-// F at (x, y) and its gradient; +inf when a triangle is not of its sign s.
+// F at (x, y), and with kGradient its gradient; +inf when a triangle is not of its sign s. The
+// line search asks for F alone: a template, so no call computes a gradient it drops (a runtime
+// "gx == nullptr" left the compiler to compute it anyway, a third of the kernel's time).
+template <bool kGradient>
 double InverseMeanRatio(const Patch& p, const double* s, double x, double y, double* gx,
                         double* gy) {
   static const double k = 2.0 * std::sqrt(3.0);
@@ -40,13 +43,15 @@ double InverseMeanRatio(const Patch& p, const double* s, double x, double y, dou
     const double sq = (x - bx) * (x - bx) + (y - by) * (y - by) + (bx - cx) * (bx - cx) +
                       (by - cy) * (by - cy) + (cx - x) * (cx - x) + (cy - y) * (cy - y);
     f += sq / (k * a2);
-    // d(sq)/dp = 2 (p-b) + 2 (p-c); d(Area2)/dp = (by - cy, cx - bx), times s.
-    const double dsx = 2.0 * (x - bx) + 2.0 * (x - cx), dsy = 2.0 * (y - by) + 2.0 * (y - cy);
-    const double dax = s[i] * (by - cy), day = s[i] * (cx - bx);
-    ax += (dsx * a2 - sq * dax) / (k * a2 * a2);
-    ay += (dsy * a2 - sq * day) / (k * a2 * a2);
+    if constexpr (kGradient) {
+      // d(sq)/dp = 2 (p-b) + 2 (p-c); d(Area2)/dp = (by - cy, cx - bx), times s.
+      const double dsx = 2.0 * (x - bx) + 2.0 * (x - cx), dsy = 2.0 * (y - by) + 2.0 * (y - cy);
+      const double dax = s[i] * (by - cy), day = s[i] * (cx - bx);
+      ax += (dsx * a2 - sq * dax) / (k * a2 * a2);
+      ay += (dsy * a2 - sq * day) / (k * a2 * a2);
+    }
   }
-  if (gx) *gx = ax, *gy = ay;
+  if constexpr (kGradient) *gx = ax, *gy = ay;
   return f;
 }
 
@@ -61,7 +66,7 @@ bool Descend(const Patch& p, double* x, double* y) {
   if (p.n == 0) return false;
   l2 /= p.n;
   double px = p.px, py = p.py, gx = 0.0, gy = 0.0;
-  double f = InverseMeanRatio(p, s, px, py, &gx, &gy);
+  double f = InverseMeanRatio<true>(p, s, px, py, &gx, &gy);
   if (!std::isfinite(f)) return false;  // a patch already turned over: left to untangle
   bool moved = false;
   for (int step = 0; step < kSteps; ++step) {
@@ -71,12 +76,12 @@ bool Descend(const Patch& p, double* x, double* y) {
     int h = 0;
     for (; h <= kHalvings; ++h, alpha *= 0.5) {
       nx = px - alpha * gx, ny = py - alpha * gy;
-      fn = InverseMeanRatio(p, s, nx, ny, nullptr, nullptr);
+      fn = InverseMeanRatio<false>(p, s, nx, ny, nullptr, nullptr);
       if (fn <= f - 1e-4 * alpha * g2) break;
     }
     if (h > kHalvings) break;
     px = nx, py = ny, moved = true;
-    f = InverseMeanRatio(p, s, px, py, &gx, &gy);
+    f = InverseMeanRatio<true>(p, s, px, py, &gx, &gy);
   }
   *x = px, *y = py;
   return moved;

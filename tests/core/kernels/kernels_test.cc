@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <functional>
 #include <map>
 #include <string>
 #include <utility>
@@ -81,6 +82,26 @@ TEST(Kernels, TracedAndTimedAgreeAndCountsMatchTheDocumentedSequence) {
       if (!refs.empty()) {
         EXPECT_EQ(count.Refs(), refs[0] * rb.sweeps.size()) << k.name;
       }
+    }
+  }
+}
+
+TEST(Kernels, EveryKernelCallsOnSweepAfterEachSweepWithItsRecord) {
+  const Mesh base = ReadMesh(testing::DataPath("plate41.msh"));
+  for (const KernelInfo& k : Kernels()) {
+    std::vector<SweepRecord> seen;
+    const std::function<void(const SweepRecord&)> each = [&](const SweepRecord& r) {
+      seen.push_back(r);
+    };
+    SmoothOptions o = ExactSweeps(3);
+    o.on_sweep = &each;
+    Mesh m = base.Clone();
+    const SmoothResult r = RunKernel(k, m, o);
+    ASSERT_EQ(seen.size(), r.sweeps.size()) << k.name;
+    for (size_t s = 0; s < seen.size(); ++s) {
+      EXPECT_EQ(seen[s].sweep, r.sweeps[s].sweep) << k.name;
+      EXPECT_EQ(seen[s].quality, r.sweeps[s].quality) << k.name;
+      EXPECT_EQ(seen[s].seconds, r.sweeps[s].seconds) << k.name;
     }
   }
 }
