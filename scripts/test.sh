@@ -57,7 +57,6 @@ if ((quick == 0)); then
   # The plotting and docs checks run Python alone (no meshreuse code): the Release run has them.
   ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
     run_tests build/asan -E '^scripts\.(plots|docs)$'
-
 fi
 if ((quick == 0)); then
   # 20 s a reader keeps the whole run near 30 minutes on two cores (the corpora start from the

@@ -72,8 +72,8 @@ struct KernelInfo {
 };
 
 // The paper's sweep (core/smoother.h itself), every command's default: the one kernel with a
-// distributed form (--ranks), a visit order (--visit-order), a per-sweep callback, and a stream
-// that is a closed form of the mesh (so a chunk of it can start mid-stream).
+// distributed form (--ranks), a visit order (--visit-order) and a stream that is a closed form of
+// the mesh (so a chunk of it can start mid-stream).
 inline constexpr const char* kPaperKernel = "laplacian";
 bool IsPaperSweep(const KernelInfo& k);
 
