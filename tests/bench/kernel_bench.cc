@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "core/aligned.h"
 #include "core/kernels/edge_swap.h"
 #include "core/kernels/kernel.h"
 #include "core/kernels/stiffness.h"
@@ -40,9 +41,10 @@ struct Hand {
   virtual double Sweep() = 0;
 };
 
+// Its arrays as the kernel's are (64-byte aligned, made per run): the same placement in memory.
 struct HandSpmv : Hand {
   StiffnessMatrix a;
-  std::vector<double> x, y;
+  AlignedVector<double> x, y;
   void Start(const Mesh& base) override {
     a = StiffnessPattern(base);
     NullSink none;
@@ -302,7 +304,7 @@ struct HandUntangle : Hand {
 // storage order, each edge from its lower-numbered triangle (core/kernels/edge_swap.cc).
 struct HandEdgeSwap : Hand {
   Mesh m;
-  std::vector<int32_t> nbr;
+  AlignedVector<int32_t> nbr;  // as the kernel's, 64-byte aligned
   double interior_edges = 1.0;
   static bool InCircle(const double* a, const double* b, const double* c, const double* d) {
     const double ax = a[0] - d[0], ay = a[1] - d[1], bx = b[0] - d[0], by = b[1] - d[1];
