@@ -239,7 +239,8 @@ inline double TracedTriangleQuality(const double* xy, const int32_t* tri, int64_
 // the stack anyway; making it explicit gives every compiler the same loads, which the trace
 // reports (array kLoopBound), so the address stream is exact by construction: one bound read per
 // iteration plus one per thread's share. (A cursor pointer, not an index: an index would need the
-// base pointer in one more register.)
+// base pointer in one more register. A body that takes the index, Visit below, gets an index loop
+// whose bound is the same 8-byte volatile: the pointer would be a second induction variable.)
 // A tracing sink's interleaving (SmoothOptions::interleave): its `interleave` member when it has
 // one, else thread shares in turn. With kAccessGrain it must also have EndTurn(), which deals the
 // turn's buffered accesses out one at a time.
@@ -267,6 +268,21 @@ template <class S>
 struct ParallelTraced<S, std::void_t<decltype(S::kParallelTrace)>>
     : std::bool_constant<S::kParallelTrace> {};
 
+// A visit body takes (item, thread) and returns the visit's share of the sweep's sum, or takes
+// (item, index, thread): the index lets a visit address a parallel array by the loop's own
+// induction variable, not recover it from the item's pointer, and such a body may return nothing
+// (a serial kernel that keeps its own count) so that no sum lives in the loop. Together 9% of
+// edge-swap's sweep (343.7 M to 313.1 M instructions on a 30k lake, by callgrind).
+template <class T, class Body>
+inline void Visit(double& sum, const Body& body, T* p, int64_t i, int tid) {
+  if constexpr (!std::is_invocable_v<const Body&, T*, int64_t, int>)
+    sum += body(p, tid);
+  else if constexpr (std::is_void_v<std::invoke_result_t<const Body&, T*, int64_t, int>>)
+    body(p, i, tid);
+  else
+    sum += body(p, i, tid);
+}
+
 template <int64_t stride, class Sink, class T, class Body>
 inline double ForStatic(T* items, int64_t n, int threads, Sink& sink, SweepRegion* region,
                         const Body& body) {
@@ -278,10 +294,11 @@ inline double ForStatic(T* items, int64_t n, int threads, Sink& sink, SweepRegio
       int64_t b, e;
       StaticRange(n, omp_get_num_threads(), tid, &b, &e);
       T* volatile end = items + e * stride;
-      for (T* p = items + b * stride;; p += stride) {
+      int64_t i = b;
+      for (T* p = items + b * stride;; p += stride, ++i) {
         Report(sink, tid, const_cast<T* const*>(&end), sizeof(T*), Array::kLoopBound, false);
         if (!(p < end)) break;
-        sum += body(p, tid);
+        Visit(sum, body, p, i, tid);
       }
     }
     return sum;
@@ -308,7 +325,7 @@ inline double ForStatic(T* items, int64_t n, int threads, Sink& sink, SweepRegio
               --left;
               break;
             }
-            sum += body(cursor[t], t);
+            Visit(sum, body, cursor[t], (cursor[t] - items) / stride, t);
             cursor[t] += stride;
           }
         }
@@ -320,10 +337,11 @@ inline double ForStatic(T* items, int64_t n, int threads, Sink& sink, SweepRegio
       int64_t b, e;
       StaticRange(n, threads, t, &b, &e);
       T* volatile end = items + e * stride;
-      for (T* p = items + b * stride;; p += stride) {
+      int64_t i = b;
+      for (T* p = items + b * stride;; p += stride, ++i) {
         Report(sink, t, const_cast<T* const*>(&end), sizeof(T*), Array::kLoopBound, false);
         if (!(p < end)) break;
-        sum += body(p, t);
+        Visit(sum, body, p, i, t);
       }
     }
     return sum;
@@ -335,8 +353,13 @@ inline double ForStatic(T* items, int64_t n, int threads, Sink& sink, SweepRegio
     int64_t b, e;
     StaticRange(n, omp_get_num_threads(), tid, &b, &e);
     if (region) region->Enter(tid);
-    T* volatile end = items + e * stride;
-    for (T* p = items + b * stride; p < end; p += stride) sum += local(p, tid);
+    if constexpr (std::is_invocable_v<const Body&, T*, int64_t, int>) {
+      volatile int64_t end = e;  // one induction variable, the index the body asks for
+      for (int64_t i = b; i < end; ++i) Visit(sum, local, items + i * stride, i, tid);
+    } else {
+      T* volatile end = items + e * stride;
+      for (T* p = items + b * stride; p < end; p += stride) sum += local(p, tid);
+    }
     if (region) region->Exit(tid);
   }
   return sum;

@@ -352,13 +352,13 @@ struct HandEdgeSwap : Hand {
       double p[3][2];
       for (int j = 0; j < 3; ++j)
         p[j][0] = m.xy[2 * int64_t{v[j]}], p[j][1] = m.xy[2 * int64_t{v[j]} + 1];
+#pragma GCC unroll 3
       for (int j = 0; j < 3; ++j) {
         const int32_t u = nbr[3 * int64_t{t} + j];
         if (u <= t) continue;
         const int jq = (j + 1) % 3, jr = (j + 2) % 3;
         const int32_t* w = tri + 3 * int64_t{u};
-        const int ks = w[0] != v[jq] && w[0] != v[jr] ? 0 : w[1] != v[jq] && w[1] != v[jr] ? 1 : 2;
-        const int32_t s = w[ks];
+        const int32_t s = w[0] ^ w[1] ^ w[2] ^ v[jq] ^ v[jr];  // u's corners are Q, R and S
         const double sp[2] = {m.xy[2 * int64_t{s}], m.xy[2 * int64_t{s} + 1]};
         if (!InCircle(p[j], p[jq], p[jr], sp)) continue;
         const int ur = w[0] == v[jr] ? 0 : w[1] == v[jr] ? 1 : 2;

@@ -5,8 +5,11 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <atomic>
 #include <limits>
 #include <set>
+#include <vector>
 
 #include "core/synthetic.h"
 #include "tests/test_util.h"
@@ -204,6 +207,49 @@ TEST(Smoother, LeanSweepMovesAlikeAndMeasuresQualityPerSweep) {
   EXPECT_EQ(ParseQualityMode("per-sweep"), QualityMode::kPerSweep);
   EXPECT_EQ(ParseQualityMode("per-move"), QualityMode::kPerMove);
   EXPECT_THROW(ParseQualityMode("sometimes"), std::invalid_argument);
+}
+
+// A sink that records which items each thread visited, and the loop-bound reads (ForStatic).
+struct LoopSink {
+  static constexpr bool kEnabled = true;
+  int interleave = kSerialShares;
+  int64_t bounds = 0;
+  void Access(int, const MemRef& r) { bounds += r.array == Array::kLoopBound; }
+};
+
+// ForStatic gives a body that asks for it the item's index, in every form of the loop (threads,
+// traced in shares, traced interleaved), and a body may return nothing.
+TEST(Smoother, ForStaticGivesTheItemsIndexInEveryLoop) {
+  constexpr int64_t kStride = 3, kN = 101;
+  std::vector<int32_t> items(kStride * kN);
+  for (int32_t threads : {1, 2, 3}) {
+    for (int grain : {kSerialShares, 1, 4}) {
+      LoopSink traced;
+      traced.interleave = grain;
+      NullSink null;
+      for (int sink = 0; sink < 2; ++sink) {
+        std::vector<int64_t> seen(kN, 0);
+        std::atomic<int64_t> wrong{0};
+        const auto body = [&](int32_t* p, int64_t i, int) {
+          if (i < 0 || i >= kN || p != items.data() + kStride * i) return void(++wrong);
+          ++seen[i];  // the traced loops are serial; the untraced ones write distinct slots
+        };
+        if (sink == 0)
+          smoother_detail::ForStatic<kStride>(items.data(), kN, threads, null, nullptr, body);
+        else
+          smoother_detail::ForStatic<kStride>(items.data(), kN, threads, traced, nullptr, body);
+        EXPECT_EQ(wrong.load(), 0) << threads << " threads, grain " << grain << ", sink " << sink;
+        EXPECT_EQ(std::count(seen.begin(), seen.end(), 1), kN);
+        // A body returning its index sums to 0 + 1 + ... + n-1.
+        const double sum = smoother_detail::ForStatic<kStride>(
+            items.data(), kN, threads, null, nullptr,
+            [](int32_t*, int64_t i, int) { return static_cast<double>(i); });
+        EXPECT_EQ(sum, kN * (kN - 1) / 2);
+      }
+      // One bound read per item and one per thread's share, as the trace documents.
+      EXPECT_EQ(traced.bounds, kN + threads);
+    }
+  }
 }
 
 TEST(Smoother, UpdateModeNames) {
