@@ -10,7 +10,7 @@ namespace meshreuse {
 void SweepFootprint::Begin(const StreamInfo& info) {
   canonical_ = info.canonical;
   sweep_ = 1;
-  threads_.assign(static_cast<size_t>(std::max(info.threads, 1)), Thread());
+  threads_.assign(static_cast<size_t>(std::max(info.threads, 1)), Thread(canonical_, line_bytes_));
   lines_.assign(threads_.size(), std::vector<uint64_t>(1, 0));
 }
 
@@ -21,25 +21,15 @@ void SweepFootprint::BeginSweep(int sweep) {
 }
 
 void SweepFootprint::Consume(const Access* a, size_t n) {
-  const uint64_t base = AddressCanonicalizer::kCanonicalBase / line_bytes_;
   for (size_t k = 0; k < n; ++k) {
     const size_t t = a[k].thread;
     if (t >= threads_.size()) {  // a stream announced with fewer threads: grow
-      threads_.resize(t + 1);
+      threads_.resize(t + 1, Thread(canonical_, line_bytes_));
       lines_.resize(t + 1, std::vector<uint64_t>(sweep_, 0));
     }
-    Thread& th = threads_[t];
-    const uint64_t line = a[k].address / line_bytes_;
-    uint32_t* last;
-    if (canonical_ && line >= base && line - base < (uint64_t{1} << 32)) {
-      const uint64_t i = line - base;  // the smoother's arrays: dense from the canonical base
-      if (i >= th.dense.size()) th.dense.resize(std::max<uint64_t>(i + 1, th.dense.size() * 2), 0);
-      last = &th.dense[i];
-    } else {
-      last = &th.hashed[line];
-    }
-    if (*last != sweep_) {
-      *last = sweep_;
+    uint32_t& last = threads_[t].At(a[k].address / line_bytes_);
+    if (last != sweep_) {
+      last = sweep_;
       ++lines_[t][sweep_ - 1];
     }
   }

@@ -15,10 +15,10 @@
 #pragma once
 
 #include <cstdint>
-#include <unordered_map>
 #include <vector>
 
 #include "analysis/cache_model.h"
+#include "analysis/line_marks.h"
 #include "tracer/access_stream.h"
 
 namespace meshreuse {
@@ -35,10 +35,7 @@ class SweepFootprint : public AccessConsumer {
   const std::vector<std::vector<uint64_t>>& lines() const { return lines_; }
 
  private:
-  struct Thread {
-    std::vector<uint32_t> dense;  // canonical addresses: the last sweep that touched each line
-    std::unordered_map<uint64_t, uint32_t> hashed;
-  };
+  using Thread = LineMarks<uint32_t>;  // per line, the last sweep that touched it
   uint32_t line_bytes_;
   bool canonical_ = false;
   uint32_t sweep_ = 1;  // the current sweep (1-based), the mark of a line touched in it

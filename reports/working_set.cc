@@ -1,10 +1,9 @@
 // The working set of one sweep per kernel; see working_set.h.
 #include "reports/working_set.h"
 
-#include <algorithm>
 #include <array>
-#include <unordered_map>
 
+#include "analysis/line_marks.h"
 #include "core/access.h"
 #include "core/kernels/kernel.h"
 #include "tracer/access_stream.h"
@@ -19,7 +18,9 @@ namespace {
 class LineCount : public AccessConsumer {
  public:
   explicit LineCount(uint32_t line_bytes) : line_bytes_(line_bytes) {}
-  void Begin(const StreamInfo& info) override { canonical_ = info.canonical; }
+  void Begin(const StreamInfo& info) override {
+    marks_ = LineMarks<Mark>(info.canonical, line_bytes_);
+  }
   void BeginSweep(int sweep) override {
     if (sweep <= 1) return;  // the first sweep keeps what came before it
     sweep_ = static_cast<uint32_t>(sweep);
@@ -28,18 +29,9 @@ class LineCount : public AccessConsumer {
   }
   void Consume(const Access* a, size_t n) override {
     static_assert(kArrays < 32, "a tag's bit in Mark::tags");
-    const uint64_t base = AddressCanonicalizer::kCanonicalBase / line_bytes_;
     accesses_ += n;
     for (size_t k = 0; k < n; ++k) {
-      const uint64_t line = a[k].address / line_bytes_;
-      Mark* mark;
-      if (canonical_ && line >= base && line - base < (uint64_t{1} << 32)) {
-        const uint64_t i = line - base;
-        if (i >= dense_.size()) dense_.resize(std::max<uint64_t>(i + 1, dense_.size() * 2));
-        mark = &dense_[i];
-      } else {
-        mark = &hashed_[line];
-      }
+      Mark* mark = &marks_.At(a[k].address / line_bytes_);
       if (mark->sweep != sweep_) {
         *mark = Mark{sweep_, 0};
         ++lines_;
@@ -61,12 +53,10 @@ class LineCount : public AccessConsumer {
     uint32_t sweep = 0, tags = 0;
   };
   uint32_t line_bytes_;
-  bool canonical_ = false;
   uint32_t sweep_ = 1;
   uint64_t accesses_ = 0, lines_ = 0;
   std::array<uint64_t, kArrays + 1> per_array_{};
-  std::vector<Mark> dense_;
-  std::unordered_map<uint64_t, Mark> hashed_;
+  LineMarks<Mark> marks_;
 };
 
 }  // namespace
