@@ -162,7 +162,11 @@ void MulticoreSimulation::Resize(int threads) {
   stats_.assign(threads, ThreadStats());
   for (ThreadStats& s : stats_) s.levels.resize(m_.levels.size());
   for (auto& c : cores_) c.reset();
-  l1_.assign(cores_.size(), nullptr);
+  first_of_thread_.assign(threads, FirstLevel());
+  for (int t = 0; t < threads; ++t) {
+    first_of_thread_[t].core = core_of_[t];
+    if (!m_.levels.empty()) first_of_thread_[t].accesses = &stats_[t].levels.front().accesses;
+  }
   for (auto& s : sockets_) s.reset();
   info_base_ = info_.canonical ? AddressCanonicalizer::kCanonicalBase >> shift_ : 0;
   dense_.reset(static_cast<LineInfo*>(std::calloc(kDenseLines, sizeof(LineInfo))));
@@ -180,7 +184,8 @@ MulticoreSimulation::Owner& MulticoreSimulation::CoreOwner(int core) {
       cores_[core]->caches.emplace_back(l.bytes, l.ways, m_.line_bytes, l.policy);
     }
     cores_[core]->prefetched.resize(private_levels_);
-    if (private_levels_ > 0) l1_[core] = &cores_[core]->caches.front();
+    if (private_levels_ > 0 && thread_of_core_[core] >= 0)
+      first_of_thread_[thread_of_core_[core]].cache = &cores_[core]->caches.front();
   }
   return *cores_[core];
 }

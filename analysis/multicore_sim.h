@@ -64,6 +64,10 @@ class MulticoreSimulation : public AccessConsumer {
   void Begin(const StreamInfo& info) override;  // the threads: placed on cores
   void BeginSweep(int sweep) override;
   void Consume(const meshreuse::Access* a, size_t n) override {
+    if (!fast_) {
+      for (size_t i = 0; i < n; ++i) Access(a[i].thread, a[i].address, a[i].size, a[i].write);
+      return;
+    }
     SetAssociativeCache::WithGroups(l1_groups_, [&](auto g) {
       for (size_t i = 0; i < n; ++i) {
         const auto r =
@@ -109,17 +113,16 @@ class MulticoreSimulation : public AccessConsumer {
   // line, no prefetcher at that level): a hit counted as Access counts it and a write's coherence
   // done (kHit), or a miss with nothing changed (kMissed); otherwise kNotLookedUp (as
   // CacheHierarchy::HitFirst). G: that level's groups (WithGroups).
+  // (Consume calls it only where fast_.)
   template <uint32_t G>
   CacheHierarchy::Lookup HitFirst(int thread, uint64_t address, uint32_t size, bool write) {
-    if (!fast_) return CacheHierarchy::kNotLookedUp;
-    const int core = core_of_[thread];
-    SetAssociativeCache* l1 = l1_[core];
-    if (!l1) return CacheHierarchy::kNotLookedUp;
+    const FirstLevel& f = first_of_thread_[thread];
+    if (!f.cache) return CacheHierarchy::kNotLookedUp;
     const uint64_t first = address >> shift_;
     if (((address + (size ? size - 1 : 0)) >> shift_) != first) return CacheHierarchy::kNotLookedUp;
-    if (!l1->Hit<G>(first)) return CacheHierarchy::kMissed;
-    ++stats_[thread].levels.front().accesses;
-    if (write && coherent_) WriteHit(core, first);
+    if (!f.cache->Hit<G>(first)) return CacheHierarchy::kMissed;
+    ++*f.accesses;
+    if (write && coherent_) WriteHit(f.core, first);
     return CacheHierarchy::kHit;
   }
   void WriteHit(int core, uint64_t line);  // coherence: the line held elsewhere is taken away
@@ -140,7 +143,14 @@ class MulticoreSimulation : public AccessConsumer {
   bool coherent_ = false;                                // coherence on and more than one thread
   bool fast_ = false;       // HitFirst may answer: a private first level without a prefetcher
   uint32_t l1_groups_ = 0;  // the first level's groups of ways
-  std::vector<SetAssociativeCache*> l1_;  // per core: its first level (null until made)
+  // Per thread, what HitFirst needs in one place: its core's first level (null until made), that
+  // level's access count in the thread's stats, its core.
+  struct FirstLevel {
+    SetAssociativeCache* cache = nullptr;
+    uint64_t* accesses = nullptr;
+    int core = 0;
+  };
+  std::vector<FirstLevel> first_of_thread_;
   // Line records: a direct array for the 2^22 lines from the stream's base (the canonical arrays
   // of a mesh of a few million vertices; calloc'ed, so pages cost memory only once touched), a
   // hash table beyond.
