@@ -86,7 +86,7 @@ void Repoint(int32_t* nbr, int32_t x, int32_t from, int32_t to, Sink& sink) {
 // The flip of edge QR between t = (P, Q, R) (Q and R in t's slots jq and jr) and u (its first
 // two corners w0, w1; its corners are R, Q and S): t becomes (P, Q, S) and u (P, S, R), with their
 // neighbour slots and the two outer triangles' that change. Out of line: it runs for about 1% of
-// the edges tested, and inlined it kept its addresses live across the test (GCC 12: 8% more
+// the edges tested, and inlined it kept its addresses live across the test (GCC 12: 7% more
 // instructions a sweep).
 template <class Sink>
 [[gnu::noinline]] void Flip(int32_t* tri, int32_t* nbr, int32_t t, int jq, int jr, int32_t u,
