@@ -9,6 +9,7 @@
 #include <atomic>
 #include <limits>
 #include <set>
+#include <string>
 #include <vector>
 
 #include "core/synthetic.h"
@@ -209,46 +210,59 @@ TEST(Smoother, LeanSweepMovesAlikeAndMeasuresQualityPerSweep) {
   EXPECT_THROW(ParseQualityMode("sometimes"), std::invalid_argument);
 }
 
-// A sink that records which items each thread visited, and the loop-bound reads (ForStatic).
+// Tracing sinks that count the loop-bound reads (ForStatic): one fed serially (in thread shares or
+// interleaved), one from the real threads (kParallelTrace).
 struct LoopSink {
   static constexpr bool kEnabled = true;
   int interleave = kSerialShares;
-  int64_t bounds = 0;
+  std::atomic<int64_t> bounds{0};
   void Access(int, const MemRef& r) { bounds += r.array == Array::kLoopBound; }
 };
+struct ParallelLoopSink : LoopSink {
+  static constexpr bool kParallelTrace = true;
+};
 
-// ForStatic gives a body that asks for it the item's index, in every form of the loop (threads,
-// traced in shares, traced interleaved), and a body may return nothing.
-TEST(Smoother, ForStaticGivesTheItemsIndexInEveryLoop) {
+// Every item visited once with its own index and the visits' values summed, in the loop `sink`
+// gives; `bounds`: the bound reads it saw (one per item and one per thread's share each run).
+template <class Sink>
+void CheckIndexedLoop(Sink& sink, int threads, const std::string& what) {
   constexpr int64_t kStride = 3, kN = 101;
   std::vector<int32_t> items(kStride * kN);
-  for (int32_t threads : {1, 2, 3}) {
+  std::vector<int64_t> seen(kN, 0);
+  std::atomic<int64_t> wrong{0};
+  smoother_detail::ForStatic<kStride>(items.data(), kN, threads, sink, nullptr,
+                                      [&](int32_t* p, int64_t i, int) {
+                                        if (i < 0 || i >= kN || p != items.data() + kStride * i)
+                                          return void(++wrong);
+                                        ++seen[i];  // each thread its own items
+                                      });
+  EXPECT_EQ(wrong.load(), 0) << what;
+  EXPECT_EQ(std::count(seen.begin(), seen.end(), 1), kN) << what;
+  // A body returning its index sums to 0 + 1 + ... + n-1.
+  const double sum = smoother_detail::ForStatic<kStride>(
+      items.data(), kN, threads, sink, nullptr,
+      [](int32_t*, int64_t i, int) { return static_cast<double>(i); });
+  EXPECT_EQ(sum, kN * (kN - 1) / 2) << what;
+  if constexpr (Sink::kEnabled) {
+    EXPECT_EQ(sink.bounds.load(), 2 * (kN + threads)) << what;
+  }
+}
+
+// ForStatic gives a body that asks for it the item's index in every form of the loop (untraced
+// threads, traced in shares, traced interleaved, traced from the threads), and a body may return
+// nothing.
+TEST(Smoother, ForStaticGivesTheItemsIndexInEveryLoop) {
+  for (int threads : {1, 2, 3}) {
+    const std::string at = std::to_string(threads) + " threads";
+    NullSink null;
+    CheckIndexedLoop(null, threads, at + ", untraced");
     for (int grain : {kSerialShares, 1, 4}) {
       LoopSink traced;
       traced.interleave = grain;
-      NullSink null;
-      for (int sink = 0; sink < 2; ++sink) {
-        std::vector<int64_t> seen(kN, 0);
-        std::atomic<int64_t> wrong{0};
-        const auto body = [&](int32_t* p, int64_t i, int) {
-          if (i < 0 || i >= kN || p != items.data() + kStride * i) return void(++wrong);
-          ++seen[i];  // the traced loops are serial; the untraced ones write distinct slots
-        };
-        if (sink == 0)
-          smoother_detail::ForStatic<kStride>(items.data(), kN, threads, null, nullptr, body);
-        else
-          smoother_detail::ForStatic<kStride>(items.data(), kN, threads, traced, nullptr, body);
-        EXPECT_EQ(wrong.load(), 0) << threads << " threads, grain " << grain << ", sink " << sink;
-        EXPECT_EQ(std::count(seen.begin(), seen.end(), 1), kN);
-        // A body returning its index sums to 0 + 1 + ... + n-1.
-        const double sum = smoother_detail::ForStatic<kStride>(
-            items.data(), kN, threads, null, nullptr,
-            [](int32_t*, int64_t i, int) { return static_cast<double>(i); });
-        EXPECT_EQ(sum, kN * (kN - 1) / 2);
-      }
-      // One bound read per item and one per thread's share, as the trace documents.
-      EXPECT_EQ(traced.bounds, kN + threads);
+      CheckIndexedLoop(traced, threads, at + ", traced, grain " + std::to_string(grain));
     }
+    ParallelLoopSink parallel;
+    CheckIndexedLoop(parallel, threads, at + ", traced from the threads");
   }
 }
 
