@@ -3,7 +3,8 @@
 // on the order of the terms or on how they are split among ranks (../shared/scale-out.md 3b: the
 // distributed smoother's global quality, identical for every P). Q = sum_t w_t q_t <= 1, so 2^6
 // leaves room for any partial sum; a term of 2^-120 or less (none in a mesh of fewer than 10^30
-// triangles) counts as zero.
+// triangles) counts as zero. AddAll adds many terms at about the cost of two double sums, to the
+// same value (fixed_sum.cc says why it is exact): issue 40's one rank beside the serial smoother.
 #pragma once
 
 #include <cmath>
@@ -35,6 +36,10 @@ class FixedSum {
     else if (shift > -64)
       v_ += m >> -shift;
   }
+  // The same value as Add(x[k]) for k in [0, n), in any order: blocks of 2^10 terms whose terms
+  // lie in [2^-68, 64) and within 2^32 of each other are summed exactly in doubles (fixed_sum.cc),
+  // any other block term by term (so a bad term throws as Add's does).
+  void AddAll(const double* x, int64_t n);
   void Add(const FixedSum& o) { v_ += o.v_; }
   double ToDouble() const { return std::ldexp(static_cast<double>(v_), -kFractionBits); }
   // (this - o) as a double: the improvement of a sweep, rounded once.
@@ -56,6 +61,8 @@ class FixedSum {
   }
 
  private:
+  // Adds y, a multiple of 2^-120 of either sign (AddAll's exact partial sums), modulo 2^128.
+  void AddMultipleOfUnit(double y);
   unsigned __int128 v_ = 0;
 };
 

@@ -33,18 +33,32 @@ const char* HaloModeName(HaloMode m) {
 
 namespace {
 
-// w[t] q_t for t in [b, b + n), n <= kBlock, into out: TriangleQuality's operations in a loop the
-// compiler vectorises (no FMA in the base x86-64 build, and sqrt and division are exact in any
-// width), so the same bits as the scalar function; then added one by one, exactly.
-constexpr int64_t kBlock = 256;
+// w[t] q_t for t in [b, b + n), n <= kBlock, into out: TriangleQuality's operations as `omp simd`
+// lanes (the division's operand guarded as in smoother.cc's pass, so a lane with hi = 0 divides by
+// 1 and keeps 0), built for AVX-512, AVX2 and baseline x86-64. This file is compiled with
+// -ffp-contract=off (core/CMakeLists.txt): GCC's AVX-512 target enables FMA and would fuse the
+// products and sums, changing the bits. Unfused, and with sqrt and division exact in any width,
+// every build gives the scalar function's bits. Then summed exactly (AddAll).
+constexpr int64_t kBlock = 1024;
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) && \
+    !defined(__SANITIZE_ADDRESS__)
+__attribute__((target_clones("avx512f", "avx2", "default")))
+#endif
 void WeightedTerms(const double* xy, const int32_t* tri, const double* w, int64_t b, int64_t n,
                    double* out) {
+#pragma omp simd
   for (int64_t k = 0; k < n; ++k) {
     const int64_t t = b + k;
-    const double* pa = xy + 2 * int64_t{tri[3 * t]};
-    const double* pb = xy + 2 * int64_t{tri[3 * t + 1]};
-    const double* pc = xy + 2 * int64_t{tri[3 * t + 2]};
-    out[k] = w[t] * TriangleQuality(pa[0], pa[1], pb[0], pb[1], pc[0], pc[1]);
+    const int64_t i = 2 * int64_t{tri[3 * t]}, j = 2 * int64_t{tri[3 * t + 1]},
+                  l = 2 * int64_t{tri[3 * t + 2]};
+    const double ax = xy[i], ay = xy[i + 1], bx = xy[j], by = xy[j + 1], cx = xy[l], cy = xy[l + 1];
+    const double ab = (bx - ax) * (bx - ax) + (by - ay) * (by - ay);
+    const double bc = (cx - bx) * (cx - bx) + (cy - by) * (cy - by);
+    const double ca = (ax - cx) * (ax - cx) + (ay - cy) * (ay - cy);
+    const double lo = std::min(ab, std::min(bc, ca));
+    const double hi = std::max(ab, std::max(bc, ca));
+    const double q = hi > 0.0 ? std::sqrt(lo / (hi > 0.0 ? hi : 1.0)) : 0.0;
+    out[k] = w[t] * q;
   }
 }
 
@@ -54,7 +68,7 @@ FixedSum WeightedSum(const double* xy, const int32_t* tri, const double* w, int6
   for (int64_t b = 0; b < n; b += kBlock) {
     const int64_t len = std::min(kBlock, n - b);
     WeightedTerms(xy, tri, w, b, len, buf);
-    for (int64_t k = 0; k < len; ++k) s.Add(buf[k]);
+    s.AddAll(buf, len);
   }
   return s;
 }
