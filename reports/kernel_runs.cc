@@ -4,6 +4,7 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <chrono>
 #include <exception>
 
 #include "analysis/cache_sim.h"
@@ -55,8 +56,18 @@ void Simulate(const KernelRunsConfig& cfg, const KernelInfo& k, Mesh& work, Kern
 }  // namespace
 
 void MeasureKernels(const KernelRunsConfig& cfg, const std::string& mesh, const Mesh& base,
-                    std::vector<KernelRun>* out,
-                    const std::function<void(const std::string&)>& say) {
+                    std::vector<KernelRun>* out, const std::function<void(const std::string&)>& say,
+                    PhaseTimes* phases) {
+  // Each part's seconds into `phases`, inside the caller's phase.
+  auto part = [phases](const char* name, auto&& f) {
+    const auto w0 = std::chrono::steady_clock::now();
+    const double c0 = ProcessCpuSeconds();
+    f();
+    if (phases)
+      phases->Add(name,
+                  std::chrono::duration<double>(std::chrono::steady_clock::now() - w0).count(),
+                  ProcessCpuSeconds() - c0, "inside the one above");
+  };
   const size_t first = out->size();
   std::vector<Permutation> perms;
   for (const std::string& o : cfg.orderings) perms.push_back(ComputeOrdering(o, base, cfg.seed));
@@ -74,47 +85,52 @@ void MeasureKernels(const KernelRunsConfig& cfg, const std::string& mesh, const 
   say("kernels: " + mesh + ", " + std::to_string(cfg.kernels.size()) + " kernels x " +
       std::to_string(cfg.orderings.size()) + " orderings x " + std::to_string(cfg.traced_sweeps) +
       " simulated sweeps");
-  const int jobs = static_cast<int>(out->size() - first);
   std::exception_ptr failed;
+  part("other kernels: simulated", [&] {
+    const int jobs = static_cast<int>(out->size() - first);
 #pragma omp parallel for schedule(dynamic, 1) \
     num_threads(std::max(1, std::min(jobs, omp_get_max_threads())))
-  for (int j = 0; j < jobs; ++j) {
-    try {
-      KernelRun& r = (*out)[first + j];
-      const size_t o = static_cast<size_t>(j) % cfg.orderings.size();
-      Mesh laid;
-      ApplyPermutationInto(base, perms[o], cfg.triangle_order, &laid);
-      Simulate(cfg, ParseKernel(r.kernel), laid, &r);
-    } catch (...) {
+    for (int j = 0; j < jobs; ++j) {
+      try {
+        KernelRun& r = (*out)[first + j];
+        const size_t o = static_cast<size_t>(j) % cfg.orderings.size();
+        Mesh laid;
+        ApplyPermutationInto(base, perms[o], cfg.triangle_order, &laid);
+        Simulate(cfg, ParseKernel(r.kernel), laid, &r);
+      } catch (...) {
 #pragma omp critical(meshreuse_kernel_runs_failed)
-      if (!failed) failed = std::current_exception();
+        if (!failed) failed = std::current_exception();
+      }
     }
-  }
+  });
   if (failed) std::rethrow_exception(failed);
   Mesh work;
   if (!cfg.timing) return;
-  // Round 0 warms up (untimed); then every kernel x ordering once per round, from the layout.
-  for (int round = 0; round <= cfg.rounds; ++round) {
-    say("kernels: " + mesh + (round == 0 ? ", warm-up round" : ", round " + std::to_string(round)) +
-        " of " + std::to_string(cfg.rounds));
-    size_t i = first;
-    for (const std::string& kn : cfg.kernels) {
-      const KernelInfo& k = ParseKernel(kn);
-      for (size_t o = 0; o < cfg.orderings.size(); ++o, ++i) {
-        ApplyPermutationInto(base, perms[o], cfg.triangle_order, &work);
-        const SmoothResult res = RunKernel(k, work, ExactSweeps(cfg.sweeps));
-        if (round == 0) continue;
-        CompareRound c;
-        c.sweeps = static_cast<int>(res.sweeps.size());
-        c.total_wall = res.seconds, c.total_cpu = res.cpu_seconds;
-        c.sweep_wall = MedianOf(res, &SweepRecord::seconds);
-        c.sweep_cpu = MedianOf(res, &SweepRecord::cpu_seconds);
-        CompareRow& t = (*out)[i].time;
-        if (round == 1) t.final_quality = res.sweeps.empty() ? NAN : res.sweeps.back().quality;
-        t.rounds.push_back(c);
+  part("other kernels: timed", [&] {
+    // Round 0 warms up (untimed); then every kernel x ordering once per round, from the layout.
+    for (int round = 0; round <= cfg.rounds; ++round) {
+      say("kernels: " + mesh +
+          (round == 0 ? ", warm-up round" : ", round " + std::to_string(round)) + " of " +
+          std::to_string(cfg.rounds));
+      size_t i = first;
+      for (const std::string& kn : cfg.kernels) {
+        const KernelInfo& k = ParseKernel(kn);
+        for (size_t o = 0; o < cfg.orderings.size(); ++o, ++i) {
+          ApplyPermutationInto(base, perms[o], cfg.triangle_order, &work);
+          const SmoothResult res = RunKernel(k, work, ExactSweeps(cfg.sweeps));
+          if (round == 0) continue;
+          CompareRound c;
+          c.sweeps = static_cast<int>(res.sweeps.size());
+          c.total_wall = res.seconds, c.total_cpu = res.cpu_seconds;
+          c.sweep_wall = MedianOf(res, &SweepRecord::seconds);
+          c.sweep_cpu = MedianOf(res, &SweepRecord::cpu_seconds);
+          CompareRow& t = (*out)[i].time;
+          if (round == 1) t.final_quality = res.sweeps.empty() ? NAN : res.sweeps.back().quality;
+          t.rounds.push_back(c);
+        }
       }
     }
-  }
+  });
   for (size_t i = first; i < out->size(); ++i) {
     CompareRow& t = (*out)[i].time;
     const uint64_t s = cfg.seed + i;

@@ -22,6 +22,7 @@
 #include "analysis/cache_model.h"
 #include "core/mesh.h"
 #include "core/permutation.h"
+#include "reports/phase_times.h"
 #include "reports/timed_runs.h"
 #include "reports/timing.h"
 
@@ -54,8 +55,10 @@ struct KernelRun {
 };
 
 // Appends one row per kernel x ordering of `base` (named `mesh`) to `out`; `say` gets progress.
+// `phases` (optional) gets the simulated and the timed part's wall and CPU seconds, each as a
+// phase inside the caller's.
 void MeasureKernels(const KernelRunsConfig& cfg, const std::string& mesh, const Mesh& base,
-                    std::vector<KernelRun>* out,
-                    const std::function<void(const std::string&)>& say);
+                    std::vector<KernelRun>* out, const std::function<void(const std::string&)>& say,
+                    PhaseTimes* phases = nullptr);
 
 }  // namespace meshreuse

@@ -531,7 +531,8 @@ std::string RunReport(const ReportConfig& in_cfg, const std::string& out_dir, co
       kc.cache = cfg.cache;
       kc.line_bytes = cfg.line_bytes;
       const Mesh base = LoadMesh(m.path, log);
-      MeasureKernels(kc, m.name, base, &d.kernels, [&](const std::string& s) { steps.Say(s); });
+      MeasureKernels(
+          kc, m.name, base, &d.kernels, [&](const std::string& s) { steps.Say(s); }, &phases);
       steps.Done(Steps::KernelUnits(cfg, m));
     }
   }

@@ -244,9 +244,16 @@ TEST(Report, WhereTheTimeWentInTheReadmeAndRunJson) {
   for (const char* want :
        {"reading the meshes", "reuse distances (Table 2, Figure 1, profiles)",
         "misses (Table 3: the simulator, the model)", "many-core simulation (westmere-ex)",
-        "many-core simulation, 32 thread(s)", "tables and figure data",
-        "figures (scripts/plot_report.py)"})
+        "many-core simulation, 32 thread(s)", "other kernels (simulated and timed)",
+        "other kernels: simulated", "tables and figure data", "figures (scripts/plot_report.py)"})
     EXPECT_NE(std::find(names.begin(), names.end(), want), names.end()) << want;
+  // The kernels part's simulated share, inside it (this config times nothing: no timed share).
+  for (const Json& p : run.at("phases")) {
+    if (p.at("phase") == "other kernels: simulated") {
+      EXPECT_EQ(p.at("note"), "inside the one above");
+    }
+  }
+  EXPECT_EQ(std::find(names.begin(), names.end(), "other kernels: timed"), names.end());
   const std::string readme = Slurp(out / "r/README.md");
   EXPECT_NE(readme.find("## Where the time went"), std::string::npos);
   EXPECT_NE(readme.find("| build | 100.0 s | 190.0 s | 1.90 |"), std::string::npos);
