@@ -179,62 +179,79 @@ void MeasureReuse(const ReportConfig& cfg, const ReportMesh& mr, const Mesh& bas
 }
 
 // The many-core part for one mesh: every ordering at every thread count, both placements fed
-// from one stream; at one thread also with the prefetcher. The thread counts of an ordering run
-// side by side on the host's cores (each its own stream and simulators, results kept in job
-// order, so nothing depends on the schedule); one ordering's layout in memory at a time.
+// from one stream; at one thread also with the prefetcher. All of the mesh's runs (orderings x
+// thread counts) are jobs side by side on the host's cores, the one-thread runs (the slowest:
+// with the prefetcher's third simulation) first, then by falling thread count, so the last
+// job to finish is a short one; each job its own stream and simulators, results kept in
+// ordering then thread-count order, so nothing depends on the schedule. Every ordering's layout
+// is in memory for the phase (each job runs on its own copy).
 void MeasureMachine(const ReportConfig& cfg, const ReportMesh& mr, const Mesh& base, ReportData* d,
                     Steps& steps, PhaseTimes* phases) {
   Machine machine = ParseMachine(cfg.machine);
   Machine prefetching = machine;
   SetPrefetch(&prefetching, cfg.prefetch_levels);
-  const int jobs = static_cast<int>(cfg.machine_threads.size());
-  for (size_t k = 0; k < cfg.orderings.size(); ++k) {
-    const Permutation p = ComputeOrdering(ForMesh(cfg.orderings[k], mr.name), base, cfg.seed);
-    const Mesh laid = ApplyPermutation(base, p, cfg.triangle_order);
-    const std::string& label = d->orderings[k];
-    std::vector<std::vector<MachineRun>> runs(jobs);
-    std::exception_ptr failed;
-#pragma omp parallel for schedule(dynamic, 1) num_threads(std::min(jobs, omp_get_max_threads()))
-    for (int j = 0; j < jobs; ++j) {
-      try {
-        const int threads = cfg.machine_threads[j];
-        const auto w0 = Clock::now();
-        const double c0 = ThreadCpuSeconds();
+  const int counts = static_cast<int>(cfg.machine_threads.size());
+  const int orderings = static_cast<int>(cfg.orderings.size());
+  std::vector<Mesh> laid;
+  for (int k = 0; k < orderings; ++k)
+    laid.push_back(
+        ApplyPermutation(base, ComputeOrdering(ForMesh(cfg.orderings[k], mr.name), base, cfg.seed),
+                         cfg.triangle_order));
+  // Jobs (ordering, thread-count index), in the order they start.
+  std::vector<std::pair<int, int>> jobs;
+  for (int k = 0; k < orderings; ++k)
+    for (int j = 0; j < counts; ++j) jobs.emplace_back(k, j);
+  std::stable_sort(jobs.begin(), jobs.end(), [&](const auto& x, const auto& y) {
+    const int a = cfg.machine_threads[x.second], b = cfg.machine_threads[y.second];
+    return (a == 1) != (b == 1) ? a == 1 : a > b;
+  });
+  std::vector<std::vector<MachineRun>> runs(jobs.size());  // by ordering * counts + count
+  std::exception_ptr failed;
+  const int n = static_cast<int>(jobs.size());
+#pragma omp parallel for schedule(dynamic, 1) \
+    num_threads(std::max(1, std::min(n, omp_get_max_threads())))
+  for (int i = 0; i < n; ++i) {
+    try {
+      const auto [k, j] = jobs[i];
+      const int threads = cfg.machine_threads[j];
+      const std::string& label = d->orderings[k];
+      const auto w0 = Clock::now();
+      const double c0 = ThreadCpuSeconds();
 #pragma omp critical(meshreuse_report_steps)
-        steps.Say("many-core simulation: " + mr.name + " " + label + ", " +
-                  std::to_string(threads) + " thread(s) on " + machine.name);
-        SmoothOptions o = ExactSweeps(cfg.machine_sweeps);
-        o.threads = threads;
-        o.interleave = 1;
-        MulticoreSimulation compact(machine, Placement::kCompact),
-            scatter(machine, Placement::kScatter), pre(prefetching, Placement::kCompact);
-        std::vector<AccessConsumer*> to = {&compact};
-        if (threads > 1) to.push_back(&scatter);
-        if (threads == 1 && !cfg.prefetch_levels.empty()) to.push_back(&pre);
-        FanOut all(to);
-        Mesh m = laid.Clone();
-        StreamMesh(m, o, mr.name, label, all);
-        runs[j].push_back(CollectMachineRun(compact, mr.name, label, false));
-        if (threads > 1) runs[j].push_back(CollectMachineRun(scatter, mr.name, label, false));
-        if (threads == 1 && !cfg.prefetch_levels.empty())
-          runs[j].push_back(CollectMachineRun(pre, mr.name, label, true));
+      steps.Say("many-core simulation: " + mr.name + " " + label + ", " + std::to_string(threads) +
+                " thread(s) on " + machine.name);
+      SmoothOptions o = ExactSweeps(cfg.machine_sweeps);
+      o.threads = threads;
+      o.interleave = 1;
+      MulticoreSimulation compact(machine, Placement::kCompact),
+          scatter(machine, Placement::kScatter), pre(prefetching, Placement::kCompact);
+      std::vector<AccessConsumer*> to = {&compact};
+      if (threads > 1) to.push_back(&scatter);
+      if (threads == 1 && !cfg.prefetch_levels.empty()) to.push_back(&pre);
+      FanOut all(to);
+      Mesh m = laid[k].Clone();
+      StreamMesh(m, o, mr.name, label, all);
+      std::vector<MachineRun>& r = runs[static_cast<size_t>(k) * counts + j];
+      r.push_back(CollectMachineRun(compact, mr.name, label, false));
+      if (threads > 1) r.push_back(CollectMachineRun(scatter, mr.name, label, false));
+      if (threads == 1 && !cfg.prefetch_levels.empty())
+        r.push_back(CollectMachineRun(pre, mr.name, label, true));
 #pragma omp critical(meshreuse_report_steps)
-        {
-          steps.Done(mr.weight * Steps::kMachine * cfg.machine_sweeps *
-                     static_cast<double>(to.size()));
-          phases->Add("many-core simulation, " + std::to_string(threads) + " thread(s)",
-                      std::chrono::duration<double>(Clock::now() - w0).count(),
-                      ThreadCpuSeconds() - c0, "inside the one above");
-        }
-      } catch (...) {
-#pragma omp critical(meshreuse_report_failed)
-        if (!failed) failed = std::current_exception();
+      {
+        steps.Done(mr.weight * Steps::kMachine * cfg.machine_sweeps *
+                   static_cast<double>(to.size()));
+        phases->Add("many-core simulation, " + std::to_string(threads) + " thread(s)",
+                    std::chrono::duration<double>(Clock::now() - w0).count(),
+                    ThreadCpuSeconds() - c0, "inside the one above");
       }
+    } catch (...) {
+#pragma omp critical(meshreuse_report_failed)
+      if (!failed) failed = std::current_exception();
     }
-    if (failed) std::rethrow_exception(failed);
-    for (std::vector<MachineRun>& r : runs)
-      for (MachineRun& x : r) d->machine.push_back(std::move(x));
   }
+  if (failed) std::rethrow_exception(failed);
+  for (std::vector<MachineRun>& r : runs)
+    for (MachineRun& x : r) d->machine.push_back(std::move(x));
 }
 
 // Everything but the timing, for one mesh: Table 1's counts, the reuse analyses, Table 3.
