@@ -12,14 +12,16 @@
 
 namespace meshreuse {
 
-// One square root: min/max of the squared lengths, then sqrt of their ratio.
+// One square root: min/max of the squared lengths, then sqrt of their ratio. The division's
+// operand is guarded (where hi is 0 it divides by 1, and the result is 0 anyway), so a loop of it
+// runs as vector lanes: the quality passes of smoother.cc and ranks/halo_smoother.cc.
 inline double TriangleQuality(double ax, double ay, double bx, double by, double cx, double cy) {
   const double ab = (bx - ax) * (bx - ax) + (by - ay) * (by - ay);
   const double bc = (cx - bx) * (cx - bx) + (cy - by) * (cy - by);
   const double ca = (ax - cx) * (ax - cx) + (ay - cy) * (ay - cy);
   const double lo = std::min(ab, std::min(bc, ca));
   const double hi = std::max(ab, std::max(bc, ca));
-  return hi > 0.0 ? std::sqrt(lo / hi) : 0.0;
+  return hi > 0.0 ? std::sqrt(lo / (hi > 0.0 ? hi : 1.0)) : 0.0;
 }
 
 inline double TriangleQuality(const double* xy, const int32_t* corners) {
@@ -27,6 +29,15 @@ inline double TriangleQuality(const double* xy, const int32_t* corners) {
   const double* b = xy + 2 * static_cast<int64_t>(corners[1]);
   const double* c = xy + 2 * static_cast<int64_t>(corners[2]);
   return TriangleQuality(a[0], a[1], b[0], b[1], c[0], c[1]);
+}
+
+// Triangle t's quality, its corners' coordinates read by index: the form GCC vectorises in the
+// quality passes' `omp simd` loops (smoother.cc, ranks/halo_smoother.cc); with the pointers of
+// the form above it leaves them scalar.
+inline double TriangleQualityAt(const double* xy, const int32_t* tri, int64_t t) {
+  const int64_t i = 2 * int64_t{tri[3 * t]}, j = 2 * int64_t{tri[3 * t + 1]},
+                k = 2 * int64_t{tri[3 * t + 2]};
+  return TriangleQuality(xy[i], xy[i + 1], xy[j], xy[j + 1], xy[k], xy[k + 1]);
 }
 
 std::vector<double> TriangleQualities(const Mesh& m);

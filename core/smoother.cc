@@ -91,18 +91,7 @@ double
 WeightedQualitySum(const double* xy, const int32_t* tri, const double* wq, int64_t b, int64_t e) {
   double s = 0.0;
 #pragma omp simd reduction(+ : s)
-  for (int64_t t = b; t < e; ++t) {
-    const int64_t i = 2 * int64_t{tri[3 * t]}, j = 2 * int64_t{tri[3 * t + 1]},
-                  k = 2 * int64_t{tri[3 * t + 2]};
-    const double ax = xy[i], ay = xy[i + 1], bx = xy[j], by = xy[j + 1], cx = xy[k], cy = xy[k + 1];
-    const double ab = (bx - ax) * (bx - ax) + (by - ay) * (by - ay);
-    const double bc = (cx - bx) * (cx - bx) + (cy - by) * (cy - by);
-    const double ca = (ax - cx) * (ax - cx) + (ay - cy) * (ay - cy);
-    const double lo = std::min(ab, std::min(bc, ca));
-    const double hi = std::max(ab, std::max(bc, ca));
-    const double q = hi > 0.0 ? std::sqrt(lo / (hi > 0.0 ? hi : 1.0)) : 0.0;
-    s += wq[2 * t] * q;
-  }
+  for (int64_t t = b; t < e; ++t) s += wq[2 * t] * TriangleQualityAt(xy, tri, t);
   return s;
 }
 

@@ -33,9 +33,8 @@ const char* HaloModeName(HaloMode m) {
 
 namespace {
 
-// w[t] q_t for t in [b, b + n), n <= kBlock, into out: TriangleQuality's operations as `omp simd`
-// lanes (the division's operand guarded as in smoother.cc's pass, so a lane with hi = 0 divides by
-// 1 and keeps 0), built for AVX-512, AVX2 and baseline x86-64. This file is compiled with
+// w[t] q_t for t in [b, b + n), n <= kBlock, into out: TriangleQualityAt as `omp simd` lanes,
+// built for AVX-512, AVX2 and baseline x86-64. This file is compiled with
 // -ffp-contract=off (core/CMakeLists.txt): GCC's AVX-512 target enables FMA and would fuse the
 // products and sums, changing the bits. Unfused, and with sqrt and division exact in any width,
 // every build gives the scalar function's bits. Then summed exactly (AddAll).
@@ -47,19 +46,7 @@ __attribute__((target_clones("avx512f", "avx2", "default")))
 void WeightedTerms(const double* xy, const int32_t* tri, const double* w, int64_t b, int64_t n,
                    double* out) {
 #pragma omp simd
-  for (int64_t k = 0; k < n; ++k) {
-    const int64_t t = b + k;
-    const int64_t i = 2 * int64_t{tri[3 * t]}, j = 2 * int64_t{tri[3 * t + 1]},
-                  l = 2 * int64_t{tri[3 * t + 2]};
-    const double ax = xy[i], ay = xy[i + 1], bx = xy[j], by = xy[j + 1], cx = xy[l], cy = xy[l + 1];
-    const double ab = (bx - ax) * (bx - ax) + (by - ay) * (by - ay);
-    const double bc = (cx - bx) * (cx - bx) + (cy - by) * (cy - by);
-    const double ca = (ax - cx) * (ax - cx) + (ay - cy) * (ay - cy);
-    const double lo = std::min(ab, std::min(bc, ca));
-    const double hi = std::max(ab, std::max(bc, ca));
-    const double q = hi > 0.0 ? std::sqrt(lo / (hi > 0.0 ? hi : 1.0)) : 0.0;
-    out[k] = w[t] * q;
-  }
+  for (int64_t k = 0; k < n; ++k) out[k] = w[b + k] * TriangleQualityAt(xy, tri, b + k);
 }
 
 FixedSum WeightedSum(const double* xy, const int32_t* tri, const double* w, int64_t n) {
