@@ -34,10 +34,11 @@ const char* HaloModeName(HaloMode m) {
 namespace {
 
 // w[t] q_t for t in [b, b + n), n <= kBlock, into out: TriangleQualityAt as `omp simd` lanes,
-// built for AVX-512, AVX2 and baseline x86-64. This file is compiled with
-// -ffp-contract=off (core/CMakeLists.txt): GCC's AVX-512 target enables FMA and would fuse the
-// products and sums, changing the bits. Unfused, and with sqrt and division exact in any width,
-// every build gives the scalar function's bits. Then summed exactly (AddAll).
+// built for AVX-512, AVX2 and baseline x86-64 (GCC 12 vectorises the AVX-512 one, as it does the
+// serial pass). This file is compiled with -ffp-contract=off (core/CMakeLists.txt): GCC's AVX-512
+// target enables FMA and would fuse the products and sums, changing the bits. Unfused, and with
+// sqrt and division exact in any width, every build gives the scalar function's bits. Then
+// summed exactly (AddAll).
 constexpr int64_t kBlock = 1024;
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) && \
     !defined(__SANITIZE_ADDRESS__)
