@@ -20,10 +20,10 @@
 // So H = sum yh and Lo = sum yl are exact whatever the order (the vector lanes' order), H + Lo is
 // the block's sum, and both are multiples of 2^-120: adding each in units of 2^-120 adds exactly
 // what the per-term Adds would, modulo 2^128 as they do. A block that breaks a condition (a zero,
-// a term below 2^-68 that Add would truncate, a NaN, a negative or too large term, a range wider
-// than 2^32) goes term by term. The conditions are read from the terms' bits as signed integers:
-// for doubles of either sign and NaNs their order is the order the checks need (every negative
-// double and -0.0 is below 2^-68's bits, every NaN and infinity at or above 64's).
+// a term below 2^-68 that Add would truncate, a NaN, a negative or too large term, binades more
+// than 32 apart) goes term by term. The conditions are read from the terms' bits as signed
+// integers: for doubles of either sign and NaNs their order is the order the checks need (every
+// negative double and -0.0 is below 2^-68's bits, every NaN and infinity at or above 64's).
 // Needs IEEE double arithmetic as written: no -ffast-math (which would fold (x + C) - C to x).
 #include "core/fixed_sum.h"
 

@@ -36,9 +36,9 @@ class FixedSum {
     else if (shift > -64)
       v_ += m >> -shift;
   }
-  // The same value as Add(x[k]) for k in [0, n), in any order: blocks of 2^10 terms whose terms
-  // lie in [2^-68, 64) and within 2^32 of each other are summed exactly in doubles (fixed_sum.cc),
-  // any other block term by term (so a bad term throws as Add's does).
+  // The same value as Add(x[k]) for k in [0, n), in any order: a block of 2^10 terms, all in
+  // [2^-68, 64) and the largest one's binade at most 32 above the smallest one's, is summed
+  // exactly in doubles (fixed_sum.cc); any other block term by term (a bad term throws as in Add).
   void AddAll(const double* x, int64_t n);
   void Add(const FixedSum& o) { v_ += o.v_; }
   double ToDouble() const { return std::ldexp(static_cast<double>(v_), -kFractionBits); }
