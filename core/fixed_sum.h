@@ -27,8 +27,9 @@ class FixedSum {
       throw std::logic_error("FixedSum: term outside [0, 64)");
     uint64_t bits;
     std::memcpy(&bits, &x, sizeof bits);
-    const int e = static_cast<int>(bits >> 52);  // biased exponent (the sign bit is 0)
-    if (e == 0) return;                          // zero or subnormal: far below the unit
+    // The biased exponent, without the sign bit: -0.0 passes the check above and is zero here.
+    const int e = static_cast<int>((bits >> 52) & 0x7ff);
+    if (e == 0) return;  // zero or subnormal: far below the unit
     const uint64_t m = (bits & ((uint64_t{1} << 52) - 1)) | (uint64_t{1} << 52);
     const int shift = e - 1075 + kFractionBits;  // x = m 2^(e-1075); units of 2^-120
     if (shift >= 0)

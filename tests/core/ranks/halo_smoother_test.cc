@@ -343,6 +343,7 @@ TEST(HaloSmoother, AFailingRankEndsEveryRank) {
 TEST(FixedSum, AddFromBitsEqualsScaleAndTruncate) {
   std::mt19937_64 rng(5);
   std::vector<double> xs = {0.0,
+                            -0.0,  // accepted, and zero (its sign bit once read as exponent)
                             std::nextafter(64.0, 0.0),
                             1.0,
                             0.5,
