@@ -74,21 +74,6 @@ bool SplitSum(const double* x, int64_t n, double* h, double* lo) {
 
 }  // namespace
 
-void FixedSum::AddMultipleOfUnit(double y) {
-  uint64_t bits;
-  std::memcpy(&bits, &y, sizeof bits);
-  const bool negative = bits >> 63;
-  const int e = static_cast<int>((bits >> 52) & 0x7ff);
-  if (e == 0) return;  // zero (a nonzero multiple of 2^-120 is never subnormal)
-  const uint64_t m = (bits & ((uint64_t{1} << 52) - 1)) | (uint64_t{1} << 52);
-  const int shift = e - 1075 + kFractionBits;  // below 0: m's low -shift bits are zero
-  const unsigned __int128 t = shift >= 0 ? static_cast<unsigned __int128>(m) << shift : m >> -shift;
-  if (negative)
-    v_ -= t;
-  else
-    v_ += t;
-}
-
 void FixedSum::AddAll(const double* x, int64_t n) {
   for (int64_t b = 0; b < n; b += kBlock) {
     const int64_t len = std::min(kBlock, n - b);

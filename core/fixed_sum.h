@@ -25,17 +25,7 @@ class FixedSum {
   void Add(double x) {
     if (__builtin_expect(!(x >= 0.0 && x < 64.0), 0))
       throw std::logic_error("FixedSum: term outside [0, 64)");
-    uint64_t bits;
-    std::memcpy(&bits, &x, sizeof bits);
-    // The biased exponent, without the sign bit: -0.0 passes the check above and is zero here.
-    const int e = static_cast<int>((bits >> 52) & 0x7ff);
-    if (e == 0) return;  // zero or subnormal: far below the unit
-    const uint64_t m = (bits & ((uint64_t{1} << 52) - 1)) | (uint64_t{1} << 52);
-    const int shift = e - 1075 + kFractionBits;  // x = m 2^(e-1075); units of 2^-120
-    if (shift >= 0)
-      v_ += static_cast<unsigned __int128>(m) << shift;  // shift <= 73: below 2^126
-    else if (shift > -64)
-      v_ += m >> -shift;
+    v_ += Units(x);
   }
   // The same value as Add(x[k]) for k in [0, n), in any order: a block of 2^10 terms, all in
   // [2^-68, 64) and the largest one's binade at most 32 above the smallest one's, is summed
@@ -62,8 +52,26 @@ class FixedSum {
   }
 
  private:
+  // |x| 2^120 truncated to an integer, modulo 2^128, for |x| < 2^60 (a shift below 128); exact
+  // where x is a multiple of 2^-120. The mantissa shifted by the exponent, the sign ignored (so
+  // -0.0 is 0, as +0.0).
+  static unsigned __int128 Units(double x) {
+    uint64_t bits;
+    std::memcpy(&bits, &x, sizeof bits);
+    const int e = static_cast<int>((bits >> 52) & 0x7ff);  // biased exponent, without the sign
+    if (e == 0) return 0;                                  // zero or subnormal: far below the unit
+    const uint64_t m = (bits & ((uint64_t{1} << 52) - 1)) | (uint64_t{1} << 52);
+    const int shift = e - 1075 + kFractionBits;  // |x| = m 2^(e-1075); units of 2^-120
+    if (shift >= 0) return static_cast<unsigned __int128>(m) << shift;
+    return shift > -64 ? m >> -shift : 0;
+  }
   // Adds y, a multiple of 2^-120 of either sign (AddAll's exact partial sums), modulo 2^128.
-  void AddMultipleOfUnit(double y);
+  void AddMultipleOfUnit(double y) {
+    if (std::signbit(y))
+      v_ -= Units(y);
+    else
+      v_ += Units(y);
+  }
   unsigned __int128 v_ = 0;
 };
 

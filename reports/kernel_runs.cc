@@ -4,8 +4,8 @@
 #include <omp.h>
 
 #include <algorithm>
-#include <chrono>
 #include <exception>
+#include <optional>
 
 #include "analysis/cache_sim.h"
 #include "analysis/reuse_analysis.h"
@@ -60,13 +60,9 @@ void MeasureKernels(const KernelRunsConfig& cfg, const std::string& mesh, const 
                     PhaseTimes* phases) {
   // Each part's seconds into `phases`, inside the caller's phase.
   auto part = [phases](const char* name, auto&& f) {
-    const auto w0 = std::chrono::steady_clock::now();
-    const double c0 = ProcessCpuSeconds();
+    std::optional<PhaseTimes::Scope> t;
+    if (phases) t.emplace(phases, name, "inside the one above");
     f();
-    if (phases)
-      phases->Add(name,
-                  std::chrono::duration<double>(std::chrono::steady_clock::now() - w0).count(),
-                  ProcessCpuSeconds() - c0, "inside the one above");
   };
   const size_t first = out->size();
   std::vector<Permutation> perms;

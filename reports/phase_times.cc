@@ -26,17 +26,18 @@ double ProcessCpuSeconds() {
          secs(children.ru_utime) + secs(children.ru_stime);
 }
 
-PhaseTimes::Scope::Scope(PhaseTimes* t, std::string name)
+PhaseTimes::Scope::Scope(PhaseTimes* t, std::string name, std::string note)
     : t_(t),
       name_(std::move(name)),
+      note_(std::move(note)),
       w0_(std::chrono::steady_clock::now()),
       c0_(ProcessCpuSeconds()) {
-  t_->Add(name_, 0, 0);  // listed when it starts: before the phases that run inside it
+  t_->Add(name_, 0, 0, note_);  // listed when it starts: before the phases that run inside it
 }
 
 PhaseTimes::Scope::~Scope() {
   t_->Add(name_, std::chrono::duration<double>(std::chrono::steady_clock::now() - w0_).count(),
-          ProcessCpuSeconds() - c0_);
+          ProcessCpuSeconds() - c0_, note_);
 }
 
 void PhaseTimes::Add(const std::string& name, double wall, double cpu, const std::string& note) {

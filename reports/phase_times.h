@@ -25,21 +25,24 @@ class PhaseTimes {
     double wall = 0, cpu = 0;
     std::string note;  // e.g. "ran beside the other configurations"
   };
-  // Times from construction to destruction into `name` (wall, and this process's CPU).
+  // Times from construction to destruction into `name` (wall, and this process's CPU); `note`
+  // marks a phase inside another (not added into the total).
   class Scope {
    public:
-    Scope(PhaseTimes* t, std::string name);
+    Scope(PhaseTimes* t, std::string name, std::string note = "");
     ~Scope();
     Scope(const Scope&) = delete;
     Scope& operator=(const Scope&) = delete;
 
    private:
     PhaseTimes* t_;
-    std::string name_;
+    std::string name_, note_;
     std::chrono::steady_clock::time_point w0_;
     double c0_;
   };
-  Scope Time(const std::string& name) { return Scope(this, name); }
+  Scope Time(const std::string& name, const std::string& note = "") {
+    return Scope(this, name, note);
+  }
   void Add(const std::string& name, double wall, double cpu, const std::string& note = "");
   const std::vector<Phase>& phases() const { return phases_; }
   // "NAME WALL CPU" lines (seconds, non-negative); InputError naming the file and line otherwise.
