@@ -54,13 +54,14 @@ SetAssociativeCache::SetAssociativeCache(uint64_t bytes, uint32_t ways, uint32_t
   ways_ = ways;
   groups_ = GroupsOf(ways);
   padded_ = 4 * groups_;
-  block_bytes_ = 20 * uint64_t{padded_};
+  block_bytes_ = 16 * uint64_t{padded_};
   pow2_ = (sets_ & (sets_ - 1)) == 0;
   mask_ = sets_ - 1;
   block_.reset(static_cast<uint8_t*>(std::calloc(sets_, block_bytes_)));
   if (!block_) throw std::bad_alloc();
 }
 
+template <uint32_t G>
 void SetAssociativeCache::Install(Set s, uint64_t tag) {
   uint32_t v = 0;
   if (policy_ == Replacement::kRandom) {
@@ -73,12 +74,67 @@ void SetAssociativeCache::Install(Set s, uint64_t tag) {
       v = static_cast<uint32_t>(rng_ % ways_);
     }
   } else {
-    for (uint32_t i = 1; i < ways_; ++i) v = s.stamp[i] < s.stamp[v] ? i : v;  // an empty is 0
-    s.stamp[v] = ++clock_;
+    v = Oldest<G>(s.stamp);  // an empty way's stamp is 0
+    s.stamp[v] = Tick();
   }
   victim_ = s.tag[v] - 1;  // ~0 when the way was empty
   s.tag[v] = tag;
   s.sig[v] = static_cast<uint32_t>(tag);
+}
+
+template <uint32_t G>
+uint32_t SetAssociativeCache::Oldest(const uint32_t* stamp) const {
+  const uint32_t n = G ? G : groups_;
+#ifdef __SSE2__
+  // Stamps are below 2^31 - 1, so signed compares order them; the padding's lanes read as 2^31 - 1.
+  const uint32_t pad = padded_ - ways_;
+  const __m128i high = _mm_set_epi32(pad >= 1 ? 0x7fffffff : 0, pad >= 2 ? 0x7fffffff : 0,
+                                     pad >= 3 ? 0x7fffffff : 0, 0);
+  auto group = [&](uint32_t g) {
+    const __m128i v = _mm_loadu_si128(reinterpret_cast<const __m128i*>(stamp + 4 * g));
+    return g + 1 == n ? _mm_or_si128(v, high) : v;
+  };
+  auto min = [](__m128i a, __m128i b) {
+    const __m128i lt = _mm_cmplt_epi32(a, b);
+    return _mm_or_si128(_mm_and_si128(lt, a), _mm_andnot_si128(lt, b));
+  };
+  __m128i m = group(0);
+  for (uint32_t g = 1; g < n; ++g) m = min(m, group(g));
+  m = min(m, _mm_shuffle_epi32(m, _MM_SHUFFLE(1, 0, 3, 2)));
+  m = min(m, _mm_shuffle_epi32(m, _MM_SHUFFLE(2, 3, 0, 1)));  // every lane the minimum
+  for (uint32_t g = 0;; ++g)
+    if (const int eq = _mm_movemask_ps(_mm_castsi128_ps(_mm_cmpeq_epi32(group(g), m))))
+      return 4 * g + static_cast<uint32_t>(__builtin_ctz(static_cast<unsigned>(eq)));
+#else
+  uint32_t v = 0;
+  for (uint32_t i = 1; i < ways_; ++i) v = stamp[i] < stamp[v] ? i : v;
+  (void)n;
+  return v;
+#endif
+}
+
+template void SetAssociativeCache::Install<0>(Set, uint64_t);
+template void SetAssociativeCache::Install<1>(Set, uint64_t);
+template void SetAssociativeCache::Install<2>(Set, uint64_t);
+template void SetAssociativeCache::Install<3>(Set, uint64_t);
+template void SetAssociativeCache::Install<4>(Set, uint64_t);
+template void SetAssociativeCache::Install<6>(Set, uint64_t);
+template void SetAssociativeCache::Install<8>(Set, uint64_t);
+
+void SetAssociativeCache::Renumber() {
+  // Each set's stamps become 1..k in their order (0, empty, stays): every later comparison within
+  // a set, the only kind there is, comes out as before. A set never written reads as zeros
+  // (calloc's shared zero page) and is left unwritten.
+  std::vector<std::pair<uint32_t, uint32_t>> order;
+  for (uint64_t i = 0; i < sets_; ++i) {
+    uint32_t* stamp = reinterpret_cast<uint32_t*>(block_.get() + i * block_bytes_) + padded_;
+    order.clear();
+    for (uint32_t w = 0; w < ways_; ++w)
+      if (stamp[w] != 0) order.emplace_back(stamp[w], w);
+    std::sort(order.begin(), order.end());
+    for (uint32_t k = 0; k < order.size(); ++k) stamp[order[k].second] = k + 1;
+  }
+  clock_ = ways_;
 }
 
 bool SetAssociativeCache::Invalidate(uint64_t line) {

@@ -58,23 +58,28 @@ struct LevelStats {
 //
 // Layout (issue 40: a hit in a few instructions, no branch on the data). A set is a block of its
 // ways' 32-bit signatures (the low half of the tag), which SSE2 compares four at a time, their
-// tags (line + 1; 0 = an empty way), confirming a signature's match (two lines of one set share a
-// signature only 2^32 lines apart), and their stamps. Tags stay where they were installed:
+// 32-bit stamps, then their tags (line + 1; 0 = an empty way), confirming a signature's match (two
+// lines of one set share a signature only 2^32 lines apart). Signatures and stamps of a set of up
+// to eight ways share one host cache line. Tags stay where they were installed:
 //   - LRU: a way's stamp is the level's clock at its last use (0 = empty), so a hit is one store,
-//     and a miss replaces the smallest stamp: an empty way while one is left, else the least
-//     recently used. The order of the stamps is the recency list of valgrind's MRU-first array
-//     (the form this class had before, and the naive reference of the tests); an invalidated way
-//     becomes empty, the others keep their order, as the array's ways after it moved up.
+//     and a miss replaces the smallest stamp (found by SIMD minimum, no branch on the data): an
+//     empty way while one is left, else the least recently used. The order of the stamps is the
+//     recency list of valgrind's MRU-first array (the form this class had before, and the naive
+//     reference of the tests); an invalidated way becomes empty, the others keep their order, as
+//     the array's ways after it moved up.
 //   - FIFO: the stamp is the clock at installation; a hit does not change it.
 //   - random: the ways keep the old array's positions (an install fills the first empty way, else
 //     way rng % ways; an invalidation moves the ways after it up), so seeded runs replace the same
 //     lines.
+// Only the order of stamps within a set matters, so when the clock reaches its limit (2^31 - 2, or
+// a test's) every set's stamps are renumbered 1..k in their order and the clock goes on from the
+// largest: the same choices, with stamps that fit 32 bits (and compare as signed, as SSE2 does).
 // Ways are padded to a multiple of four with signature 0 and tag 0 (never confirmed: a tag is
-// never 0); the padding's stamps are never read.
+// never 0); the padding's stamps read as the largest (never the victim).
 class SetAssociativeCache {
  public:
   // Lines a level may hold: its blocks are allocated up front (calloc: pages as they are touched;
-  // 20 B a way, so at most 1.25 GiB), and a level of more lines is a mistake (1 B lines in a GiB
+  // 16 B a way, so at most 1 GiB), and a level of more lines is a mistake (1 B lines in a GiB
   // cache), refused naming the level.
   static constexpr uint64_t kMaxLines = uint64_t{1} << 26;
   // Throws UsageError unless bytes is a multiple of line_bytes * ways.
@@ -114,7 +119,7 @@ class SetAssociativeCache {
   bool Access(uint64_t line) {
     return WithGroups(groups_, [&](auto g) {
       if (Hit<decltype(g)::value>(line)) return true;
-      Install(SetOf(line), line + 1);
+      Install<decltype(g)::value>(SetOf(line), line + 1);
       return false;
     });
   }
@@ -124,11 +129,29 @@ class SetAssociativeCache {
     const Set s = SetOf(line);  // a set never touched: its signatures 0, never confirmed
     const uint32_t w = Find<G>(s, line + 1);
     if (w == kNone) return false;
-    if (policy_ == Replacement::kLru) s.stamp[w] = ++clock_;
+    if (policy_ == Replacement::kLru) s.stamp[w] = Tick();
     return true;
   }
+  // Hit over a run (issue 40: statistics per batch, the clock in a register): for i = from, from
+  // + 1, ... below n, line_of(i, line) sets access i's one line and returns true (false: not one
+  // this loop may take), and each that hits is done as Hit does it, then on_hit(i, line) is
+  // called (it must not touch this level). Returns the first i not taken (line_of's false, a
+  // miss, or the clock at its limit); nothing of it has changed. G: groups(), or 0.
+  template <uint32_t G, class LineOf, class OnHit>
+  size_t HitRun(size_t from, size_t n, LineOf&& line_of, OnHit&& on_hit) {
+    // The loop's variants fixed at compile time (set by mask or remainder; a hit's stamp or not),
+    // so that a hit is a few dozen instructions.
+    const bool tick = policy_ == Replacement::kLru;
+    if (pow2_)
+      return tick ? Run<G, true, true>(from, n, line_of, on_hit)
+                  : Run<G, true, false>(from, n, line_of, on_hit);
+    return tick ? Run<G, false, true>(from, n, line_of, on_hit)
+                : Run<G, false, false>(from, n, line_of, on_hit);
+  }
   // What Access does after a miss, for a caller whose Hit just returned false.
-  void InstallMissed(uint64_t line) { Install(SetOf(line), line + 1); }
+  void InstallMissed(uint64_t line) {
+    WithGroups(groups_, [&](auto g) { Install<decltype(g)::value>(SetOf(line), line + 1); });
+  }
   // The line the last missing Access evicted, ~0 if it filled an empty way.
   uint64_t victim() const { return victim_; }
   // Whether `line` is held (no change to the set's order).
@@ -138,19 +161,31 @@ class SetAssociativeCache {
   bool Invalidate(uint64_t line);
   uint64_t sets() const { return sets_; }
   uint32_t ways() const { return ways_; }
+  // Tests: renumber the stamps when the clock reaches `limit` (>= ways + 1) instead of 2^31 - 2.
+  void LimitClockForTest(uint32_t limit) { limit_ = limit; }
 
  private:
   static constexpr uint32_t kNone = ~0u;
   struct Set {
     uint32_t* sig;
+    uint32_t* stamp;
     uint64_t* tag;
-    uint64_t* stamp;
   };
   Set SetOf(uint64_t line) const {
     uint8_t* b = block_.get() + (pow2_ ? (line & mask_) : (line % sets_)) * block_bytes_;
-    uint64_t* tag = reinterpret_cast<uint64_t*>(b + 4 * uint64_t{padded_});
-    return {reinterpret_cast<uint32_t*>(b), tag, tag + padded_};
+    uint32_t* sig = reinterpret_cast<uint32_t*>(b);
+    return {sig, sig + padded_, reinterpret_cast<uint64_t*>(sig + 2 * padded_)};
   }
+  // The clock after one more use or install; stamps renumbered first at the limit.
+  uint32_t Tick() {
+    if (__builtin_expect(clock_ >= limit_, 0)) Renumber();
+    return ++clock_;
+  }
+  void Renumber();
+  // The way with the smallest stamp (the first of equals: the first empty way), padding excluded.
+  // G: groups(), or 0 (cache_sim.cc instantiates WithGroups' counts).
+  template <uint32_t G>
+  uint32_t Oldest(const uint32_t* stamp) const;
   // Bit i set where x[i] == key, for 4 * n values (n <= 8).
   static uint32_t Matches(const uint32_t* x, uint32_t n, uint32_t key) {
     uint32_t m = 0;
@@ -180,14 +215,51 @@ class SetAssociativeCache {
       }
     return kNone;
   }
+  template <uint32_t G>
   void Install(Set s, uint64_t tag);  // a miss: the victim chosen, the tag in its way
+  template <uint32_t G, bool kPow2, bool kTick, class LineOf, class OnHit>
+  size_t Run(size_t from, size_t n, LineOf& line_of, OnHit& on_hit) {
+    // The level's fields in locals: a stamp's store could alias them, and they would be reloaded
+    // at every access. With kTick, at most limit_ - clock_ hits (then Tick renumbers).
+    uint32_t clock = clock_;
+    if (kTick) n = std::min<size_t>(n, from + (clock < limit_ ? limit_ - clock : 0));
+    uint8_t* const block = block_.get();
+    // With G fixed, a set's size and the offsets in it are constants.
+    const uint64_t sets = sets_, mask = mask_, bytes = G ? 64 * G : block_bytes_;
+    const uint32_t padded = G ? 4 * G : padded_, groups = G ? G : groups_;
+    size_t i = from;
+    for (; i < n; ++i) {
+      uint64_t line;
+      if (!line_of(i, line)) break;
+      uint32_t* const sig =
+          reinterpret_cast<uint32_t*>(block + (kPow2 ? (line & mask) : (line % sets)) * bytes);
+      const uint64_t* const tag = reinterpret_cast<const uint64_t*>(sig + 2 * padded);
+      uint32_t w = kNone;
+      for (uint32_t g = 0; g < groups && w == kNone; g += 8)
+        for (uint32_t m =
+                 Matches(sig + 4 * g, std::min(8u, groups - g), static_cast<uint32_t>(line + 1));
+             m; m &= m - 1) {
+          const uint32_t k = 4 * g + static_cast<uint32_t>(__builtin_ctz(m));
+          if (tag[k] == line + 1) {
+            w = k;
+            break;
+          }
+        }
+      if (w == kNone) break;
+      if (kTick) sig[padded + w] = ++clock;
+      on_hit(i, line);
+    }
+    clock_ = clock;
+    return i;
+  }
 
   uint64_t sets_, mask_;
   uint32_t ways_, padded_, groups_;  // padded_: ways rounded up to a multiple of 4, groups_ = /4
-  uint64_t block_bytes_;             // a set: padded_ signatures, tags and stamps
+  uint64_t block_bytes_;             // a set: padded_ signatures, stamps and tags
   bool pow2_;
   Replacement policy_;
-  uint64_t clock_ = 0;  // uses and installs so far (LRU, FIFO)
+  uint32_t clock_ = 0;  // the last stamp given (LRU, FIFO)
+  uint32_t limit_ = (uint32_t{1} << 31) - 2;
   uint64_t rng_ = 0x9E3779B97F4A7C15ull;
   uint64_t victim_ = ~uint64_t{0};
   // The sets' blocks, from calloc, whose large blocks are fresh zero pages: a level costs memory
@@ -228,6 +300,26 @@ class CacheHierarchy {
     ++accesses_;
     ++stats_.front().accesses;
     return kHit;
+  }
+  // HitFirst's hits over a[from..n) while they are thread t's: the index of the first access not
+  // taken (another thread's, or one that HitFirst would not call a hit), all before it counted.
+  template <uint32_t G>
+  size_t HitRun(const meshreuse::Access* a, size_t from, size_t n, uint8_t t) {
+    if (!fast_) return from;
+    const int shift = shift_;
+    const size_t end = levels_.front().HitRun<G>(
+        from, n,
+        [a, t, shift, bytes = uint64_t{1} << shift](size_t i, uint64_t& line) {
+          // (captures by value: kept in registers.) One line: the offset in it plus the size
+          // reaches at most its end (a size of 0 is one byte).
+          const uint64_t x = a[i].address;
+          line = x >> shift;
+          return (a[i].thread == t) & ((x & (bytes - 1)) + a[i].size <= bytes);
+        },
+        [](size_t, uint64_t) {});
+    accesses_ += end - from;
+    stats_.front().accesses += end - from;
+    return end;
   }
   uint32_t FirstGroups() const {
     return config_.empty() ? 0 : SetAssociativeCache::GroupsOf(config_[0].ways);
@@ -326,17 +418,21 @@ class CacheSimulation : public AccessConsumer {
   bool by_array_ = false;
   std::vector<std::vector<uint64_t>> per_array_;
   void ConsumeByArray(const meshreuse::Access* a, size_t n);
-  // The loop every access takes: a first-level hit inline, anything else through Access.
+  // The loop every access takes: first-level hits in runs (HitRun), anything else through Access.
   template <uint32_t G>
   void ConsumeIn(const meshreuse::Access* a, size_t n) {
     for (size_t i = 0; i < n;) {  // runs of one thread: its hierarchy looked up once a run
       const uint8_t t = a[i].thread;
       CacheHierarchy& h = streams_[t];
-      for (; i < n && a[i].thread == t; ++i)
+      while (i < n && a[i].thread == t) {
+        i = h.HitRun<G>(a, i, n, t);
+        if (i == n || a[i].thread != t) break;
         if (const auto r = h.HitFirst<G>(a[i].address, a[i].size); r != CacheHierarchy::kHit)
           h.Access(a[i].address, a[i].size, a[i].write,
                    a[i].kind == static_cast<uint8_t>(AccessKind::kFetch),
                    r == CacheHierarchy::kMissed);
+        ++i;
+      }
     }
   }
   uint32_t first_groups_ = 0;

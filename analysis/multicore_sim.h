@@ -69,11 +69,15 @@ class MulticoreSimulation : public AccessConsumer {
       return;
     }
     SetAssociativeCache::WithGroups(l1_groups_, [&](auto g) {
-      for (size_t i = 0; i < n; ++i) {
-        const auto r =
-            HitFirst<decltype(g)::value>(a[i].thread, a[i].address, a[i].size, a[i].write);
+      constexpr uint32_t G = decltype(g)::value;
+      for (size_t i = 0; i < n;) {  // a thread's first-level hits in runs, the rest one by one
+        const uint8_t t = a[i].thread;
+        i = HitRun<G>(a, i, n, t);
+        if (i == n || a[i].thread != t) continue;
+        const auto r = HitFirst<G>(t, a[i].address, a[i].size, a[i].write);
         if (r != CacheHierarchy::kHit)
-          Access(a[i].thread, a[i].address, a[i].size, a[i].write, r == CacheHierarchy::kMissed);
+          Access(t, a[i].address, a[i].size, a[i].write, r == CacheHierarchy::kMissed);
+        ++i;
       }
     });
   }
@@ -124,6 +128,30 @@ class MulticoreSimulation : public AccessConsumer {
     ++*f.accesses;
     if (write && coherent_) WriteHit(f.core, first);
     return CacheHierarchy::kHit;
+  }
+  // HitFirst's hits over a[from..n) while they are thread t's (SetAssociativeCache::HitRun): the
+  // index of the first access not taken, all before it counted and their writes' coherence done
+  // (which touches other cores' and sockets' levels, never this core's).
+  template <uint32_t G>
+  size_t HitRun(const meshreuse::Access* a, size_t from, size_t n, uint8_t t) {
+    const FirstLevel& f = first_of_thread_[t];
+    if (!f.cache) return from;
+    const int shift = shift_;
+    const bool coherent = coherent_;
+    const size_t end = f.cache->HitRun<G>(
+        from, n,
+        [a, t, shift, bytes = uint64_t{1} << shift](size_t i, uint64_t& line) {
+          // (captures by value: kept in registers.) One line: the offset in it plus the size
+          // reaches at most its end (a size of 0 is one byte).
+          const uint64_t x = a[i].address;
+          line = x >> shift;
+          return (a[i].thread == t) & ((x & (bytes - 1)) + a[i].size <= bytes);
+        },
+        [this, a, coherent, core = f.core](size_t i, uint64_t line) {
+          if (coherent && a[i].write) WriteHit(core, line);
+        });
+    *f.accesses += end - from;
+    return end;
   }
   void WriteHit(int core, uint64_t line);  // coherence: the line held elsewhere is taken away
   void ReserveSparse(uint64_t more);
