@@ -77,7 +77,13 @@ void SetAssociativeCache::Install(Set s, uint64_t tag) {
     v = Oldest<G>(s.stamp);  // an empty way's stamp is 0
     s.stamp[v] = Tick();
   }
-  victim_ = s.tag[v] - 1;  // ~0 when the way was empty
+  victim_ = s.tag[v] - 1;    // ~0 when the way was empty
+  if (tag >> 32 != high_) {  // (HitRun reads no tag while every tag has one high half)
+    if (high_ == kNoHigh)
+      high_ = tag >> 32;
+    else
+      mixed_ = true;
+  }
   s.tag[v] = tag;
   s.sig[v] = static_cast<uint32_t>(tag);
 }

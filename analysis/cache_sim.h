@@ -141,12 +141,17 @@ class SetAssociativeCache {
   size_t HitRun(size_t from, size_t n, LineOf&& line_of, OnHit&& on_hit) {
     // The loop's variants fixed at compile time (set by mask or remainder; a hit's stamp or not),
     // so that a hit is a few dozen instructions.
+    // With every tag installed so far of one high half (mixed_ false: any stream within 2^32
+    // lines), a signature's match is the tag's for a line of that half, so a hit reads no tag.
     const bool tick = policy_ == Replacement::kLru;
+    if (pow2_ && !mixed_)
+      return tick ? Run<G, true, true, true>(from, n, line_of, on_hit)
+                  : Run<G, true, false, true>(from, n, line_of, on_hit);
     if (pow2_)
-      return tick ? Run<G, true, true>(from, n, line_of, on_hit)
-                  : Run<G, true, false>(from, n, line_of, on_hit);
-    return tick ? Run<G, false, true>(from, n, line_of, on_hit)
-                : Run<G, false, false>(from, n, line_of, on_hit);
+      return tick ? Run<G, true, true, false>(from, n, line_of, on_hit)
+                  : Run<G, true, false, false>(from, n, line_of, on_hit);
+    return tick ? Run<G, false, true, false>(from, n, line_of, on_hit)
+                : Run<G, false, false, false>(from, n, line_of, on_hit);
   }
   // What Access does after a miss, for a caller whose Hit just returned false.
   void InstallMissed(uint64_t line) {
@@ -217,7 +222,9 @@ class SetAssociativeCache {
   }
   template <uint32_t G>
   void Install(Set s, uint64_t tag);  // a miss: the victim chosen, the tag in its way
-  template <uint32_t G, bool kPow2, bool kTick, class LineOf, class OnHit>
+  // kSig: a signature's match is the tag's for a line whose tag's high half is high_ and whose
+  // low half is not 0 (an empty way's signature); other lines end the run.
+  template <uint32_t G, bool kPow2, bool kTick, bool kSig, class LineOf, class OnHit>
   size_t Run(size_t from, size_t n, LineOf& line_of, OnHit& on_hit) {
     // The level's fields in locals: a stamp's store could alias them, and they would be reloaded
     // at every access. With kTick, at most limit_ - clock_ hits (then Tick renumbers).
@@ -227,6 +234,7 @@ class SetAssociativeCache {
     // With G fixed, a set's size and the offsets in it are constants.
     const uint64_t sets = sets_, mask = mask_, bytes = G ? 64 * G : block_bytes_;
     const uint32_t padded = G ? 4 * G : padded_, groups = G ? G : groups_;
+    const uint64_t high_of_run = high_;
     size_t i = from;
     for (; i < n; ++i) {
       uint64_t line;
@@ -235,16 +243,25 @@ class SetAssociativeCache {
           reinterpret_cast<uint32_t*>(block + (kPow2 ? (line & mask) : (line % sets)) * bytes);
       const uint64_t* const tag = reinterpret_cast<const uint64_t*>(sig + 2 * padded);
       uint32_t w = kNone;
-      for (uint32_t g = 0; g < groups && w == kNone; g += 8)
-        for (uint32_t m =
-                 Matches(sig + 4 * g, std::min(8u, groups - g), static_cast<uint32_t>(line + 1));
-             m; m &= m - 1) {
-          const uint32_t k = 4 * g + static_cast<uint32_t>(__builtin_ctz(m));
-          if (tag[k] == line + 1) {
-            w = k;
-            break;
+      if (kSig) {
+        const uint64_t t1 = line + 1;
+        if ((t1 >> 32) != high_of_run || static_cast<uint32_t>(t1) == 0) break;
+        for (uint32_t g = 0; g < groups && w == kNone; g += 8)
+          if (const uint32_t m =
+                  Matches(sig + 4 * g, std::min(8u, groups - g), static_cast<uint32_t>(t1)))
+            w = 4 * g + static_cast<uint32_t>(__builtin_ctz(m));
+      } else {
+        for (uint32_t g = 0; g < groups && w == kNone; g += 8)
+          for (uint32_t m =
+                   Matches(sig + 4 * g, std::min(8u, groups - g), static_cast<uint32_t>(line + 1));
+               m; m &= m - 1) {
+            const uint32_t k = 4 * g + static_cast<uint32_t>(__builtin_ctz(m));
+            if (tag[k] == line + 1) {
+              w = k;
+              break;
+            }
           }
-        }
+      }
       if (w == kNone) break;
       if (kTick) sig[padded + w] = ++clock;
       on_hit(i, line);
@@ -262,6 +279,11 @@ class SetAssociativeCache {
   uint32_t limit_ = (uint32_t{1} << 31) - 2;
   uint64_t rng_ = 0x9E3779B97F4A7C15ull;
   uint64_t victim_ = ~uint64_t{0};
+  // The high half of the first tag installed (kNoHigh before), and whether a tag of another half
+  // has been installed since (then every match is confirmed on the tag).
+  static constexpr uint64_t kNoHigh = ~uint64_t{0};
+  uint64_t high_ = kNoHigh;
+  bool mixed_ = false;
   // The sets' blocks, from calloc, whose large blocks are fresh zero pages: a level costs memory
   // only for the sets a stream touches, so 256 streams of a few accesses each do not hold 256
   // copies of a 24 MiB L3's tags. All zero is a set of empty ways.

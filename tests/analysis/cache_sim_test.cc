@@ -392,6 +392,67 @@ TEST(SetAssociativeCache, MatchesTheMostRecentFirstArrayOnRandomStreams) {
         }
 }
 
+// HitRun (the simulators' loop over first-level hits) against Access one line at a time: the
+// same hits, and every access it does not take is one Access would miss (or one of another
+// thread). Pools within one high half of the tag (HitRun reads no tag there), with the lines whose
+// tag's low half is 0 (an empty way's signature; invalidations keep ways empty), and mixed halves
+// (confirmed on the tag); the clock's limit small or not.
+TEST(SetAssociativeCache, HitRunEqualsAccessOnRandomStreams) {
+  for (const Replacement p : {Replacement::kLru, Replacement::kFifo, Replacement::kRandom})
+    for (const uint32_t ways : {2u, 8u, 24u, 40u})
+      for (const uint64_t sets : {uint64_t{4}, uint64_t{3}})
+        for (const bool mixed : {false, true})
+          for (const bool renumber : {false, true}) {
+            SetAssociativeCache run(sets * ways * 64, ways, 64, p),
+                one(sets * ways * 64, ways, 64, p);
+            if (renumber) run.LimitClockForTest(ways + 5), one.LimitClockForTest(ways + 5);
+            std::mt19937_64 rng(ways * 7 + sets + 2 * static_cast<uint64_t>(p) + mixed);
+            const uint64_t base =
+                (uint64_t{5} << 32) - 40;  // tags 2^32 * 5 - 39 ...: low half 0 among them
+            const uint64_t pool = sets * ways + ways + 3;
+            const std::string what = std::string(ReplacementName(p)) + " ways " +
+                                     std::to_string(ways) + " sets " + std::to_string(sets) +
+                                     (mixed ? " mixed" : "") + (renumber ? " renumbered" : "");
+            std::vector<uint64_t> lines(64);
+            std::vector<uint8_t> thread(64);
+            uint64_t hits_run = 0, hits_one = 0;
+            for (int batch = 0; batch < 300; ++batch) {
+              for (int k = 0; k < 6; ++k) {  // empty ways again (signature 0)
+                const uint64_t line = base + rng() % pool;
+                ASSERT_EQ(run.Invalidate(line), one.Invalidate(line)) << what;
+              }
+              for (size_t k = 0; k < lines.size(); ++k) {
+                lines[k] = base + rng() % pool;
+                if (mixed && rng() % 7 == 0) lines[k] += uint64_t{3} << 32;
+                thread[k] = rng() % 9 == 0;  // thread 1's accesses are not this level's
+              }
+              for (size_t i = 0; i < lines.size();) {
+                i = SetAssociativeCache::WithGroups(run.groups(), [&](auto g) {
+                  return run.HitRun<decltype(g)::value>(
+                      i, lines.size(),
+                      [&](size_t k, uint64_t& line) {
+                        line = lines[k];
+                        return thread[k] == 0;
+                      },
+                      [&](size_t, uint64_t) { ++hits_run; });
+                });
+                if (i == lines.size()) break;
+                if (thread[i] == 0) {  // a miss, or a hit with the clock at its limit
+                  const bool hit = run.Access(lines[i]);
+                  hits_run += hit;
+                  ASSERT_TRUE(!hit || renumber)
+                      << what << " batch " << batch << " at " << i << ": HitRun stopped at a hit";
+                }
+                ++i;
+              }
+              for (size_t k = 0; k < lines.size(); ++k)
+                if (thread[k] == 0) hits_one += one.Access(lines[k]);
+              ASSERT_EQ(hits_run, hits_one) << what << " batch " << batch;
+            }
+            EXPECT_GT(hits_run, 1000u) << what;
+          }
+}
+
 // A 30 x 24 synthetic mesh with a hole, and `sweeps` exact sweeps on two threads.
 Mesh SmallMesh(uint64_t seed) {
   SyntheticOptions so;
