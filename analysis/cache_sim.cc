@@ -57,8 +57,12 @@ SetAssociativeCache::SetAssociativeCache(uint64_t bytes, uint32_t ways, uint32_t
   block_bytes_ = 16 * uint64_t{padded_};
   pow2_ = (sets_ & (sets_ - 1)) == 0;
   mask_ = sets_ - 1;
-  block_.reset(static_cast<uint8_t*>(std::calloc(sets_, block_bytes_)));
+  // 64 B more, so that the sets start on a host cache line: a set of up to eight ways keeps its
+  // signatures and stamps in one.
+  if (sets_ > (SIZE_MAX - 64) / block_bytes_) throw std::bad_alloc();
+  block_.reset(static_cast<uint8_t*>(std::calloc(1, sets_ * block_bytes_ + 64)));
   if (!block_) throw std::bad_alloc();
+  base_ = block_.get() + (64 - reinterpret_cast<uintptr_t>(block_.get()) % 64) % 64;
 }
 
 template <uint32_t G>
@@ -133,7 +137,7 @@ void SetAssociativeCache::Renumber() {
   // (calloc's shared zero page) and is left unwritten.
   std::vector<std::pair<uint32_t, uint32_t>> order;
   for (uint64_t i = 0; i < sets_; ++i) {
-    uint32_t* stamp = reinterpret_cast<uint32_t*>(block_.get() + i * block_bytes_) + padded_;
+    uint32_t* stamp = reinterpret_cast<uint32_t*>(base_ + i * block_bytes_) + padded_;
     order.clear();
     for (uint32_t w = 0; w < ways_; ++w)
       if (stamp[w] != 0) order.emplace_back(stamp[w], w);

@@ -139,10 +139,10 @@ class SetAssociativeCache {
   // miss, or the clock at its limit); nothing of it has changed. G: groups(), or 0.
   template <uint32_t G, class LineOf, class OnHit>
   size_t HitRun(size_t from, size_t n, LineOf&& line_of, OnHit&& on_hit) {
-    // The loop's variants fixed at compile time (set by mask or remainder; a hit's stamp or not),
-    // so that a hit is a few dozen instructions.
-    // With every tag installed so far of one high half (mixed_ false: any stream within 2^32
-    // lines), a signature's match is the tag's for a line of that half, so a hit reads no tag.
+    // The loop's variants fixed at compile time (set by mask or remainder; a hit's stamp or not;
+    // the tag read or not), so that a hit is a few dozen instructions. While every tag installed
+    // has one high half (mixed_ false: any stream within 2^32 lines), a signature's match is the
+    // tag's for a line of that half, so a hit reads no tag.
     const bool tick = policy_ == Replacement::kLru;
     if (pow2_ && !mixed_)
       return tick ? Run<G, true, true, true>(from, n, line_of, on_hit)
@@ -177,7 +177,7 @@ class SetAssociativeCache {
     uint64_t* tag;
   };
   Set SetOf(uint64_t line) const {
-    uint8_t* b = block_.get() + (pow2_ ? (line & mask_) : (line % sets_)) * block_bytes_;
+    uint8_t* b = base_ + (pow2_ ? (line & mask_) : (line % sets_)) * block_bytes_;
     uint32_t* sig = reinterpret_cast<uint32_t*>(b);
     return {sig, sig + padded_, reinterpret_cast<uint64_t*>(sig + 2 * padded_)};
   }
@@ -230,7 +230,7 @@ class SetAssociativeCache {
     // at every access. With kTick, at most limit_ - clock_ hits (then Tick renumbers).
     uint32_t clock = clock_;
     if (kTick) n = std::min<size_t>(n, from + (clock < limit_ ? limit_ - clock : 0));
-    uint8_t* const block = block_.get();
+    uint8_t* const block = base_;
     // With G fixed, a set's size and the offsets in it are constants.
     const uint64_t sets = sets_, mask = mask_, bytes = G ? 64 * G : block_bytes_;
     const uint32_t padded = G ? 4 * G : padded_, groups = G ? G : groups_;
@@ -291,6 +291,7 @@ class SetAssociativeCache {
     void operator()(void* p) const { std::free(p); }
   };
   std::unique_ptr<uint8_t[], Free> block_;
+  uint8_t* base_ = nullptr;  // the first set: block_ rounded up to 64 B
 };
 
 // A hierarchy for one stream; all levels share one line size.
