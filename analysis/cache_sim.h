@@ -294,6 +294,20 @@ class SetAssociativeCache {
   uint8_t* base_ = nullptr;  // the first set: block_ rounded up to 64 B
 };
 
+// HitRun's line_of over a stream's accesses, for both simulators: access i's line, when it is
+// thread t's and within one line (the offset in the line plus the size reaches at most its end; a
+// size of 0 is one byte). Held by value, so its fields stay in registers.
+struct OneLineOf {
+  const meshreuse::Access* a;
+  uint8_t t;
+  int shift;
+  bool operator()(size_t i, uint64_t& line) const {
+    const uint64_t x = a[i].address, bytes = uint64_t{1} << shift;
+    line = x >> shift;
+    return (a[i].thread == t) & ((x & (bytes - 1)) + a[i].size <= bytes);
+  }
+};
+
 // A hierarchy for one stream; all levels share one line size.
 class CacheHierarchy {
  public:
@@ -329,17 +343,8 @@ class CacheHierarchy {
   template <uint32_t G>
   size_t HitRun(const meshreuse::Access* a, size_t from, size_t n, uint8_t t) {
     if (!fast_) return from;
-    const int shift = shift_;
-    const size_t end = levels_.front().HitRun<G>(
-        from, n,
-        [a, t, shift, bytes = uint64_t{1} << shift](size_t i, uint64_t& line) {
-          // (captures by value: kept in registers.) One line: the offset in it plus the size
-          // reaches at most its end (a size of 0 is one byte).
-          const uint64_t x = a[i].address;
-          line = x >> shift;
-          return (a[i].thread == t) & ((x & (bytes - 1)) + a[i].size <= bytes);
-        },
-        [](size_t, uint64_t) {});
+    const size_t end =
+        levels_.front().HitRun<G>(from, n, OneLineOf{a, t, shift_}, [](size_t, uint64_t) {});
     accesses_ += end - from;
     stats_.front().accesses += end - from;
     return end;

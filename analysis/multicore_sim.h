@@ -136,20 +136,12 @@ class MulticoreSimulation : public AccessConsumer {
   size_t HitRun(const meshreuse::Access* a, size_t from, size_t n, uint8_t t) {
     const FirstLevel& f = first_of_thread_[t];
     if (!f.cache) return from;
-    const int shift = shift_;
     const bool coherent = coherent_;
-    const size_t end = f.cache->HitRun<G>(
-        from, n,
-        [a, t, shift, bytes = uint64_t{1} << shift](size_t i, uint64_t& line) {
-          // (captures by value: kept in registers.) One line: the offset in it plus the size
-          // reaches at most its end (a size of 0 is one byte).
-          const uint64_t x = a[i].address;
-          line = x >> shift;
-          return (a[i].thread == t) & ((x & (bytes - 1)) + a[i].size <= bytes);
-        },
-        [this, a, coherent, core = f.core](size_t i, uint64_t line) {
-          if (coherent && a[i].write) WriteHit(core, line);
-        });
+    const size_t end =
+        f.cache->HitRun<G>(from, n, OneLineOf{a, t, shift_},
+                           [this, a, coherent, core = f.core](size_t i, uint64_t line) {
+                             if (coherent && a[i].write) WriteHit(core, line);
+                           });
     *f.accesses += end - from;
     return end;
   }
