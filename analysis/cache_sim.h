@@ -134,9 +134,11 @@ class SetAssociativeCache {
   }
   // Hit over a run (issue 40: statistics per batch, the clock in a register): for i = from, from
   // + 1, ... below n, line_of(i, line) sets access i's one line and returns true (false: not one
-  // this loop may take), and each that hits is done as Hit does it, then on_hit(i, line) is
-  // called (it must not touch this level). Returns the first i not taken (line_of's false, a
-  // miss, or the clock at its limit); nothing of it has changed. G: groups(), or 0.
+  // this loop may take), and each that hits is done as Hit does it (but the run's last line again
+  // takes no new stamp: no order in any set changes, and only that order is ever compared), then
+  // on_hit(i, line) is called (it must not touch this level). Returns the first i not taken
+  // (line_of's false, a miss, or the clock at its limit); nothing of it has changed. G: groups(),
+  // or 0.
   template <uint32_t G, class LineOf, class OnHit>
   size_t HitRun(size_t from, size_t n, LineOf&& line_of, OnHit&& on_hit) {
     // The loop's variants fixed at compile time (set by mask or remainder; a hit's stamp or not;
@@ -235,10 +237,18 @@ class SetAssociativeCache {
     const uint64_t sets = sets_, mask = mask_, bytes = G ? 64 * G : block_bytes_;
     const uint32_t padded = G ? 4 * G : padded_, groups = G ? G : groups_;
     const uint64_t high_of_run = high_;
+    // The line of the run's last hit: still held (nothing else touches this level during the
+    // run), and its stamp is already the largest of its set, so another use of it changes no
+    // order in any set: no lookup, no stamp (about half of a smoother's accesses).
+    uint64_t last = ~uint64_t{0};
     size_t i = from;
     for (; i < n; ++i) {
       uint64_t line;
       if (!line_of(i, line)) break;
+      if (line == last) {
+        on_hit(i, line);
+        continue;
+      }
       uint32_t* const sig =
           reinterpret_cast<uint32_t*>(block + (kPow2 ? (line & mask) : (line % sets)) * bytes);
       const uint64_t* const tag = reinterpret_cast<const uint64_t*>(sig + 2 * padded);
@@ -264,6 +274,7 @@ class SetAssociativeCache {
       }
       if (w == kNone) break;
       if (kTick) sig[padded + w] = ++clock;
+      last = line;
       on_hit(i, line);
     }
     clock_ = clock;

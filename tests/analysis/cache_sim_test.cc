@@ -396,7 +396,8 @@ TEST(SetAssociativeCache, MatchesTheMostRecentFirstArrayOnRandomStreams) {
 // same hits, and every access it does not take is one Access would miss (or one of another
 // thread). Pools within one high half of the tag (HitRun reads no tag there), with the lines whose
 // tag's low half is 0 (an empty way's signature; invalidations keep ways empty), and mixed halves
-// (confirmed on the tag); the clock's limit small or not.
+// (confirmed on the tag); the clock's limit small or not; a line often repeated (a run takes its
+// last line again without a lookup or a stamp).
 TEST(SetAssociativeCache, HitRunEqualsAccessOnRandomStreams) {
   for (const Replacement p : {Replacement::kLru, Replacement::kFifo, Replacement::kRandom})
     for (const uint32_t ways : {2u, 8u, 24u, 40u})
@@ -425,6 +426,7 @@ TEST(SetAssociativeCache, HitRunEqualsAccessOnRandomStreams) {
               for (size_t k = 0; k < lines.size(); ++k) {
                 lines[k] = base + rng() % pool;
                 if (mixed && rng() % 7 == 0) lines[k] += uint64_t{3} << 32;
+                if (k > 0 && rng() % 3 == 0) lines[k] = lines[k - 1];  // a run's last line again
                 thread[k] = rng() % 9 == 0;  // thread 1's accesses are not this level's
               }
               std::fill(hit_run.begin(), hit_run.end(), 0);
