@@ -3,6 +3,8 @@
 // the same id (first touches are cold, kCold). Method (Bennett and Kruskal 1975; Almasi, Cascaval
 // and Padua 2002): every id keeps one live marker at the time of its last access; the distance is
 // the number of live markers after that time. Markers are bits in a bitmap over time positions.
+// An access to the id whose marker is the newest (the top of the stack: the id just accessed) is
+// distance 0 and leaves its marker where it is, since no marker lies between the two times.
 // Counting them, two paths, both exact:
 //   - short reuse (within kShortWords words, the common case under a good mesh ordering): popcounts
 //     of the words in between, O(1);
