@@ -12,22 +12,30 @@ void SweepFootprint::Begin(const StreamInfo& info) {
   sweep_ = 1;
   threads_.assign(static_cast<size_t>(std::max(info.threads, 1)), Thread(canonical_, line_bytes_));
   lines_.assign(threads_.size(), std::vector<uint64_t>(1, 0));
+  recent_.assign(threads_.size(), kNoLine);
 }
 
 void SweepFootprint::BeginSweep(int sweep) {
   if (sweep <= 1) return;  // the first sweep keeps what came before it
   sweep_ = static_cast<uint32_t>(sweep);
   for (auto& l : lines_) l.resize(static_cast<size_t>(sweep), 0);
+  std::fill(recent_.begin(), recent_.end(), kNoLine);  // a new sweep marks its lines anew
 }
 
 void SweepFootprint::Consume(const Access* a, size_t n) {
+  const bool pow2 = line_bytes_ != 0 && (line_bytes_ & (line_bytes_ - 1)) == 0;
+  const int shift = pow2 ? __builtin_ctz(line_bytes_) : 0;
   for (size_t k = 0; k < n; ++k) {
     const size_t t = a[k].thread;
     if (t >= threads_.size()) {  // a stream announced with fewer threads: grow
       threads_.resize(t + 1, Thread(canonical_, line_bytes_));
       lines_.resize(t + 1, std::vector<uint64_t>(sweep_, 0));
+      recent_.resize(t + 1, kNoLine);
     }
-    uint32_t& last = threads_[t].At(a[k].address / line_bytes_);
+    const uint64_t line = pow2 ? a[k].address >> shift : a[k].address / line_bytes_;
+    if (line == recent_[t]) continue;  // the thread's line before: marked in this sweep already
+    recent_[t] = line;
+    uint32_t& last = threads_[t].At(line);
     if (last != sweep_) {
       last = sweep_;
       ++lines_[t][sweep_ - 1];

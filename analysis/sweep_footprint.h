@@ -41,6 +41,10 @@ class SweepFootprint : public AccessConsumer {
   uint32_t sweep_ = 1;  // the current sweep (1-based), the mark of a line touched in it
   std::vector<Thread> threads_;
   std::vector<std::vector<uint64_t>> lines_;
+  // Per thread, the line of its last access (kNoLine: none in this sweep): a repeat of it, about
+  // half of a smoother's accesses, needs no lookup.
+  static constexpr uint64_t kNoLine = ~uint64_t{0};
+  std::vector<uint64_t> recent_;
 };
 
 // The floor on misses at each level of `cache` (one private hierarchy per thread), summed over
