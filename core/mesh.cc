@@ -18,13 +18,17 @@ namespace meshreuse {
 
 Mesh Mesh::Clone() const {
   Mesh m;
-  m.xy = xy;
-  m.tri = tri;
-  m.boundary = boundary;
-  m.v2v = v2v;
-  m.v2t = v2t;
-  m.interior = interior;
+  CopyInto(&m);
   return m;
+}
+
+void Mesh::CopyInto(Mesh* out) const {
+  out->xy = xy;
+  out->tri = tri;
+  out->boundary = boundary;
+  out->v2v = v2v;
+  out->v2t = v2t;
+  out->interior = interior;
 }
 
 namespace {

@@ -90,6 +90,9 @@ class Mesh {
   Mesh(const Mesh&) = delete;  // big: copies must be asked for by name
   Mesh& operator=(const Mesh&) = delete;
   Mesh Clone() const;
+  // The same copy into `out`, whose arrays keep their storage where it is large enough (a run
+  // restarting from a layout: no allocation, no fresh pages).
+  void CopyInto(Mesh* out) const;
 
   int32_t NumVertices() const { return static_cast<int32_t>(xy.size() / 2); }
   int32_t NumTriangles() const { return static_cast<int32_t>(tri.size() / 3); }

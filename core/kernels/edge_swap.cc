@@ -198,10 +198,12 @@ int64_t JitterMesh(Mesh& m, double amount, uint64_t seed) {
   return static_cast<int64_t>(moves.size());
 }
 
-bool IsDelaunay(const Mesh& m) { return NotDelaunayEdges(m) == 0; }
+namespace {
 
-int64_t NotDelaunayEdges(const Mesh& m) {
-  const AlignedVector<int32_t> n = TriangleNeighbours(m);
+// NotDelaunayEdges with the triangles' neighbours `n` at hand (the kernel's own, which its flips
+// keep up to date): the kernel's measure before and after its sweeps without two more searches
+// of TriangleNeighbours.
+int64_t NotDelaunayEdges(const Mesh& m, const AlignedVector<int32_t>& n) {
   int64_t bad = 0;
   for (int32_t t = 0; t < m.NumTriangles(); ++t)
     for (int j = 0; j < 3; ++j) {
@@ -218,6 +220,12 @@ int64_t NotDelaunayEdges(const Mesh& m) {
   return bad;  // each edge seen from either side that finds the other's corner inside
 }
 
+}  // namespace
+
+bool IsDelaunay(const Mesh& m) { return NotDelaunayEdges(m) == 0; }
+
+int64_t NotDelaunayEdges(const Mesh& m) { return NotDelaunayEdges(m, TriangleNeighbours(m)); }
+
 template <class Sink>
 SmoothResult KernelEdgeSwap(Mesh& m, const SmoothOptions& o, Sink& sink) {
   SmoothResult r;
@@ -231,7 +239,7 @@ SmoothResult KernelEdgeSwap(Mesh& m, const SmoothOptions& o, Sink& sink) {
              kernel_detail::Of(Array::kTriNeighbours, nbr)});
   SmoothOptions until = o;
   until.tol = -INFINITY;
-  r.quality_before = 1.0 - static_cast<double>(NotDelaunayEdges(m)) / (2 * interior_edges);
+  r.quality_before = 1.0 - static_cast<double>(NotDelaunayEdges(m, nbr)) / (2 * interior_edges);
   const double* xy = m.xy.data();
   int32_t* tri = m.tri.data();
   int32_t* n = nbr.data();
@@ -247,12 +255,12 @@ SmoothResult KernelEdgeSwap(Mesh& m, const SmoothOptions& o, Sink& sink) {
         return 1.0 - flips / interior_edges;
       },
       [&](double) { return flips == 0.0; });
+  r.quality_after = 1.0 - static_cast<double>(NotDelaunayEdges(m, nbr)) / (2 * interior_edges);
   // The flips changed the triangles: the vertex adjacency anew (untimed).
   RawMesh raw;
   raw.xy = std::move(m.xy);
   raw.tri = std::move(m.tri);
   m = BuildMesh(std::move(raw));
-  r.quality_after = 1.0 - static_cast<double>(NotDelaunayEdges(m)) / (2 * interior_edges);
   return r;
 }
 MESHREUSE_KERNEL_ENTRIES(KernelEdgeSwap)

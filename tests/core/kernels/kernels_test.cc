@@ -270,6 +270,32 @@ TEST(Kernels, EdgeSwapFlipsTheKitesLongDiagonal) {
   EXPECT_TRUE(IsDelaunay(m));
 }
 
+// The measure before and after, from the kernel's own neighbour array (kept up to date by the
+// flips), is the naive count on the jittered input and on the mesh returned, also when the sweeps
+// stop before every edge is Delaunay.
+TEST(Kernels, EdgeSwapsMeasureIsTheNaiveCountBeforeAndAfter) {
+  int stopped_early = 0;
+  for (const Mesh& base : Meshes())
+    for (int sweeps : {1, 2, 100}) {
+      Mesh jittered = base.Clone();
+      JitterMesh(jittered, kJitterAmount, kJitterSeed);
+      Mesh m = base.Clone();
+      const SmoothResult r = RunKernel(K("edge-swap"), m, ExactSweeps(sweeps));
+      std::map<std::pair<int32_t, int32_t>, int> on_edge;  // triangles on each edge
+      for (int32_t t = 0; t < m.NumTriangles(); ++t)
+        for (int j = 0; j < 3; ++j) {
+          const int32_t a = m.tri[3 * t + j], b = m.tri[3 * t + (j + 1) % 3];
+          ++on_edge[{std::min(a, b), std::max(a, b)}];
+        }
+      double interior = 0;
+      for (const auto& e : on_edge) interior += e.second == 2;
+      EXPECT_EQ(r.quality_before, 1.0 - NotDelaunayEdges(jittered) / (2 * interior)) << sweeps;
+      EXPECT_EQ(r.quality_after, 1.0 - NotDelaunayEdges(m) / (2 * interior)) << sweeps;
+      stopped_early += r.quality_after < 1.0;
+    }
+  EXPECT_GT(stopped_early, 0);  // some runs ended with edges left to flip
+}
+
 // On every mesh the flips end Delaunay with no triangle turned over, and (the points in general
 // position after the jitter) at the one Delaunay triangulation, whatever the numbering.
 TEST(Kernels, EdgeSwapEndsAtTheDelaunayTriangulationInEveryOrdering) {
