@@ -57,6 +57,7 @@ class LineSet {
       if (slots_[i] == kEmpty) return false;
     }
   }
+  bool empty() const { return size_ == 0; }
   bool Contains(uint64_t line) const {
     if (size_ == 0) return false;
     const uint64_t m = slots_.size() - 1;
@@ -68,8 +69,11 @@ class LineSet {
 
  private:
   static constexpr uint64_t kEmpty = ~uint64_t{0}, kTomb = ~uint64_t{0} - 1;
+  // Twice the slots when over a quarter are lines; else the same, the tombstones cleared (a set
+  // that churns at a steady size keeps its table).
   void Grow() {
-    std::vector<uint64_t> old(std::max<size_t>(16, 2 * slots_.size()), kEmpty);
+    const size_t n = 4 * size_ > slots_.size() ? 2 * slots_.size() : slots_.size();
+    std::vector<uint64_t> old(std::max<size_t>(16, n), kEmpty);
     old.swap(slots_);
     used_ = size_ = 0;
     for (uint64_t x : old)
@@ -81,9 +85,17 @@ class LineSet {
 
 }  // namespace
 
+// Per level, `prefetched` holds the lines that its prefetcher brought there and no demand there
+// has touched since. At a prefetching level with none above it (the first level, in practice),
+// the set also keeps only lines the level holds: a line leaves it when evicted or invalidated
+// too, since such a level gets a line back only by its own demand miss (which takes it out
+// anyway) or its own prefetch (which puts it in again). Below another prefetcher a line can come
+// back by that one's fill, still counted as this level's prefetched line, so there it stays.
+// (Kept, evicted lines changed no count but made the set grow with every prefetch never used: a
+// hash lookup far out in memory on every first-level hit.)
 struct MulticoreSimulation::Owner {
   std::vector<SetAssociativeCache> caches;  // the levels it holds, in the machine's order
-  std::vector<LineSet> prefetched;          // per level: brought by the prefetcher, not demanded
+  std::vector<LineSet> prefetched;          // per level (see above)
 };
 
 CoreLevelStats& CoreLevelStats::operator+=(const CoreLevelStats& o) {
@@ -141,7 +153,13 @@ double ThreadStats::CyclesHigh(const Machine& m) const { return Cycles(*this, m,
 MulticoreSimulation::MulticoreSimulation(const Machine& m, Placement placement)
     : m_(m), placement_(placement), private_levels_(m.private_levels()) {
   shift_ = __builtin_ctz(m.line_bytes);
-  fast_ = private_levels_ > 0 && !m.levels[0].prefetch;
+  fast_ = private_levels_ > 0;
+  bool above = false;  // a prefetcher at a level above
+  for (const MachineLevel& l : m.levels) {
+    held_only_.push_back(l.prefetch && !above);
+    above = above || l.prefetch;
+    drop_any_ = drop_any_ || held_only_.back();
+  }
   if (!m.levels.empty()) l1_groups_ = SetAssociativeCache::GroupsOf(m.levels[0].cache.ways);
   cores_.resize(m.cores());
   sockets_.resize(m.sockets);
@@ -165,6 +183,7 @@ void MulticoreSimulation::Resize(int threads) {
   first_of_thread_.assign(threads, FirstLevel());
   for (int t = 0; t < threads; ++t) {
     first_of_thread_[t].core = core_of_[t];
+    first_of_thread_[t].prefetch = private_levels_ > 0 && m_.levels[0].prefetch;
     if (!m_.levels.empty()) first_of_thread_[t].accesses = &stats_[t].levels.front().accesses;
   }
   for (auto& s : sockets_) s.reset();
@@ -245,6 +264,21 @@ void MulticoreSimulation::WriteHit(int core, uint64_t line) {
     InvalidateOthers(core, e, line);
 }
 
+void MulticoreSimulation::Removed(Owner& o, size_t level, uint64_t line) {
+  if (!held_only_[level] || line == ~uint64_t{0}) return;
+  LineSet& set = o.prefetched[level < private_levels_ ? level : level - private_levels_];
+  if (!set.empty()) set.Erase(line);
+}
+
+void MulticoreSimulation::FirstPrefetchHit(int thread, uint64_t line) {
+  const int core = core_of_[thread];
+  LineSet& set = cores_[core]->prefetched.front();
+  if (set.empty() || !set.Erase(line)) return;
+  ++stats_[thread].levels.front().prefetch_hits;
+  ReserveSparse(1);
+  Info(line).seen_cores |= uint64_t{1} << core;  // its first demand touch: no longer new
+}
+
 void MulticoreSimulation::BackInvalidate(int socket, uint64_t line) {
   for (int k = 0; k < m_.cores_per_socket; ++k) {
     const int core = socket * m_.cores_per_socket + k;
@@ -252,7 +286,10 @@ void MulticoreSimulation::BackInvalidate(int socket, uint64_t line) {
     Owner& o = *cores_[core];
     const int t = thread_of_core_[core];
     for (size_t i = 0; i < private_levels_; ++i)
-      if (o.caches[i].Invalidate(line) && t >= 0) ++stats_[t].levels[i].inclusion_victims;
+      if (o.caches[i].Invalidate(line)) {
+        if (drop_any_) Removed(o, i, line);
+        if (t >= 0) ++stats_[t].levels[i].inclusion_victims;
+      }
   }
 }
 
@@ -263,7 +300,11 @@ void MulticoreSimulation::InvalidateOthers(int core, LineInfo& e, uint64_t line)
     const int d = __builtin_ctzll(others);
     Owner& o = *cores_[d];
     bool held = false;
-    for (size_t i = 0; i < private_levels_; ++i) held = o.caches[i].Invalidate(line) || held;
+    for (size_t i = 0; i < private_levels_; ++i)
+      if (o.caches[i].Invalidate(line)) {
+        if (drop_any_) Removed(o, i, line);
+        held = true;
+      }
     if (held) {
       e.removed_cores |= uint64_t{1} << d;
       ++stats_[t].invalidations_sent;
@@ -273,7 +314,11 @@ void MulticoreSimulation::InvalidateOthers(int core, LineInfo& e, uint64_t line)
     const int s = __builtin_ctz(others);
     Owner& o = *sockets_[s];
     bool held = false;
-    for (SetAssociativeCache& c : o.caches) held = c.Invalidate(line) || held;
+    for (size_t i = 0; i < o.caches.size(); ++i)
+      if (o.caches[i].Invalidate(line)) {
+        if (drop_any_) Removed(o, private_levels_ + i, line);
+        held = true;
+      }
     if (held) {
       e.removed_sockets = static_cast<uint8_t>(e.removed_sockets | (1u << s));
       ++stats_[t].invalidations_sent;
@@ -310,7 +355,7 @@ void MulticoreSimulation::Access(int thread, uint64_t address, uint32_t size, bo
     if (i == base) owner_cold = false;
     bool hit = true, coherence = false;
     for (uint64_t l = first; l <= last; ++l) {
-      if (i == 0 && first_missed) {  // HitFirst has looked it up: one line, no prefetcher
+      if (i == 0 && first_missed) {  // HitFirst has looked it up (one line): a miss
         cache.InstallMissed(l);
       } else if (cache.Access(l)) {
         if (ml.prefetch && owner->prefetched[i - base].Erase(l)) {
@@ -324,6 +369,7 @@ void MulticoreSimulation::Access(int thread, uint64_t address, uint32_t size, bo
         continue;
       }
       hit = false;
+      if (ml.prefetch) Removed(*owner, i, cache.victim());
       LineInfo*& slot = info[l - first];
       if (!slot) slot = &Info(l);
       LineInfo& e = *slot;
@@ -353,6 +399,7 @@ void MulticoreSimulation::Access(int thread, uint64_t address, uint32_t size, bo
           SetAssociativeCache& cj = oj.caches[sj ? j - private_levels_ : j];
           if (cj.Contains(l + 1)) continue;
           cj.Access(l + 1);
+          if (m_.levels[j].prefetch) Removed(oj, j, cj.victim());
           if (!sj) {
             n.cores |= cbit;
             n.removed_cores &= ~cbit;

@@ -28,6 +28,7 @@
 #include <cstdlib>
 #include <memory>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "analysis/cache_sim.h"
@@ -114,9 +115,9 @@ class MulticoreSimulation : public AccessConsumer {
   };
   LineInfo& Info(uint64_t line);  // never grows the table: ReserveSparse first
   // The core's first (private) level looked up, when that is all an access may do there (one
-  // line, no prefetcher at that level): a hit counted as Access counts it and a write's coherence
-  // done (kHit), or a miss with nothing changed (kMissed); otherwise kNotLookedUp (as
-  // CacheHierarchy::HitFirst). G: that level's groups (WithGroups).
+  // line): a hit counted as Access counts it (a prefetched line's first demand a prefetch hit)
+  // and a write's coherence done (kHit), or a miss with nothing changed (kMissed); otherwise
+  // kNotLookedUp (as CacheHierarchy::HitFirst). G: that level's groups (WithGroups).
   // (Consume calls it only where fast_.)
   template <uint32_t G>
   CacheHierarchy::Lookup HitFirst(int thread, uint64_t address, uint32_t size, bool write) {
@@ -126,6 +127,7 @@ class MulticoreSimulation : public AccessConsumer {
     if (((address + (size ? size - 1 : 0)) >> shift_) != first) return CacheHierarchy::kNotLookedUp;
     if (!f.cache->Hit<G>(first)) return CacheHierarchy::kMissed;
     ++*f.accesses;
+    if (f.prefetch) FirstPrefetchHit(thread, first);
     if (write && coherent_) WriteHit(f.core, first);
     return CacheHierarchy::kHit;
   }
@@ -137,15 +139,26 @@ class MulticoreSimulation : public AccessConsumer {
     const FirstLevel& f = first_of_thread_[t];
     if (!f.cache) return from;
     const bool coherent = coherent_;
-    const size_t end =
-        f.cache->HitRun<G>(from, n, OneLineOf{a, t, shift_},
-                           [this, a, coherent, core = f.core](size_t i, uint64_t line) {
-                             if (coherent && a[i].write) WriteHit(core, line);
-                           });
+    auto run = [&](auto prefetch) {  // the level's prefetcher fixed at compile time
+      return f.cache->HitRun<G>(from, n, OneLineOf{a, t, shift_},
+                                [this, a, coherent, t, core = f.core](size_t i, uint64_t line) {
+                                  if constexpr (decltype(prefetch)::value)
+                                    FirstPrefetchHit(t, line);
+                                  if (coherent && a[i].write) WriteHit(core, line);
+                                });
+    };
+    const size_t end = f.prefetch ? run(std::true_type()) : run(std::false_type());
     *f.accesses += end - from;
     return end;
   }
   void WriteHit(int core, uint64_t line);  // coherence: the line held elsewhere is taken away
+  // A first-level hit where that level prefetches: if the line was prefetched and not demanded
+  // since, a prefetch hit (as Access counts it). Touches the set of prefetched lines, not the
+  // level.
+  void FirstPrefetchHit(int thread, uint64_t line);
+  // Level `level` (the machine's index) of `o` took `line` out (~0: nothing): out of that level's
+  // prefetched lines too where held_only_ (see Owner in the .cc).
+  void Removed(Owner& o, size_t level, uint64_t line);
   void ReserveSparse(uint64_t more);
   void BackInvalidate(int socket, uint64_t line);
   void InvalidateOthers(int core, LineInfo& e, uint64_t line);
@@ -161,14 +174,17 @@ class MulticoreSimulation : public AccessConsumer {
   std::vector<ThreadStats> stats_;                       // per thread
   std::vector<std::unique_ptr<Owner>> cores_, sockets_;  // made at first use
   bool coherent_ = false;                                // coherence on and more than one thread
-  bool fast_ = false;       // HitFirst may answer: a private first level without a prefetcher
-  uint32_t l1_groups_ = 0;  // the first level's groups of ways
+  bool fast_ = false;            // HitFirst may answer: a private first level
+  uint32_t l1_groups_ = 0;       // the first level's groups of ways
+  std::vector<bool> held_only_;  // per level: its prefetched lines are lines it holds
+  bool drop_any_ = false;        // some level's are
   // Per thread, what HitFirst needs in one place: its core's first level (null until made), that
-  // level's access count in the thread's stats, its core.
+  // level's access count in the thread's stats, its core, whether that level prefetches.
   struct FirstLevel {
     SetAssociativeCache* cache = nullptr;
     uint64_t* accesses = nullptr;
     int core = 0;
+    bool prefetch = false;
   };
   std::vector<FirstLevel> first_of_thread_;
   // Line records: a direct array for the 2^22 lines from the stream's base (the canonical arrays

@@ -427,10 +427,12 @@ TEST(Multicore, MatchesANaiveReferenceOnRandomStreams) {
     for (const Machine& m : SmallMachines())
       for (Placement pl : {Placement::kCompact, Placement::kScatter}) {
         const int p = 1 + static_cast<int>(rng() % 4);
-        MulticoreSimulation sim(m, pl);
+        MulticoreSimulation sim(m, pl), batched(m, pl);
         sim.Resize(p);
+        batched.Resize(p);
         Naive ref(m, p, pl);
         std::vector<uint64_t> at(p, 0);
+        std::vector<Access> all;
         for (int i = 0; i < 30000; ++i) {
           const int t = static_cast<int>(rng() % p);
           // Each thread walks its own region with jumps, and sometimes the shared one.
@@ -441,11 +443,32 @@ TEST(Multicore, MatchesANaiveReferenceOnRandomStreams) {
           const bool write = rng() % 4 == 0;
           sim.Access(t, a, size, write);
           ref.Access(t, a, size, write);
+          Access x{};
+          x.thread = static_cast<uint8_t>(t), x.address = a, x.size = size, x.write = write;
+          // Runs of one thread (as a traced run delivers them), so the batched first-level
+          // hit runs take several accesses at once.
+          all.push_back(x);
+          if (rng() % 3) {
+            x.address = a + 8 * (rng() % 4);
+            x.write = rng() % 6 == 0;
+            sim.Access(t, x.address, size, x.write);
+            ref.Access(t, x.address, size, x.write);
+            all.push_back(x);
+          }
+        }
+        // The same accesses through Consume, in batches of varied length (its first-level hit
+        // runs and HitFirst, the path a traced run takes).
+        for (size_t i = 0; i < all.size();) {
+          const size_t n = std::min(all.size() - i, size_t{1} + rng() % 700);
+          batched.Consume(all.data() + i, n);
+          i += n;
         }
         ThreadStats total;
         for (int t = 0; t < p; ++t) {
           ExpectSame(sim.Stats(t), ref.stats[t],
                      std::string(PlacementName(pl)) + " thread " + std::to_string(t));
+          ExpectSame(batched.Stats(t), ref.stats[t],
+                     std::string(PlacementName(pl)) + " thread " + std::to_string(t) + ", batched");
           total += sim.Stats(t);
         }
         // The rules under test did act: coherence with several threads, inclusion, the prefetcher.
@@ -482,17 +505,23 @@ TEST(Multicore, MatchesANaiveReferenceOnMeshes) {
       StreamMesh(mesh, o, "mesh", "ori", rec);
       for (const Machine& m : SmallMachines())
         for (Placement pl : {Placement::kCompact, Placement::kScatter}) {
-          MulticoreSimulation sim(m, pl);
+          MulticoreSimulation sim(m, pl), batched(m, pl);
           sim.Resize(p);
+          batched.Resize(p);
           Naive ref(m, p, pl);
           for (const Access& a : rec.all) {
             sim.Access(a.thread, a.address, a.size, a.write);
             ref.Access(a.thread, a.address, a.size, a.write);
           }
-          for (int t = 0; t < p; ++t)
-            ExpectSame(sim.Stats(t), ref.stats[t],
-                       "p " + std::to_string(p) + " interleave " + std::to_string(il) + " " +
-                           PlacementName(pl) + " thread " + std::to_string(t));
+          for (size_t i = 0; i < rec.all.size(); i += 4096)
+            batched.Consume(rec.all.data() + i, std::min<size_t>(4096, rec.all.size() - i));
+          for (int t = 0; t < p; ++t) {
+            const std::string what = "p " + std::to_string(p) + " interleave " +
+                                     std::to_string(il) + " " + PlacementName(pl) + " thread " +
+                                     std::to_string(t);
+            ExpectSame(sim.Stats(t), ref.stats[t], what);
+            ExpectSame(batched.Stats(t), ref.stats[t], what + ", batched");
+          }
         }
     }
 }
