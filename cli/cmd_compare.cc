@@ -41,8 +41,11 @@ bool ParseCompare(const Args& args, CompareConfig& cfg, po::variables_map& vm,
       "CPU time of the sweeps, summed over threads (on a shared machine)")(
       "tol", po::value(&cfg.smooth.tol)->default_value(5e-6, "5e-6"), "stop rule, as for smooth")(
       "max-iters", po::value(&cfg.smooth.max_iters)->default_value(100),
-      "at most this many sweeps")("quality", po::value(&quality)->default_value("per-move"),
-                                  "per-move (the paper's Algorithm 1) or per-sweep (lean)")(
+      "at most this many sweeps")(
+      "warm-up-sweeps", po::value(&cfg.warmup_sweeps)->default_value(cfg.warmup_sweeps),
+      "sweeps of each run's untimed warm-up (as many as --max-iters: a whole run)")(
+      "quality", po::value(&quality)->default_value("per-move"),
+      "per-move (the paper's Algorithm 1) or per-sweep (lean)")(
       "mode", po::value(&mode)->default_value("gauss-seidel"), "gauss-seidel or jacobi")(
       "out", po::value(&out_dir),
       "write compare.{csv,md,json}, summary.{csv,md} and run.json here")(

@@ -70,8 +70,10 @@ int ReportCommand(const Args& args) {
       "speedups and gains on wall or cpu time (as for compare)")(
       "tol", po::value(&cfg.smooth.tol)->default_value(5e-6, "5e-6"), "stop rule, as for smooth")(
       "max-iters", po::value(&cfg.smooth.max_iters)->default_value(100),
-      "at most this many sweeps")("cache", po::value(&cache)->default_value(cache),
-                                  "cache levels, as for validate")(
+      "at most this many sweeps")(
+      "warm-up-sweeps", po::value(&cfg.warmup_sweeps)->default_value(cfg.warmup_sweeps),
+      "sweeps of each timed run's untimed warm-up, the kernels part's too (as for compare)")(
+      "cache", po::value(&cache)->default_value(cache), "cache levels, as for validate")(
       "counters", po::value(&counters)->default_value(counters),
       "PAPI events for the levels (none: simulate only)")(
       "validate-sweeps", po::value(&cfg.validate_sweeps)->default_value(2),

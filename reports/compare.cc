@@ -69,7 +69,7 @@ class MeshTiming {
   }
 
   // One pass over every (ordering, threads): the ordering computed (timed), applied (timed) and
-  // smoothed. `timed` false: the warm-up, nothing recorded.
+  // smoothed. `timed` false: the warm-up, warmup_sweeps sweeps a run, nothing recorded.
   void Round(bool timed, int round) {
     size_t k = first_;
     for (size_t oi = 0; oi < cfg_.orderings.size(); ++oi) {
@@ -85,6 +85,7 @@ class MeshTiming {
         const double apply = Since(t0);
         SmoothOptions o = cfg_.smooth;
         o.threads = t;
+        if (!timed) o.max_iters = std::min(o.max_iters, cfg_.warmup_sweeps);
         std::unique_ptr<PapiCounters> papi;
         if (timed && !cfg_.counter_events.empty()) {
           papi = std::make_unique<PapiCounters>(cfg_.counter_events, t);
@@ -183,6 +184,8 @@ CompareResult RunCompare(const CompareConfig& cfg,
   };
   if (cfg.repeat < 3 && !cfg.repeat_auto)
     throw UsageError("--repeat must be at least 3 (a median and its interval need rounds)");
+  if (cfg.warmup_sweeps < 1 || cfg.warmup_sweeps > 1000)
+    throw UsageError("--warm-up-sweeps must be 1..1000");
   for (int t : cfg.threads) {
     SmoothOptions o = cfg.smooth;
     o.threads = t;
@@ -201,7 +204,8 @@ CompareResult RunCompare(const CompareConfig& cfg,
       for (const std::string& w : warnings) warn(w);
     MeshTiming m(cfg, path, base, &out.rows, say);
     m.Prepare();
-    say("  warm-up: every ordering computed, applied and smoothed once, untimed");
+    say("  warm-up: every ordering computed, applied and smoothed " +
+        std::to_string(std::min(cfg.warmup_sweeps, cfg.smooth.max_iters)) + " sweep(s), untimed");
     m.Round(false, 0);
     const int rounds = cfg.repeat_auto ? cfg.repeat_cap : cfg.repeat;
     RepeatAutoEnd end;
@@ -488,6 +492,7 @@ void TimingOptions::AddJson(Json* j) const {
   o["threads"] = threads;
   o["repeat"] = repeat_auto ? Json("auto") : Json(repeat);
   o["repeat_cap"] = repeat_cap;
+  o["warmup_sweeps"] = warmup_sweeps;
   o["clock"] = ClockName(clock);
   o["mode"] = UpdateModeName(smooth.mode);
   o["quality"] = QualityModeName(smooth.quality);

@@ -102,7 +102,8 @@ void MeasureKernels(const KernelRunsConfig& cfg, const std::string& mesh, const 
   if (failed) std::rethrow_exception(failed);
   if (!cfg.timing) return;
   part("other kernels: timed", [&] {
-    // Round 0 warms up (untimed); then every ordering x kernel once per round. An ordering is
+    // Round 0 warms up (untimed, warmup_sweeps sweeps a run); then every ordering x kernel once
+    // per round. An ordering is
     // laid out once a round and each kernel's run starts from a copy of that layout: a copy is
     // sequential where applying the permutation gathers (on lake, 375k vertices, an apply took
     // 0.12-0.15 s, half of a smart-laplacian run's untimed time); one layout is held at a time.
@@ -117,7 +118,9 @@ void MeasureKernels(const KernelRunsConfig& cfg, const std::string& mesh, const 
           const size_t i = first + kk * cfg.orderings.size() + o;  // rows: kernel, then ordering
           const KernelInfo& k = ParseKernel(cfg.kernels[kk]);
           laid.CopyInto(&work);
-          const SmoothResult res = RunKernel(k, work, ExactSweeps(cfg.sweeps));
+          const SmoothResult res = RunKernel(
+              k, work,
+              ExactSweeps(round == 0 ? std::min(cfg.sweeps, cfg.warmup_sweeps) : cfg.sweeps));
           if (round == 0) continue;
           CompareRound c;
           c.sweeps = static_cast<int>(res.sweeps.size());

@@ -36,6 +36,7 @@ struct KernelRunsConfig {
   int sweeps = 5;                      // timed sweeps per run
   int traced_sweeps = 2;               // simulated sweeps; the last is counted
   int rounds = 3;
+  int warmup_sweeps = 2;  // the warm-up round's sweeps a run (at most `sweeps`; timed_runs.h)
   bool timing = true;
   TimeClock clock = TimeClock::kWall;
   uint64_t seed = 1;

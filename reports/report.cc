@@ -437,6 +437,8 @@ void CheckReportConfig(const ReportConfig& cfg) {
     if (p < 1 || p > kMaxThreads)
       throw UsageError("thread counts must be 1.." + std::to_string(kMaxThreads));
   if (cfg.repeat < 1 || cfg.repeat > 1000) throw UsageError("repeat must be 1..1000");
+  if (cfg.warmup_sweeps < 1 || cfg.warmup_sweeps > 1000)
+    throw UsageError("--warm-up-sweeps must be 1..1000");
   if (cfg.validate_sweeps < 1 || cfg.validate_sweeps > 1000)
     throw UsageError("validation sweeps must be 1..1000");
   if (!cfg.machine.empty()) {
@@ -541,6 +543,7 @@ std::string RunReport(const ReportConfig& in_cfg, const std::string& out_dir, co
       kc.sweeps = cfg.kernel_sweeps;
       kc.traced_sweeps = cfg.validate_sweeps;
       kc.rounds = cfg.repeat;
+      kc.warmup_sweeps = cfg.warmup_sweeps;
       kc.timing = cfg.timing;
       kc.clock = cfg.clock;
       kc.seed = cfg.seed;

@@ -30,6 +30,13 @@ struct TimingOptions {
   int repeat = 5;  // rounds, at least 3
   bool repeat_auto = false;
   int repeat_cap = 15;
+  // The untimed warm-up: each (ordering, threads) computed, applied and smoothed this many sweeps
+  // (at most max_iters) before the first timed round. A run applies its layout afresh and its
+  // threads start anew, so what a warm-up leaves behind is the process's state (the working
+  // arrays' pages, the thread pool, the code in the caches), which a few sweeps give as a whole
+  // run does: measured in reports/docs/timings.md (a timed round first after 2 sweeps is no
+  // slower than the rounds after it).
+  int warmup_sweeps = 2;
   TimeClock clock = TimeClock::kWall;  // of the speedups and gains
   SmoothOptions smooth;                // tol, max_iters, mode; threads are taken from `threads`
   TriangleOrder triangle_order = TriangleOrder::kSorted;

@@ -213,6 +213,8 @@ contains "compare" "speedup vs ori1 [95%]"
 contains "compare" "(seed 1; medians over the rounds after a warm-up, [95% interval of the median]"
 check "compare one round" 2 "$bin" compare "$data/two_interior.node" --repeat 1 --quiet
 contains "compare one round" "--repeat must be at least 3"
+check "compare no warm-up" 2 "$bin" compare "$data/two_interior.node" --warm-up-sweeps 0 --quiet
+contains "compare no warm-up" "--warm-up-sweeps must be 1..1000"
 check "compare warns even when quiet" 0 "$bin" compare "$data/two_interior22.msh" --orderings ori --repeat 3 --quiet
 contains "compare warns even when quiet" "meshreuse: warning: $data/two_interior22.msh: dropped 1 vertices"
 for f in compare.csv compare.md compare.json run.json; do
@@ -224,6 +226,7 @@ import json, sys
 run = json.load(open(sys.argv[1] + "/run.json"))
 rows = json.load(open(sys.argv[1] + "/compare.json"))["rows"]
 assert run["configuration"]["seed"] == 1 and run["configuration"]["repeat"] == 3, run["configuration"]
+assert run["configuration"]["warmup_sweeps"] == 2, run["configuration"]
 assert "noise" in run and "busy" in run["noise"], run.keys()
 for r in rows:
     if r["ordering"] == "ori" and r["threads"] == 1:

@@ -75,6 +75,35 @@ TEST(Compare, RepeatAutoStaysWithinItsCapAndFewerThanThreeIsRefused) {
   EXPECT_THROW(ParseRepeat("auto:x", &repeat, &automatic, &cap), UsageError);
 }
 
+// The warm-up's length changes nothing a timed round records but its times: each timed round
+// still smooths to convergence from the same start. A warm-up of no sweep is refused.
+TEST(Compare, AShortWarmUpLeavesTheTimedRoundsWhole) {
+  CompareConfig cfg;
+  cfg.meshes = {testing::DataPath("plate41.msh")};
+  cfg.orderings = {"ori", "rdr"};
+  cfg.threads = {1};  // (two threads' Gauss-Seidel races: their sweeps vary from run to run)
+  cfg.repeat = 3;
+  cfg.warmup_sweeps = 100;
+  const CompareResult whole = RunCompare(cfg);
+  cfg.warmup_sweeps = 1;
+  std::vector<std::string> progress;
+  const CompareResult one = RunCompare(cfg, [&](const std::string& s) { progress.push_back(s); });
+  ASSERT_EQ(whole.rows.size(), one.rows.size());
+  for (size_t i = 0; i < one.rows.size(); ++i) {
+    ASSERT_EQ(one.rows[i].rounds.size(), 3u);
+    EXPECT_GT(whole.rows[i].rounds[0].sweeps, 1);  // a warm-up of one sweep is shorter
+    for (int k = 0; k < 3; ++k)
+      EXPECT_EQ(one.rows[i].rounds[k].sweeps, whole.rows[i].rounds[k].sweeps);
+    EXPECT_EQ(one.rows[i].final_quality, whole.rows[i].final_quality);
+  }
+  bool said = false;
+  for (const std::string& s : progress)
+    said = said || s.find("smoothed 1 sweep(s)") != std::string::npos;
+  EXPECT_TRUE(said);
+  cfg.warmup_sweeps = 0;
+  EXPECT_THROW(RunCompare(cfg), UsageError);
+}
+
 // Rows whose every round takes the same time: the ratios, and their intervals, are exact.
 CompareRow Row(const char* mesh, const char* ord, double sweep_seconds) {
   CompareRow r;
