@@ -3,7 +3,8 @@
 # meshes, its manifest.json naming what to draw): every figure as a valid PNG and PDF, the scale
 # figure when the manifest names it, each figure script from the command line, and a clear error
 # (not a traceback, not an empty plot) for a missing file or a profile with no rows; --help of
-# every script, and one-line refusals (exit 2) of wrong arguments and tables a script does not draw.
+# every script, and one-line refusals (exit 2) of wrong arguments and tables a script does not draw
+# (in a report folder too, its other figures drawn).
 # Exit 77 (skipped) when Debian's matplotlib is not installed.
 # Usage: plot_test.sh FIXTURE_DIR
 set -euo pipefail
@@ -63,4 +64,11 @@ refused "speedup of compare.csv" "no column 'speedup'" $py "$root/scripts/plot_s
 refused "speedup, wrong arguments" "usage:" $py "$root/scripts/plot_speedup.py" a b
 refused "report of a folder that is none" "not a report folder" $py "$root/scripts/plot_report.py" "$tmp/none"
 [[ ! -e $tmp/none ]] || { echo "plot_report made the folder it refused"; exit 1; }
+# The figures are drawn side by side: one that cannot be drawn still stops the report's script
+# with exit 2 and one line naming its input, and the others are drawn.
+cp -r "$fixture" "$tmp/b"
+printf 'mesh,ordering\nm,ori\n' >"$tmp/b/tables/time.csv"
+refused "report with a broken time table" "time.csv: no column" $py "$root/scripts/plot_report.py" "$tmp/b"
+[[ $(grep -c . "$tmp/err") == 1 ]] || { echo "more than one line for one broken table:"; cat "$tmp/err"; exit 1; }
+head -c 5 "$tmp/b/figures/figure1.pdf" | grep -q '%PDF-' || { echo "figure1 not drawn beside the broken one"; exit 1; }
 echo "plot_test: every figure drawn from the fixture CSVs"
