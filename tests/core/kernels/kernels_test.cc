@@ -2,8 +2,11 @@
 // definition (gapbs-style), the traced and the timed instance agreeing, the documented access
 // counts, ordering invariance where it holds, hand-worked untangling, and --kernel's errors.
 #include <gtest/gtest.h>
+#include <omp.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <functional>
 #include <map>
 #include <string>
@@ -15,6 +18,7 @@
 #include "core/kernels/kernel.h"
 #include "core/kernels/stiffness.h"
 #include "core/kernels/untangle.h"
+#include "core/mix.h"
 #include "core/orderings/registry.h"
 #include "core/permutation.h"
 #include "core/quality.h"
@@ -268,6 +272,44 @@ TEST(Kernels, EdgeSwapFlipsTheKitesLongDiagonal) {
   EXPECT_EQ(r.sweeps[1].quality, 1.0);
   EXPECT_TRUE(r.converged);
   EXPECT_TRUE(IsDelaunay(m));
+}
+
+// JitterMesh (in parallel, by v2t) against the rule written serially over the triangles: each
+// interior vertex moved by kJitterAmount times its least altitude over its triangles, at an angle
+// from its coordinates' bits; the boundary kept. Bit for bit, on one thread and on several.
+TEST(Kernels, JitterMovesEachInteriorVertexByItsLeastAltitude) {
+  for (const Mesh& base : Meshes()) {
+    std::vector<double> least(static_cast<size_t>(base.NumVertices()), INFINITY);
+    for (int32_t t = 0; t < base.NumTriangles(); ++t) {
+      const int32_t* c = &base.tri[3 * t];
+      const double *a = &base.xy[2 * c[0]], *b = &base.xy[2 * c[1]], *d = &base.xy[2 * c[2]];
+      const double area = std::fabs((b[0] - a[0]) * (d[1] - a[1]) - (b[1] - a[1]) * (d[0] - a[0]));
+      const double e =
+          std::max({std::hypot(b[0] - a[0], b[1] - a[1]), std::hypot(d[0] - b[0], d[1] - b[1]),
+                    std::hypot(a[0] - d[0], a[1] - d[1])});
+      for (int j = 0; j < 3; ++j) least[c[j]] = std::min(least[c[j]], e > 0 ? area / e : 0.0);
+    }
+    AlignedVector<double> want = base.xy;
+    for (int32_t v : base.interior) {
+      uint64_t bx, by;
+      std::memcpy(&bx, &base.xy[2 * v], 8);
+      std::memcpy(&by, &base.xy[2 * v + 1], 8);
+      const double angle =
+          static_cast<double>(Mix64(kJitterSeed ^ bx ^ Mix64(by)) >> 11) * 0x1p-53 * 2 * M_PI;
+      want[2 * v] += kJitterAmount * least[v] * std::cos(angle);
+      want[2 * v + 1] += kJitterAmount * least[v] * std::sin(angle);
+    }
+    const int before = omp_get_max_threads();
+    for (int threads : {1, 3}) {
+      Mesh m = base.Clone();
+      omp_set_num_threads(threads);
+      EXPECT_EQ(JitterMesh(m, kJitterAmount, kJitterSeed),
+                static_cast<int64_t>(base.interior.size()));
+      omp_set_num_threads(before);
+      EXPECT_EQ(m.xy, want) << threads << " thread(s)";
+      EXPECT_NE(m.xy, base.xy);
+    }
+  }
 }
 
 // The measure before and after, from the kernel's own neighbour array (kept up to date by the
