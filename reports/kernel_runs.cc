@@ -103,10 +103,10 @@ void MeasureKernels(const KernelRunsConfig& cfg, const std::string& mesh, const 
   if (!cfg.timing) return;
   part("other kernels: timed", [&] {
     // Round 0 warms up (untimed, warmup_sweeps sweeps a run); then every ordering x kernel once
-    // per round. An ordering is
-    // laid out once a round and each kernel's run starts from a copy of that layout: a copy is
-    // sequential where applying the permutation gathers (on lake, 375k vertices, an apply took
-    // 0.12-0.15 s, half of a smart-laplacian run's untimed time); one layout is held at a time.
+    // per round. An ordering is laid out once a round and each kernel's run starts from a copy
+    // of that layout: a copy is sequential where applying the permutation gathers (on lake, 375k
+    // vertices, an apply took 0.12-0.15 s, half of a smart-laplacian run's untimed time); one
+    // layout is held at a time.
     Mesh laid, work;
     for (int round = 0; round <= cfg.rounds; ++round) {
       say("kernels: " + mesh +
