@@ -58,7 +58,8 @@ bool ParseCompare(const Args& args, CompareConfig& cfg, po::variables_map& vm,
   pos.add("mesh", -1);
   if (!ParseOptions(
           args, "compare MESH... [--orderings ori,bfs,rdr,random] [--threads 1,2] [--repeat 5]",
-          "For each mesh x ordering x thread count: an untimed warm-up round, then --repeat "
+          "For each mesh x ordering x thread count: an untimed warm-up (--warm-up-sweeps "
+          "sweeps), then --repeat "
           "rounds that each compute the ordering, apply it and smooth to convergence from the "
           "same start (rounds interleave the orderings, so machine noise hits all alike). "
           "Every time is reported as min, median, max and a 95% interval of the median "
