@@ -184,8 +184,7 @@ CompareResult RunCompare(const CompareConfig& cfg,
   };
   if (cfg.repeat < 3 && !cfg.repeat_auto)
     throw UsageError("--repeat must be at least 3 (a median and its interval need rounds)");
-  if (cfg.warmup_sweeps < 1 || cfg.warmup_sweeps > 1000)
-    throw UsageError("--warm-up-sweeps must be 1..1000");
+  cfg.CheckWarmup();
   for (int t : cfg.threads) {
     SmoothOptions o = cfg.smooth;
     o.threads = t;
@@ -485,6 +484,11 @@ TimeClock ParseClock(const std::string& s) {
   if (s == "wall") return TimeClock::kWall;
   if (s == "cpu") return TimeClock::kCpu;
   throw UsageError("--clock: '" + s + "' is not a clock (wall or cpu)");
+}
+
+void TimingOptions::CheckWarmup() const {
+  if (warmup_sweeps < 1 || warmup_sweeps > 1000)
+    throw UsageError("--warm-up-sweeps must be 1..1000");
 }
 
 void TimingOptions::AddJson(Json* j) const {

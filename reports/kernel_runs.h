@@ -36,7 +36,8 @@ struct KernelRunsConfig {
   int sweeps = 5;                      // timed sweeps per run
   int traced_sweeps = 2;               // simulated sweeps; the last is counted
   int rounds = 3;
-  int warmup_sweeps = 2;  // the warm-up round's sweeps a run (at most `sweeps`; timed_runs.h)
+  // The warm-up round's sweeps a run (at most `sweeps`), the timed runs' default (timed_runs.h).
+  int warmup_sweeps = TimingOptions().warmup_sweeps;
   bool timing = true;
   TimeClock clock = TimeClock::kWall;
   uint64_t seed = 1;

@@ -437,8 +437,7 @@ void CheckReportConfig(const ReportConfig& cfg) {
     if (p < 1 || p > kMaxThreads)
       throw UsageError("thread counts must be 1.." + std::to_string(kMaxThreads));
   if (cfg.repeat < 1 || cfg.repeat > 1000) throw UsageError("repeat must be 1..1000");
-  if (cfg.warmup_sweeps < 1 || cfg.warmup_sweeps > 1000)
-    throw UsageError("--warm-up-sweeps must be 1..1000");
+  cfg.CheckWarmup();
   if (cfg.validate_sweeps < 1 || cfg.validate_sweeps > 1000)
     throw UsageError("validation sweeps must be 1..1000");
   if (!cfg.machine.empty()) {

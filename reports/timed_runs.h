@@ -37,6 +37,9 @@ struct TimingOptions {
   // run does: measured in reports/docs/timings.md (a timed round first after 2 sweeps is no
   // slower than the rounds after it).
   int warmup_sweeps = 2;
+  // Throws UsageError for a warm-up outside 1..1000 sweeps (compare and the report, before any
+  // work).
+  void CheckWarmup() const;
   TimeClock clock = TimeClock::kWall;  // of the speedups and gains
   SmoothOptions smooth;                // tol, max_iters, mode; threads are taken from `threads`
   TriangleOrder triangle_order = TriangleOrder::kSorted;
