@@ -257,6 +257,10 @@ void CacheHierarchy::Access(uint64_t address, uint32_t size, bool write, bool fe
   // has); after the first such access every access consults the record, so the counts are those
   // of recording at every access exactly.
   const size_t l0 = path ? path[0] : 0;
+  // A first-level miss goes on to the levels below, one lookup after another, each likely a
+  // host miss (a 24 MiB level is 6 MiB of sets): their sets asked of the host at once overlap.
+  if (first_missed)
+    for (size_t k = 1; k < n; ++k) levels_[path ? path[k] : k].PrefetchSet(first);
   ++stats_[l0].accesses;
   bool hit = false;
   if (first_missed)  // one line (HitFirst looks up no other)

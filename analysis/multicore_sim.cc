@@ -23,43 +23,57 @@ uint64_t Mix(uint64_t x) {  // SplitMix64's finaliser: consecutive lines spread 
   return x ^ (x >> 31);
 }
 
-// A set of lines (all below 2^63): open addressing, linear probing, tombstones for erase.
+// A set of lines (all below 2^63): open addressing, linear probing, erase by backward shift (no
+// tombstones, so a lookup of a line not held stops at the first empty slot: with at most half
+// the slots taken, a probe or two). The first level's prefetched lines are looked up at every
+// hit there, mostly lines not held; with tombstones (the form before) a table that churned at a
+// steady size filled up to three quarters and such a lookup walked about eight slots, a quarter
+// of a one-thread prefetch run's time.
 class LineSet {
  public:
+  static constexpr uint64_t kMask = MulticoreSimulation::kFilterMask;
   bool Insert(uint64_t line) {  // true if it was new
-    if (4 * (used_ + 1) > 3 * slots_.size()) Grow();
+    if (2 * (size_ + 1) > slots_.size()) Grow();
     const uint64_t m = slots_.size() - 1;
-    uint64_t* tomb = nullptr;
     for (uint64_t i = Mix(line) & m;; i = (i + 1) & m) {
       if (slots_[i] == line) return false;
-      if (slots_[i] == kTomb && !tomb) tomb = &slots_[i];
       if (slots_[i] == kEmpty) {
-        if (tomb) {
-          *tomb = line;
-        } else {
-          slots_[i] = line;
-          ++used_;
-        }
+        slots_[i] = line;
         ++size_;
+        ++filter_[line & kMask];
         return true;
       }
     }
   }
   bool Erase(uint64_t line) {
-    if (size_ == 0) return false;
+    if (filter_[line & kMask] == 0) return false;
     const uint64_t m = slots_.size() - 1;
-    for (uint64_t i = Mix(line) & m;; i = (i + 1) & m) {
-      if (slots_[i] == line) {
-        slots_[i] = kTomb;
-        --size_;
-        return true;
-      }
+    uint64_t i = Mix(line) & m;
+    for (;; i = (i + 1) & m) {
+      if (slots_[i] == line) break;
       if (slots_[i] == kEmpty) return false;
     }
+    // Knuth's algorithm R: each later line of the cluster whose home is not cyclically in
+    // (hole, its slot] moves back into the hole, so every line stays reachable from its home.
+    for (uint64_t j = i;;) {
+      j = (j + 1) & m;
+      if (slots_[j] == kEmpty) break;
+      const uint64_t home = Mix(slots_[j]) & m;
+      if (((j - home) & m) >= ((j - i) & m)) {
+        slots_[i] = slots_[j];
+        i = j;
+      }
+    }
+    slots_[i] = kEmpty;
+    --size_;
+    --filter_[line & kMask];
+    return true;
   }
   bool empty() const { return size_ == 0; }
+  // Per bucket line & kMask, the lines held (the vector is never resized: the pointer stays).
+  const uint32_t* filter() const { return filter_.data(); }
   bool Contains(uint64_t line) const {
-    if (size_ == 0) return false;
+    if (filter_[line & kMask] == 0) return false;
     const uint64_t m = slots_.size() - 1;
     for (uint64_t i = Mix(line) & m;; i = (i + 1) & m) {
       if (slots_[i] == line) return true;
@@ -68,19 +82,21 @@ class LineSet {
   }
 
  private:
-  static constexpr uint64_t kEmpty = ~uint64_t{0}, kTomb = ~uint64_t{0} - 1;
-  // Twice the slots when over a quarter are lines; else the same, the tombstones cleared (a set
-  // that churns at a steady size keeps its table).
-  void Grow() {
-    const size_t n = 4 * size_ > slots_.size() ? 2 * slots_.size() : slots_.size();
-    std::vector<uint64_t> old(std::max<size_t>(16, n), kEmpty);
+  static constexpr uint64_t kEmpty = ~uint64_t{0};
+  void Grow() {  // twice the slots; the filter's counts stay (the same lines)
+    std::vector<uint64_t> old(2 * slots_.size(), kEmpty);
     old.swap(slots_);
-    used_ = size_ = 0;
+    const uint64_t m = slots_.size() - 1;
     for (uint64_t x : old)
-      if (x != kEmpty && x != kTomb) Insert(x);
+      if (x != kEmpty) {
+        uint64_t i = Mix(x) & m;
+        while (slots_[i] != kEmpty) i = (i + 1) & m;
+        slots_[i] = x;
+      }
   }
   std::vector<uint64_t> slots_ = std::vector<uint64_t>(16, kEmpty);
-  uint64_t used_ = 0, size_ = 0;  // slots not empty (tombstones too); lines held
+  uint64_t size_ = 0;  // lines held
+  std::vector<uint32_t> filter_ = std::vector<uint32_t>(kMask + 1, 0);
 };
 
 }  // namespace
@@ -159,6 +175,7 @@ MulticoreSimulation::MulticoreSimulation(const Machine& m, Placement placement)
     held_only_.push_back(l.prefetch && !above);
     above = above || l.prefetch;
     drop_any_ = drop_any_ || held_only_.back();
+    prefetching_ = prefetching_ || l.prefetch;
   }
   if (!m.levels.empty()) l1_groups_ = SetAssociativeCache::GroupsOf(m.levels[0].cache.ways);
   cores_.resize(m.cores());
@@ -203,8 +220,11 @@ MulticoreSimulation::Owner& MulticoreSimulation::CoreOwner(int core) {
       cores_[core]->caches.emplace_back(l.bytes, l.ways, m_.line_bytes, l.policy);
     }
     cores_[core]->prefetched.resize(private_levels_);
-    if (private_levels_ > 0 && thread_of_core_[core] >= 0)
-      first_of_thread_[thread_of_core_[core]].cache = &cores_[core]->caches.front();
+    if (private_levels_ > 0 && thread_of_core_[core] >= 0) {
+      FirstLevel& f = first_of_thread_[thread_of_core_[core]];
+      f.cache = &cores_[core]->caches.front();
+      f.filter = cores_[core]->prefetched.front().filter();
+    }
   }
   return *cores_[core];
 }
@@ -328,6 +348,14 @@ void MulticoreSimulation::InvalidateOthers(int core, LineInfo& e, uint64_t line)
   e.sockets = static_cast<uint8_t>(e.sockets & (1u << socket));
 }
 
+void MulticoreSimulation::PrefetchBelow(int core, int socket, uint64_t line) {
+  Owner& c = CoreOwner(core);
+  for (size_t i = 1; i < m_.levels.size(); ++i)
+    (i < private_levels_ ? c.caches[i] : SocketOwner(socket).caches[i - private_levels_])
+        .PrefetchSet(line);
+  if (line - info_base_ < kDenseLines) __builtin_prefetch(dense_.get() + (line - info_base_), 1);
+}
+
 void MulticoreSimulation::Access(int thread, uint64_t address, uint32_t size, bool write,
                                  bool first_missed) {
   const int core = core_of_[thread];
@@ -338,6 +366,10 @@ void MulticoreSimulation::Access(int thread, uint64_t address, uint32_t size, bo
   const uint64_t first = address >> shift_;
   const uint64_t last = (address + (size ? size - 1 : 0)) >> shift_;
   ReserveSparse(2 * (last - first + 1));
+  if (first_missed) {  // the levels below will be looked up
+    PrefetchBelow(core, socket, first);
+    if (prefetching_) PrefetchBelow(core, socket, first + 1);  // a prefetcher's next line
+  }
   // Per line of the access (two when it straddles), its record, fetched at its first miss.
   LineInfo* info[2] = {nullptr, nullptr};
   bool missed_private = false, missed_shared = false;

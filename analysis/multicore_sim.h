@@ -60,6 +60,10 @@ struct ThreadStats {
 
 class MulticoreSimulation : public AccessConsumer {
  public:
+  // A set of prefetched lines counts its lines per bucket line & kFilterMask: a bucket of 0 says
+  // a line is not there without a probe (a first-level hit asks at every access).
+  static constexpr uint64_t kFilterMask = 1023;
+
   MulticoreSimulation(const Machine& m, Placement placement);
   ~MulticoreSimulation() override;
   void Begin(const StreamInfo& info) override;  // the threads: placed on cores
@@ -127,7 +131,7 @@ class MulticoreSimulation : public AccessConsumer {
     if (((address + (size ? size - 1 : 0)) >> shift_) != first) return CacheHierarchy::kNotLookedUp;
     if (!f.cache->Hit<G>(first)) return CacheHierarchy::kMissed;
     ++*f.accesses;
-    if (f.prefetch) FirstPrefetchHit(thread, first);
+    if (f.prefetch && f.filter[first & kFilterMask]) FirstPrefetchHit(thread, first);
     if (write && coherent_) WriteHit(f.core, first);
     return CacheHierarchy::kHit;
   }
@@ -140,12 +144,13 @@ class MulticoreSimulation : public AccessConsumer {
     if (!f.cache) return from;
     const bool coherent = coherent_;
     auto run = [&](auto prefetch) {  // the level's prefetcher fixed at compile time
-      return f.cache->HitRun<G>(from, n, OneLineOf{a, t, shift_},
-                                [this, a, coherent, t, core = f.core](size_t i, uint64_t line) {
-                                  if constexpr (decltype(prefetch)::value)
-                                    FirstPrefetchHit(t, line);
-                                  if (coherent && a[i].write) WriteHit(core, line);
-                                });
+      return f.cache->HitRun<G>(
+          from, n, OneLineOf{a, t, shift_},
+          [this, a, coherent, t, core = f.core, filter = f.filter](size_t i, uint64_t line) {
+            if constexpr (decltype(prefetch)::value)
+              if (filter[line & kFilterMask]) FirstPrefetchHit(t, line);
+            if (coherent && a[i].write) WriteHit(core, line);
+          });
     };
     const size_t end = f.prefetch ? run(std::true_type()) : run(std::false_type());
     *f.accesses += end - from;
@@ -154,11 +159,16 @@ class MulticoreSimulation : public AccessConsumer {
   void WriteHit(int core, uint64_t line);  // coherence: the line held elsewhere is taken away
   // A first-level hit where that level prefetches: if the line was prefetched and not demanded
   // since, a prefetch hit (as Access counts it). Touches the set of prefetched lines, not the
-  // level.
+  // level. Called only where the set's filter (FirstLevel::filter) says it may hold the line.
   void FirstPrefetchHit(int thread, uint64_t line);
   // Level `level` (the machine's index) of `o` took `line` out (~0: nothing): out of that level's
   // prefetched lines too where held_only_ (see Owner in the .cc).
   void Removed(Owner& o, size_t level, uint64_t line);
+  // The sets of `line` at every level below the first (the core's and its socket's) and its
+  // record, asked of the host (no change to any level) as a first-level miss begins: the
+  // lookups that follow go one after another, each likely a host miss (a socket's 24 MiB level
+  // is 6 MiB of sets), and asked at once their misses overlap instead of adding up.
+  void PrefetchBelow(int core, int socket, uint64_t line);
   void ReserveSparse(uint64_t more);
   void BackInvalidate(int socket, uint64_t line);
   void InvalidateOthers(int core, LineInfo& e, uint64_t line);
@@ -178,13 +188,16 @@ class MulticoreSimulation : public AccessConsumer {
   uint32_t l1_groups_ = 0;       // the first level's groups of ways
   std::vector<bool> held_only_;  // per level: its prefetched lines are lines it holds
   bool drop_any_ = false;        // some level's are
+  bool prefetching_ = false;     // some level has a prefetcher
   // Per thread, what HitFirst needs in one place: its core's first level (null until made), that
-  // level's access count in the thread's stats, its core, whether that level prefetches.
+  // level's access count in the thread's stats, its core, whether that level prefetches, and then
+  // the filter of its set of prefetched lines (made with the level).
   struct FirstLevel {
     SetAssociativeCache* cache = nullptr;
     uint64_t* accesses = nullptr;
     int core = 0;
     bool prefetch = false;
+    const uint32_t* filter = nullptr;
   };
   std::vector<FirstLevel> first_of_thread_;
   // Line records: a direct array for the 2^22 lines from the stream's base (the canonical arrays
