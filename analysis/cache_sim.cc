@@ -1,6 +1,8 @@
 // Set-associative cache simulation; see cache_sim.h.
 #include "analysis/cache_sim.h"
 
+#include <sys/mman.h>
+
 #include <algorithm>
 #include <iterator>
 #include <new>
@@ -63,6 +65,24 @@ SetAssociativeCache::SetAssociativeCache(uint64_t bytes, uint32_t ways, uint32_t
   block_.reset(static_cast<uint8_t*>(std::calloc(1, sets_ * block_bytes_ + 64)));
   if (!block_) throw std::bad_alloc();
   base_ = block_.get() + (64 - reinterpret_cast<uintptr_t>(block_.get()) % 64) % 64;
+  if (sets_ * block_bytes_ >= (uint64_t{64} << 10)) pages_.Reset(base_, sets_ * block_bytes_);
+}
+
+void WritablePages::Reset(const void* block, uint64_t bytes) {
+  const uintptr_t a = reinterpret_cast<uintptr_t>(block);
+  first_page_ = a >> kShift;
+  pages_ = bytes ? ((a + bytes - 1) >> kShift) - first_page_ + 1 : 0;
+  done_.assign((pages_ + 63) / 64, 0);
+}
+
+void WritablePages::Populate(uint64_t page) {
+  done_[page >> 6] |= uint64_t{1} << (page & 63);
+#ifdef MADV_POPULATE_WRITE
+  // A page shared with the block's neighbours (its first and last) is theirs too: populating it
+  // writes nothing, so it is harmless; a refusal (an older kernel) leaves the page as it was.
+  (void)madvise(reinterpret_cast<void*>((first_page_ + page) << kShift), uint64_t{1} << kShift,
+                MADV_POPULATE_WRITE);
+#endif
 }
 
 template <uint32_t G>
@@ -202,6 +222,7 @@ bool CacheHierarchy::FirstTouch(uint64_t line) {
     window_base_ = line & ~(kWindowLines - 1);
     window_.reset(static_cast<uint64_t*>(std::calloc(kWindowLines / 64, sizeof(uint64_t))));
     if (!window_) throw std::bad_alloc();
+    window_pages_.Reset(window_.get(), kWindowLines / 8);
   }
   if (line - window_base_ < kWindowLines) {
     const uint64_t i = line - window_base_, bit = uint64_t{1} << (i & 63);
@@ -259,8 +280,11 @@ void CacheHierarchy::Access(uint64_t address, uint32_t size, bool write, bool fe
   const size_t l0 = path ? path[0] : 0;
   // A first-level miss goes on to the levels below, one lookup after another, each likely a
   // host miss (a 24 MiB level is 6 MiB of sets): their sets asked of the host at once overlap.
-  if (first_missed)
+  if (first_missed) {
     for (size_t k = 1; k < n; ++k) levels_[path ? path[k] : k].PrefetchSet(first);
+    if (window_ && first - window_base_ < kWindowLines)  // FirstTouch's bit, written if new
+      window_pages_.Touch(&window_.get()[(first - window_base_) >> 6], 8);
+  }
   ++stats_[l0].accesses;
   bool hit = false;
   if (first_missed)  // one line (HitFirst looks up no other)

@@ -207,6 +207,7 @@ void MulticoreSimulation::Resize(int threads) {
   info_base_ = info_.canonical ? AddressCanonicalizer::kCanonicalBase >> shift_ : 0;
   dense_.reset(static_cast<LineInfo*>(std::calloc(kDenseLines, sizeof(LineInfo))));
   if (!dense_) throw std::bad_alloc();
+  info_pages_.Reset(dense_.get(), kDenseLines * sizeof(LineInfo));
   sparse_.assign(1024, SparseEntry());
   sparse_used_ = 0;
   marks_.clear();
@@ -353,7 +354,11 @@ void MulticoreSimulation::PrefetchBelow(int core, int socket, uint64_t line) {
   for (size_t i = 1; i < m_.levels.size(); ++i)
     (i < private_levels_ ? c.caches[i] : SocketOwner(socket).caches[i - private_levels_])
         .PrefetchSet(line);
-  if (line - info_base_ < kDenseLines) __builtin_prefetch(dense_.get() + (line - info_base_), 1);
+  if (line - info_base_ < kDenseLines) {
+    const LineInfo* e = dense_.get() + (line - info_base_);
+    info_pages_.Touch(e, sizeof(LineInfo));
+    __builtin_prefetch(e, 1);
+  }
 }
 
 void MulticoreSimulation::Access(int thread, uint64_t address, uint32_t size, bool write,

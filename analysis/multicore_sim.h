@@ -208,6 +208,7 @@ class MulticoreSimulation : public AccessConsumer {
     void operator()(void* p) const { std::free(p); }
   };
   std::unique_ptr<LineInfo, Free> dense_;
+  WritablePages info_pages_;  // dense_'s pages, made writable at a line's first miss
   uint64_t info_base_ = 0;
   struct SparseEntry {
     uint64_t line = ~uint64_t{0};
