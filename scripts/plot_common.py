@@ -111,12 +111,20 @@ def unique(rows, key):
     return out
 
 
-def save(fig, out):
-    """Writes out.png and out.pdf, each to a temporary name first."""
+def save(fig, out, dpi=130):
+    """Writes out.png and out.pdf, each to a temporary name first, both cropped to the figure's
+    tight bounding box. The box is found once, by a layout pass at the PNG's resolution, and
+    given to both (bbox_inches="tight" would lay the figure out again before each format's
+    drawing: a third of the time of a figure of many panels)."""
     os.makedirs(os.path.dirname(out) or ".", exist_ok=True)
+    fig.set_dpi(dpi)
+    renderer = fig.canvas.get_renderer()
+    with renderer._draw_disabled():
+        fig.draw(renderer)
+    box = fig.get_tightbbox(renderer).padded(matplotlib.rcParams["savefig.pad_inches"])
     for ext in ("png", "pdf"):
         tmp = f"{out}.tmp.{os.getpid()}.{ext}"
-        fig.savefig(tmp, dpi=130, bbox_inches="tight")
+        fig.savefig(tmp, dpi=dpi, bbox_inches=box)
         os.replace(tmp, f"{out}.{ext}")
     plt.close(fig)
 
