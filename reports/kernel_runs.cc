@@ -35,7 +35,8 @@ void Simulate(const KernelRunsConfig& cfg, const KernelInfo& k, Mesh& work, Kern
   ro.profile = false;
   ReuseAnalysis reuse(ro);
   FanOut all({&sim, &footprint, &reuse});
-  StreamMesh(work, ExactSweeps(cfg.traced_sweeps), r->mesh, r->ordering, all, &k);
+  // None of the three reads the per-sweep counts (no profiles): no counting run before.
+  StreamMesh(work, ExactSweeps(cfg.traced_sweeps), r->mesh, r->ordering, all, &k, false);
   const std::vector<LevelStats> last = sim.SweepStats(0, sim.sweeps() - 1);
   r->accesses = last.empty() ? 0 : last[0].accesses;
   for (const LevelStats& s : last) r->misses.push_back(s.misses);

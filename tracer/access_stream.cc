@@ -147,8 +147,16 @@ StreamInfo MeshStreamInfo(const Mesh& mesh, const SmoothOptions& sweeps, const K
 }
 
 SmoothResult StreamMesh(Mesh& mesh, const SmoothOptions& sweeps, const std::string& label,
-                        const std::string& ordering, AccessConsumer& to, const KernelInfo* kernel) {
-  StreamInfo info = MeshStreamInfo(mesh, sweeps, kernel);
+                        const std::string& ordering, AccessConsumer& to, const KernelInfo* kernel,
+                        bool counts) {
+  StreamInfo info;
+  if (counts || IsLaplacian(kernel)) {  // the Laplacian's are in closed form
+    info = MeshStreamInfo(mesh, sweeps, kernel);
+  } else {
+    info.threads = std::max(1, sweeps.threads);
+    info.vertices = mesh.NumVertices();
+    info.canonical = true;
+  }
   info.input = label;
   info.ordering = ordering;
   to.Begin(info);

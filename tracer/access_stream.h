@@ -106,9 +106,12 @@ using ProgressFn = std::function<void(double done_fraction)>;
 // stream as the static schedule gives it (core/smoother.h). `label`, `ordering`: for StreamInfo.
 // `kernel`: another kernel of core/kernels/ than the Laplacian (nullptr: the smoother itself).
 // Returns the kernel's result (each sweep's time is the traced sweep's, consumers included).
+// `counts`: the StreamInfo announced carries the per-sweep counts (MeshStreamInfo: for another
+// kernel a whole counting run first); false for consumers that read none of them (a cache
+// simulation, line distances without profiles): then that run is not made and they are empty.
 SmoothResult StreamMesh(Mesh& mesh, const SmoothOptions& sweeps, const std::string& label,
                         const std::string& ordering, AccessConsumer& to,
-                        const KernelInfo* kernel = nullptr);
+                        const KernelInfo* kernel = nullptr, bool counts = true);
 // The info StreamMesh will announce (for memory checks before the work): for the Laplacian without
 // running it; for the other kernels by a counting run on a copy of the mesh (traced runs are
 // serial, so the counts are exact; a kernel's stream may depend on the values).

@@ -1,7 +1,7 @@
 // The access sequence of a sweep on the tiny mesh (element stream and address stream spelled out),
 // per-array access counts against closed forms on every test mesh, the static split against
-// OpenMP's own, and the binary trace: round trip, version-1 files, and rejection of a wrong magic,
-// an unknown version and a truncated file.
+// OpenMP's own, a kernel's stream without its counts (the same stream), and the binary trace: round
+// trip, version-1 files, and rejection of a wrong magic, an unknown version and a truncated file.
 #include <gtest/gtest.h>
 #include <omp.h>
 
@@ -12,6 +12,7 @@
 
 #include "analysis/reuse_analysis.h"
 #include "core/error.h"
+#include "core/kernels/kernel.h"
 #include "core/smoother.h"
 #include "core/synthetic.h"
 #include "tests/test_util.h"
@@ -233,6 +234,43 @@ TEST(AccessSequence, TracedAndUntracedSmoothingAgree) {
   EXPECT_EQ(counts.sweeps, 5);
   EXPECT_EQ(counts.Elements(), 5 * AccessesPerSweep(a)[0]);
   EXPECT_EQ(counts.Refs(), 5 * RefsPerSweep(a)[0]);
+}
+
+// StreamMesh without the counts (the kernels part's simulations): the same accesses in the same
+// order and the same result, a StreamInfo without per-sweep counts, for every kernel; with them,
+// another kernel's counts equal what its stream delivers.
+TEST(AccessSequence, StreamWithoutCountsIsTheSameStream) {
+  struct Record : AccessConsumer {
+    StreamInfo info;
+    std::vector<std::array<uint64_t, 4>> all;
+    void Begin(const StreamInfo& i) override { info = i; }
+    void Consume(const Access* a, size_t n) override {
+      for (size_t i = 0; i < n; ++i)
+        all.push_back({a[i].address, a[i].size, a[i].thread, a[i].write});
+    }
+  };
+  SyntheticOptions so;
+  so.nx = 21, so.ny = 14, so.holes = 1, so.seed = 5;
+  const Mesh base = BuildMesh(MakeSyntheticMesh(so));
+  for (const char* name : {"laplacian", "smart-laplacian", "untangle", "edge-swap", "spmv"}) {
+    const KernelInfo& k = ParseKernel(name);
+    Mesh a = base.Clone(), b = base.Clone();
+    Record with, without;
+    const SmoothResult ra = StreamMesh(a, ExactSweeps(2, 2), "m", "o", with, &k);
+    const SmoothResult rb = StreamMesh(b, ExactSweeps(2, 2), "m", "o", without, &k, false);
+    EXPECT_EQ(with.all, without.all) << name;
+    EXPECT_EQ(a.xy, b.xy) << name;
+    EXPECT_EQ(ra.quality_after, rb.quality_after) << name;
+    EXPECT_EQ(without.info.threads, 2) << name;
+    EXPECT_TRUE(without.info.canonical) << name;
+    uint64_t announced = 0;
+    for (const auto& sweep : with.info.sweep_records)
+      for (uint64_t n : sweep) announced += n;
+    EXPECT_EQ(announced, with.all.size()) << name;
+    if (std::string(name) == "laplacian") continue;  // its counts are in closed form anyway
+    EXPECT_TRUE(without.info.sweep_records.empty()) << name;
+    EXPECT_EQ(without.info.records, 0u) << name;
+  }
 }
 
 TEST(AccessSequence, PerSweepCountMatchesACountingSinkForEveryThreadCount) {
