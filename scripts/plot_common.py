@@ -3,6 +3,7 @@
 atomically. C++ writes the data; these scripts only draw it. Needs Debian's python3-matplotlib
 (/usr/bin/python3; scripts/setup.sh --with-plots installs it); run by another python3 first on
 PATH, a script re-runs itself under /usr/bin/python3."""
+import contextlib
 import csv
 import os
 import sys
@@ -119,7 +120,8 @@ def save(fig, out, dpi=130):
     os.makedirs(os.path.dirname(out) or ".", exist_ok=True)
     fig.set_dpi(dpi)
     renderer = fig.canvas.get_renderer()
-    with renderer._draw_disabled():
+    # A layout pass draws nothing (as savefig's own for "tight"; a matplotlib without it draws).
+    with getattr(renderer, "_draw_disabled", contextlib.nullcontext)():
         fig.draw(renderer)
     box = fig.get_tightbbox(renderer).padded(matplotlib.rcParams["savefig.pad_inches"])
     for ext in ("png", "pdf"):

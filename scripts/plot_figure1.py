@@ -34,7 +34,7 @@ def plot(inputs, out, title="", variant=""):
         h = ax.hist2d(xs, ys, bins=[range(tmax + 1), ybins], weights=ws,
                       norm=mcolors.LogNorm(vmin=1, vmax=vmax), cmap="viridis")
         # The PDF holds the density as an image (the PNG's resolution), not tens of thousands of
-        # cells as paths: 1.5 MB and half the figure's drawing time otherwise.
+        # cells as paths: 1.5-1.9 MB and half the figure's drawing time otherwise.
         h[3].set_rasterized(True)
         ax.set_yscale("log")
         ax.set_ylabel("reuse distance\n(distinct vertices)")
