@@ -83,16 +83,13 @@ class LineSet {
 
  private:
   static constexpr uint64_t kEmpty = ~uint64_t{0};
-  void Grow() {  // twice the slots; the filter's counts stay (the same lines)
+  void Grow() {  // twice the slots, the lines inserted again (their counts too)
     std::vector<uint64_t> old(2 * slots_.size(), kEmpty);
     old.swap(slots_);
-    const uint64_t m = slots_.size() - 1;
+    size_ = 0;
+    std::fill(filter_.begin(), filter_.end(), 0);
     for (uint64_t x : old)
-      if (x != kEmpty) {
-        uint64_t i = Mix(x) & m;
-        while (slots_[i] != kEmpty) i = (i + 1) & m;
-        slots_[i] = x;
-      }
+      if (x != kEmpty) Insert(x);
   }
   std::vector<uint64_t> slots_ = std::vector<uint64_t>(16, kEmpty);
   uint64_t size_ = 0;  // lines held

@@ -116,7 +116,7 @@ def save(fig, out, dpi=130):
     """Writes out.png and out.pdf, each to a temporary name first, both cropped to the figure's
     tight bounding box. The box is found once, by a layout pass at the PNG's resolution, and
     given to both (bbox_inches="tight" would lay the figure out again before each format's
-    drawing: a third of the time of a figure of many panels)."""
+    drawing)."""
     os.makedirs(os.path.dirname(out) or ".", exist_ok=True)
     fig.set_dpi(dpi)
     renderer = fig.canvas.get_renderer()

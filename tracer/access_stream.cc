@@ -114,14 +114,20 @@ struct SweepCounter : KernelSink {
 
 bool IsLaplacian(const KernelInfo* k) { return !k || IsPaperSweep(*k); }
 
+// What every mesh stream announces; the per-sweep counts are MeshStreamInfo's.
+StreamInfo BareStreamInfo(const Mesh& mesh, const SmoothOptions& sweeps) {
+  StreamInfo info;
+  info.threads = std::max(1, sweeps.threads);
+  info.vertices = mesh.NumVertices();
+  info.canonical = true;
+  return info;
+}
+
 }  // namespace
 
 StreamInfo MeshStreamInfo(const Mesh& mesh, const SmoothOptions& sweeps, const KernelInfo* kernel) {
+  StreamInfo info = BareStreamInfo(mesh, sweeps);
   if (!IsLaplacian(kernel)) {
-    StreamInfo info;
-    info.threads = std::max(1, sweeps.threads);
-    info.vertices = mesh.NumVertices();
-    info.canonical = true;
     // Counted, the element touches too; KernelInfo::refs, where a kernel has it, is the closed form
     // its tests check against this.
     Mesh copy = mesh.Clone();
@@ -133,10 +139,6 @@ StreamInfo MeshStreamInfo(const Mesh& mesh, const SmoothOptions& sweeps, const K
       for (uint64_t n : sweep) info.records += n;
     return info;
   }
-  StreamInfo info;
-  info.threads = std::max(1, sweeps.threads);
-  info.vertices = mesh.NumVertices();
-  info.canonical = true;
   const std::vector<uint64_t> refs = RefsPerSweep(mesh, info.threads, sweeps.mode);
   info.sweep_records.assign(sweeps.max_iters, refs);
   for (uint64_t n : refs) info.records += n * static_cast<uint64_t>(sweeps.max_iters);
@@ -149,14 +151,9 @@ StreamInfo MeshStreamInfo(const Mesh& mesh, const SmoothOptions& sweeps, const K
 SmoothResult StreamMesh(Mesh& mesh, const SmoothOptions& sweeps, const std::string& label,
                         const std::string& ordering, AccessConsumer& to, const KernelInfo* kernel,
                         bool counts) {
-  StreamInfo info;
-  if (counts || IsLaplacian(kernel)) {  // the Laplacian's are in closed form
-    info = MeshStreamInfo(mesh, sweeps, kernel);
-  } else {
-    info.threads = std::max(1, sweeps.threads);
-    info.vertices = mesh.NumVertices();
-    info.canonical = true;
-  }
+  // The Laplacian's counts are in closed form: no reason to leave them out.
+  StreamInfo info = counts || IsLaplacian(kernel) ? MeshStreamInfo(mesh, sweeps, kernel)
+                                                  : BareStreamInfo(mesh, sweeps);
   info.input = label;
   info.ordering = ordering;
   to.Begin(info);
