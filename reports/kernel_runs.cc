@@ -8,6 +8,7 @@
 #include <optional>
 
 #include "analysis/cache_sim.h"
+#include "analysis/line_quantiles.h"
 #include "analysis/reuse_analysis.h"
 #include "analysis/sweep_footprint.h"
 #include "core/kernels/kernel.h"
@@ -25,17 +26,17 @@ double MedianOf(const SmoothResult& r, double SweepRecord::*field) {
   return Median(v);
 }
 
-// The simulated part of one run: misses and floor of the last traced sweep, line quantiles.
-void Simulate(const KernelRunsConfig& cfg, const KernelInfo& k, Mesh& work, KernelRun* r) {
+// The simulated part of one run: misses and floor of the last traced sweep, line quantiles. Each
+// stream starts from the ordering applied to `base` afresh (a kernel changes its mesh).
+void Simulate(const KernelRunsConfig& cfg, const KernelInfo& k, const Mesh& base,
+              const Permutation& perm, KernelRun* r) {
+  Mesh work;
+  ApplyPermutationInto(base, perm, cfg.triangle_order, &work);
   CacheSimulation sim(cfg.cache, cfg.line_bytes);
   SweepFootprint footprint(cfg.line_bytes);
-  ReuseOptions ro;
-  ro.granularity = Granularity::kLine;
-  ro.line_bytes = cfg.line_bytes;
-  ro.profile = false;
-  ReuseAnalysis reuse(ro);
-  FanOut all({&sim, &footprint, &reuse});
-  // None of the three reads the per-sweep counts (no profiles): no counting run before.
+  LineQuantiles quantiles(cfg.line_bytes, cfg.quantile_depth);
+  FanOut all({&sim, &footprint, &quantiles});
+  // None of the three reads the per-sweep counts: no counting run before.
   StreamMesh(work, ExactSweeps(cfg.traced_sweeps), r->mesh, r->ordering, all, &k, false);
   const std::vector<LevelStats> last = sim.SweepStats(0, sim.sweeps() - 1);
   r->accesses = last.empty() ? 0 : last[0].accesses;
@@ -48,6 +49,19 @@ void Simulate(const KernelRunsConfig& cfg, const KernelInfo& k, Mesh& work, Kern
   const std::vector<uint64_t> before = MissFloor(lines, cfg.cache, cfg.line_bytes);
   for (size_t i = 0; i < all_floor.size(); ++i)
     r->floor.push_back(all_floor[i] - (i < before.size() ? before[i] : 0));
+  const std::optional<uint64_t> q50 = quantiles.Quantile(0, 0.5), q90 = quantiles.Quantile(0, 0.9);
+  if (q50 && q90) {
+    r->q50 = *q50, r->q90 = *q90;
+    return;
+  }
+  // A quantile at depth or beyond (or none): the same stream again, into the whole analysis.
+  ApplyPermutationInto(base, perm, cfg.triangle_order, &work);
+  ReuseOptions ro;
+  ro.granularity = Granularity::kLine;
+  ro.line_bytes = cfg.line_bytes;
+  ro.profile = false;
+  ReuseAnalysis reuse(ro);
+  StreamMesh(work, ExactSweeps(cfg.traced_sweeps), r->mesh, r->ordering, reuse, &k, false);
   if (const StreamAnalysis* s = reuse.line(0)) {
     r->q50 = s->hist.Quantile(0.5);
     r->q90 = s->hist.Quantile(0.9);
@@ -91,9 +105,7 @@ void MeasureKernels(const KernelRunsConfig& cfg, const std::string& mesh, const 
       try {
         KernelRun& r = (*out)[first + j];
         const size_t o = static_cast<size_t>(j) % cfg.orderings.size();
-        Mesh laid;
-        ApplyPermutationInto(base, perms[o], cfg.triangle_order, &laid);
-        Simulate(cfg, ParseKernel(r.kernel), laid, &r);
+        Simulate(cfg, ParseKernel(r.kernel), base, perms[o], &r);
       } catch (...) {
 #pragma omp critical(meshreuse_kernel_runs_failed)
         if (!failed) failed = std::current_exception();

@@ -2,9 +2,10 @@
 // untangling, constraint mesh smoothing, and mesh swapping"): per mesh, each kernel of
 // core/kernels/ in each ordering, simulated and timed on one thread.
 //   - simulated: `traced_sweeps` sweeps streamed through the cache levels (analysis/cache_sim.h),
-//     the sweep footprint (the floor no layout can beat, analysis/sweep_footprint.h) and the exact
-//     line-level reuse analysis; the last (warm) sweep's misses and floor, the quantiles of every
-//     traced access;
+//     the sweep footprint (the floor no layout can beat, analysis/sweep_footprint.h) and the line
+//     distances' quantiles (analysis/line_quantiles.h, exact below `quantile_depth` lines; a
+//     stream whose quantile lies beyond is streamed again into the whole exact line-level reuse
+//     analysis); the last (warm) sweep's misses and floor, the quantiles of every traced access;
 //   - timed: after an untimed warm-up, `rounds` rounds, each running every kernel in every
 //     ordering once from the same layout (so noise hits all alike, as compare's rounds), each run
 //     exactly `sweeps` sweeps: the per-sweep median of each run, its spread over the rounds, and
@@ -44,6 +45,9 @@ struct KernelRunsConfig {
   TriangleOrder triangle_order = TriangleOrder::kSorted;
   CacheSpec cache;
   uint32_t line_bytes = 64;
+  // The line distances found exactly without the whole LRU stack: q50 and q90 below it need one
+  // stream (the paper's meshes and orderings: q90 <= 22 lines), above it a second.
+  uint32_t quantile_depth = 64;
 };
 
 struct KernelRun {

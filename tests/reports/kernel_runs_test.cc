@@ -1,0 +1,61 @@
+// The kernels part's simulated quantities (reports/kernel_runs.h) against their definitions: per
+// kernel and ordering, q50 and q90 of the line reuse distances of every traced access equal the
+// whole exact analysis (ReuseAnalysis) of the kernel's stream, whether the short-distance
+// quantiles answered (depth 64) or the stream went again through the whole analysis (depth 1:
+// every q90 beyond it); the random ordering puts q90 beyond 64 lines, the others below, so both
+// paths run at depth 64 too. Misses and floor the same at every depth.
+#include "reports/kernel_runs.h"
+
+#include <gtest/gtest.h>
+
+#include <string>
+#include <vector>
+
+#include "analysis/reuse_analysis.h"
+#include "core/kernels/kernel.h"
+#include "core/orderings/registry.h"
+#include "tests/test_util.h"
+#include "tracer/access_stream.h"
+
+namespace meshreuse {
+namespace {
+
+TEST(KernelRuns, LineQuantilesEqualTheWholeAnalysisOnEitherPath) {
+  const Mesh base = testing::Synthetic(60, 50, 3, 11);
+  KernelRunsConfig c;
+  c.kernels = {"smart-laplacian", "edge-swap", "spmv"};
+  c.orderings = c.labels = {"ori", "random", "rdr"};
+  c.timing = false;
+  c.cache = ParseCacheSpec("L1=4K/4,L2=32K/8");
+  std::vector<KernelRun> at64, at1;
+  MeasureKernels(c, "m", base, &at64, [](const std::string&) {});
+  c.quantile_depth = 1;
+  MeasureKernels(c, "m", base, &at1, [](const std::string&) {});
+  ASSERT_EQ(at64.size(), 9u);
+  ASSERT_EQ(at1.size(), 9u);
+  bool beyond = false, below = false;
+  for (size_t i = 0; i < at64.size(); ++i) {
+    const KernelRun& r = at64[i];
+    // The reference: the same stream into the whole analysis, by hand.
+    Mesh laid;
+    ApplyPermutationInto(base, ComputeOrdering(r.ordering, base, c.seed), c.triangle_order, &laid);
+    ReuseOptions ro;
+    ro.granularity = Granularity::kLine;
+    ro.profile = false;
+    ReuseAnalysis exact(ro);
+    StreamMesh(laid, ExactSweeps(c.traced_sweeps), "m", r.ordering, exact, &ParseKernel(r.kernel));
+    const ReuseHistogram& h = exact.line(0)->hist;
+    EXPECT_EQ(r.q50, h.Quantile(0.5)) << r.kernel << " " << r.ordering;
+    EXPECT_EQ(r.q90, h.Quantile(0.9)) << r.kernel << " " << r.ordering;
+    EXPECT_EQ(at1[i].q50, r.q50) << r.kernel << " " << r.ordering;
+    EXPECT_EQ(at1[i].q90, r.q90) << r.kernel << " " << r.ordering;
+    EXPECT_EQ(at1[i].misses, r.misses);
+    EXPECT_EQ(at1[i].floor, r.floor);
+    (r.q90 >= 64 ? beyond : below) = true;
+  }
+  EXPECT_TRUE(beyond);
+  EXPECT_TRUE(below);
+}
+
+}  // namespace
+}  // namespace meshreuse
