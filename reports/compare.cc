@@ -86,6 +86,7 @@ class MeshTiming {
         SmoothOptions o = cfg_.smooth;
         o.threads = t;
         if (!timed) o.max_iters = std::min(o.max_iters, cfg_.warmup_sweeps);
+        o.adjacency_after = false;  // the next run applies the ordering anew
         std::unique_ptr<PapiCounters> papi;
         if (timed && !cfg_.counter_events.empty()) {
           papi = std::make_unique<PapiCounters>(cfg_.counter_events, t);

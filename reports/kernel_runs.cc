@@ -115,25 +115,28 @@ void MeasureKernels(const KernelRunsConfig& cfg, const std::string& mesh, const 
   if (failed) std::rethrow_exception(failed);
   if (!cfg.timing) return;
   part("other kernels: timed", [&] {
-    // Round 0 warms up (untimed, warmup_sweeps sweeps a run); then every ordering x kernel once
-    // per round. An ordering is laid out once a round and each kernel's run starts from a copy
-    // of that layout: a copy is sequential where applying the permutation gathers (on lake, 375k
-    // vertices, an apply took 0.12-0.15 s, half of a smart-laplacian run's untimed time); one
-    // layout is held at a time.
+    // Round 0 warms up (untimed, warmup_sweeps sweeps a run of each kernel in the first
+    // ordering: what a warm-up leaves is the process's state, the layout's and the working
+    // mesh's pages and each kernel's code, the same whichever ordering; timings.md measured
+    // it); then every ordering x kernel once per round. An ordering is laid out once a round and
+    // each kernel's run starts from a copy of that layout: a copy is sequential where applying the
+    // permutation gathers (on lake, 375k vertices, an apply took 0.12-0.15 s, half of a
+    // smart-laplacian run's untimed time); one layout is held at a time.
     Mesh laid, work;
     for (int round = 0; round <= cfg.rounds; ++round) {
       say("kernels: " + mesh +
           (round == 0 ? ", warm-up round" : ", round " + std::to_string(round)) + " of " +
           std::to_string(cfg.rounds));
-      for (size_t o = 0; o < cfg.orderings.size(); ++o) {
+      for (size_t o = 0; o < (round == 0 ? 1 : cfg.orderings.size()); ++o) {
         ApplyPermutationInto(base, perms[o], cfg.triangle_order, &laid);
         for (size_t kk = 0; kk < cfg.kernels.size(); ++kk) {
           const size_t i = first + kk * cfg.orderings.size() + o;  // rows: kernel, then ordering
           const KernelInfo& k = ParseKernel(cfg.kernels[kk]);
           laid.CopyInto(&work);
-          const SmoothResult res = RunKernel(
-              k, work,
-              ExactSweeps(round == 0 ? std::min(cfg.sweeps, cfg.warmup_sweeps) : cfg.sweeps));
+          SmoothOptions o =
+              ExactSweeps(round == 0 ? std::min(cfg.sweeps, cfg.warmup_sweeps) : cfg.sweeps);
+          o.adjacency_after = false;  // the next run copies the layout anew
+          const SmoothResult res = RunKernel(k, work, o);
           if (round == 0) continue;
           CompareRound c;
           c.sweeps = static_cast<int>(res.sweeps.size());

@@ -6,7 +6,8 @@
 //     distances' quantiles (analysis/line_quantiles.h, exact below `quantile_depth` lines; a
 //     stream whose quantile lies beyond is streamed again into the whole exact line-level reuse
 //     analysis); the last (warm) sweep's misses and floor, the quantiles of every traced access;
-//   - timed: after an untimed warm-up, `rounds` rounds, each running every kernel in every
+//   - timed: after an untimed warm-up (each kernel once), `rounds` rounds, each running every
+//   kernel in every
 //     ordering once from the same layout (so noise hits all alike, as compare's rounds), each run
 //     exactly `sweeps` sweeps: the per-sweep median of each run, its spread over the rounds, and
 //     the speedups against ORI and BFS of the same kernel with their intervals (speedup.h).

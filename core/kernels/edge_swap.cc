@@ -11,7 +11,8 @@
 // triangles across their four outer edges are rewritten. The topology changes as it goes; the
 // sweeps stop after one that flips nothing (every edge locally Delaunay), at most max_iters (tol
 // does not apply). The measure: 1 - flips / interior edges in the sweep (1: none flipped). The
-// mesh's vertex adjacency is rebuilt after the last sweep (untimed). Serial: two flips sharing a
+// mesh's vertex adjacency is rebuilt after the last sweep (untimed; not when the caller says it
+// reads none, SmoothOptions::adjacency_after). Serial: two flips sharing a
 // triangle would race (--threads 1 only).
 // Access sequence of a visit of triangle t (besides the loop bound, smoother.h ForStatic):
 // tri[3t..3t+2] 4 B each, x then y of each corner 8 B each (kCoordRead on the x); then per slot j:
@@ -266,7 +267,9 @@ SmoothResult KernelEdgeSwap(Mesh& m, const SmoothOptions& o, Sink& sink) {
       },
       [&](double) { return flips == 0.0; });
   r.quality_after = 1.0 - static_cast<double>(NotDelaunayEdges(m, nbr)) / (2 * interior_edges);
-  // The flips changed the triangles: the vertex adjacency anew (untimed).
+  // The flips changed the triangles: the vertex adjacency anew (untimed), where the caller reads
+  // it.
+  if (!o.adjacency_after) return r;
   RawMesh raw;
   raw.xy = std::move(m.xy);
   raw.tri = std::move(m.tri);

@@ -375,6 +375,35 @@ TEST(Kernels, EdgeSwapEndsAtTheDelaunayTriangulationInEveryOrdering) {
   }
 }
 
+// Without the adjacency after (a timed runner's SmoothOptions::adjacency_after = false): the same
+// result, triangles and coordinates; the rebuilt adjacency is a fresh BuildMesh of the new
+// triangles, the skipped one is the input's.
+TEST(Kernels, EdgeSwapWithoutTheAdjacencyAfterIsTheSameRun) {
+  int flipped = 0;
+  for (const Mesh& base : Meshes()) {
+    Mesh with = base.Clone(), without = base.Clone();
+    SmoothOptions o = ExactSweeps(3);
+    const SmoothResult a = RunKernel(K("edge-swap"), with, o);
+    o.adjacency_after = false;
+    const SmoothResult b = RunKernel(K("edge-swap"), without, o);
+    ASSERT_EQ(a.sweeps.size(), b.sweeps.size());
+    for (size_t i = 0; i < a.sweeps.size(); ++i)
+      EXPECT_EQ(a.sweeps[i].quality, b.sweeps[i].quality);
+    EXPECT_EQ(a.quality_before, b.quality_before);
+    EXPECT_EQ(a.quality_after, b.quality_after);
+    EXPECT_EQ(with.tri, without.tri);
+    EXPECT_EQ(with.xy, without.xy);
+    RawMesh raw;
+    raw.xy = with.xy, raw.tri = with.tri;
+    const Mesh fresh = BuildMesh(std::move(raw));
+    EXPECT_EQ(with.v2t.idx, fresh.v2t.idx);
+    EXPECT_EQ(with.v2v.idx, fresh.v2v.idx);
+    EXPECT_EQ(without.v2t.idx, base.v2t.idx);
+    flipped += with.tri != base.tri;
+  }
+  EXPECT_GT(flipped, 0);
+}
+
 // The stiffness matrix as a map (i, j) -> value, from the definition, triangles in storage order.
 std::map<std::pair<int32_t, int32_t>, double> NaiveStiffness(const Mesh& m) {
   std::map<std::pair<int32_t, int32_t>, double> a;
