@@ -94,7 +94,11 @@ phase() {  # phase NAME COMMAND...: runs it in this shell, its time appended to 
 }
 build_release() {
   say "building Release in build/release"
-  cmake -S . -B build/release -DCMAKE_BUILD_TYPE=Release >build/release.configure.log 2>&1 ||
+  # Ninja for a fresh folder, as scripts/test.sh (a first build 110 s instead of make's 120); a
+  # folder configured before keeps its generator.
+  local gen=()
+  [[ ! -f build/release/CMakeCache.txt ]] && command -v ninja >/dev/null && gen=(-G Ninja)
+  cmake "${gen[@]}" -S . -B build/release -DCMAKE_BUILD_TYPE=Release >build/release.configure.log 2>&1 ||
     { cat build/release.configure.log; exit 1; }
   # The program alone (not the tests and benchmarks), its progress shown: a first build takes
   # minutes.
@@ -103,47 +107,58 @@ build_release() {
       >build/release.build.log 2>&1 || { tail -n 40 build/release.build.log; exit 1; }
   else
     if ! cmake --build build/release --target meshreuse -j"$(nproc 2>/dev/null || echo 2)" 2>&1 |
-        tee build/release.build.log | { grep --line-buffered -E '^\[ *[0-9]+%\]' >&2 || true; }; then
+        tee build/release.build.log | { grep --line-buffered -E '^\[ *[0-9]+(%|/[0-9]+)\]' >&2 || true; }; then
       tail -n 40 build/release.build.log
       exit 1
     fi
   fi
 }
-phase setup bash scripts/setup.sh --with-plots
+phase setup bash scripts/setup.sh --report-only --with-plots
 phase build build_release
 bin=build/release/cli/meshreuse
 "$bin" orderings --check "$orderings"  # exit 2 with the reason for an unknown one
 
-mesh() {  # mesh SHAPE VERTICES DIR -> prints the .node path (meshed once, cached)
-  local s=$1 v=$2 dir=$3 name=${4:-$1}
+files=()
+# The meshes (cached under out/meshes/), the missing ones made nproc at a time (Triangle is
+# serial: on 2 cores the nine paper-size shapes took 11 s one after another); their paths in
+# order into files.
+mesh_all() {  # mesh_all DIR SHAPE:VERTICES:NAME... (VERTICES empty: the shape's paper size)
+  local dir=$1 todo=() item s v name
+  shift
   mkdir -p "$dir"
-  if [[ ! -s $dir/$name.node || ! -s $dir/$name.ele ]]; then
+  for item in "$@"; do
+    IFS=: read -r s v name <<<"$item"
+    files+=("$dir/$name.node")
+    [[ -s $dir/$name.node && -s $dir/$name.ele ]] && continue
     say "meshing $s${v:+ at $v vertices} with Triangle -> $dir/$name"
-    if [[ -n $quiet ]]; then
-      "$bin" mesh generate --shape "$s" ${v:+--vertices "$v"} -o "$dir/$name" --quiet >/dev/null
-    else
-      "$bin" mesh generate --shape "$s" ${v:+--vertices "$v"} -o "$dir/$name" --quiet >&2
-    fi
-  fi
-  echo "$dir/$name.node"
+    todo+=("$s" "${v:-paper}" "$dir/$name")
+  done
+  ((${#todo[@]})) || return 0
+  # One failure fails the phase (xargs exits 123), after its error on stderr.
+  printf '%s\n' "${todo[@]}" | BIN=$bin Q=$quiet xargs -d '\n' -n 3 -P "$(nproc 2>/dev/null || echo 2)" \
+    sh -c 'if [ -n "$Q" ]; then exec >/dev/null; else exec >&2; fi
+           if [ "$1" = paper ]; then set -- "$0" "" "$2"; else set -- "$0" "--vertices=$1" "$2"; fi
+           exec "$BIN" mesh generate --shape "$1" $2 -o "$3" --quiet'
 }
 
-files=()
 args=(--orderings "$orderings" --repeat "$repeat" --label "$mode")
 [[ -n $threads ]] && args+=(--threads "$threads")
 make_meshes() {
+  local names items=() s v
+  IFS=, read -r -a names <<<"$shapes"
   case $mode in
     full)
       args+=(--kernels "${kernels:-smart-laplacian,untangle,edge-swap}")
-      IFS=, read -r -a names <<<"$shapes"
-      for s in "${names[@]}"; do files+=("$(mesh "$s" "$vertices" "out/meshes/${vertices:-paper}")"); done ;;
+      for s in "${names[@]}"; do items+=("$s:$vertices:$s"); done
+      mesh_all "out/meshes/${vertices:-paper}" "${items[@]}" ;;
     quick)
-      IFS=, read -r -a names <<<"$shapes"
-      for s in "${names[@]}"; do files+=("$(mesh "$s" "${vertices:-20000}" "out/meshes/${vertices:-20000}")"); done
+      for s in "${names[@]}"; do items+=("$s:${vertices:-20000}:$s"); done
+      mesh_all "out/meshes/${vertices:-20000}" "${items[@]}"
       [[ -n $kernels ]] && args+=(--kernels "$kernels")
       args+=(--machine-threads 1,4,32) ;;
     scale)
-      for v in 10000 100000 1000000 10000000; do files+=("$(mesh ocean "$v" out/meshes/scale "ocean-$v")"); done
+      for v in 10000 100000 1000000 10000000; do items+=("ocean:$v:ocean-$v"); done
+      mesh_all out/meshes/scale "${items[@]}"
       [[ -n $threads ]] || args+=(--threads 1)
       args+=(--figure1-mesh none --profile-mesh none --machine none --kernels "${kernels:-none}") ;;
   esac
