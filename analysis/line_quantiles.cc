@@ -2,11 +2,11 @@
 #include "analysis/line_quantiles.h"
 
 #include <cstring>
+#include <stdexcept>
 
 #if defined(__SSE2__)
 #include <emmintrin.h>
 #endif
-#include <stdexcept>
 
 #include "analysis/reuse_histogram.h"
 
