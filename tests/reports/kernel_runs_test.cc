@@ -1,9 +1,9 @@
 // The kernels part's simulated quantities (reports/kernel_runs.h) against their definitions: per
 // kernel and ordering, q50 and q90 of the line reuse distances of every traced access equal the
 // whole exact analysis (ReuseAnalysis) of the kernel's stream, whether the short-distance
-// quantiles answered (depth 64) or the stream went again through the whole analysis (depth 1:
-// every q90 beyond it); the random ordering puts q90 beyond 64 lines, the others below, so both
-// paths run at depth 64 too. Misses and floor the same at every depth.
+// quantiles answered (the default depth) or the stream went again through the whole analysis
+// (depth 1: every q90 beyond it); the random ordering puts q90 beyond the default depth, the
+// others below, so both paths run at the default too. Misses and floor the same at every depth.
 #include "reports/kernel_runs.h"
 
 #include <gtest/gtest.h>
@@ -27,15 +27,16 @@ TEST(KernelRuns, LineQuantilesEqualTheWholeAnalysisOnEitherPath) {
   c.orderings = c.labels = {"ori", "random", "rdr"};
   c.timing = false;
   c.cache = ParseCacheSpec("L1=4K/4,L2=32K/8");
-  std::vector<KernelRun> at64, at1;
-  MeasureKernels(c, "m", base, &at64, [](const std::string&) {});
+  const uint32_t depth = c.quantile_depth;
+  std::vector<KernelRun> atd, at1;
+  MeasureKernels(c, "m", base, &atd, [](const std::string&) {});
   c.quantile_depth = 1;
   MeasureKernels(c, "m", base, &at1, [](const std::string&) {});
-  ASSERT_EQ(at64.size(), 9u);
+  ASSERT_EQ(atd.size(), 9u);
   ASSERT_EQ(at1.size(), 9u);
   bool beyond = false, below = false;
-  for (size_t i = 0; i < at64.size(); ++i) {
-    const KernelRun& r = at64[i];
+  for (size_t i = 0; i < atd.size(); ++i) {
+    const KernelRun& r = atd[i];
     // The reference: the same stream into the whole analysis, by hand.
     Mesh laid;
     ApplyPermutationInto(base, ComputeOrdering(r.ordering, base, c.seed), c.triangle_order, &laid);
@@ -51,7 +52,7 @@ TEST(KernelRuns, LineQuantilesEqualTheWholeAnalysisOnEitherPath) {
     EXPECT_EQ(at1[i].q90, r.q90) << r.kernel << " " << r.ordering;
     EXPECT_EQ(at1[i].misses, r.misses);
     EXPECT_EQ(at1[i].floor, r.floor);
-    (r.q90 >= 64 ? beyond : below) = true;
+    (r.q90 >= depth ? beyond : below) = true;
   }
   EXPECT_TRUE(beyond);
   EXPECT_TRUE(below);
