@@ -35,10 +35,10 @@ LineQuantiles::Stream& LineQuantiles::At(size_t t) {
 // Moves `line` to the front of `top` and answers where it was among its first `blocks` x 8 entries
 // (blocks x 8 when not there: then every entry moved one down, the last of them out). One pass of
 // blocks of eight entries, each compared and shifted in registers and stored as it was loaded.
-// Why not a scan, then memmove: the scan's next loads read what memmove had just stored at other
-// offsets and widths, and waited for it (store-to-load forwarding fails): 16 ns an access on
-// lake's smart-laplacian stream, more than the whole LRU stack's 15. SSE2 (x86-64's baseline): a
-// 64-bit lane equals when both its 32-bit halves do.
+// (A scan with a branch per entry, then memmove, took 16 ns an access on lake's smart-laplacian
+// stream in a probe, the whole LRU stack 15; what made the array pay in the report was mostly
+// Add's repeat check, below.) SSE2 (x86-64's baseline): a 64-bit lane equals when both its 32-bit
+// halves do.
 #if defined(__SSE2__)
 inline uint32_t MoveToFront(uint64_t* top, uint32_t blocks, uint64_t line) {
   const __m128i want = _mm_set1_epi64x(static_cast<long long>(line));
@@ -122,17 +122,24 @@ void LineQuantiles::Consume(const Access* a, size_t n) {
   }
 }
 
+const LineQuantiles::Stream* LineQuantiles::Find(int t) const {
+  return t >= 0 && static_cast<size_t>(t) < streams_.size() ? streams_[t].get() : nullptr;
+}
+
 uint64_t LineQuantiles::accesses(int t) const {
-  return static_cast<size_t>(t) < streams_.size() && streams_[t] ? streams_[t]->accesses : 0;
+  const Stream* s = Find(t);
+  return s ? s->accesses : 0;
 }
 
 uint64_t LineQuantiles::cold(int t) const {
-  return static_cast<size_t>(t) < streams_.size() && streams_[t] ? streams_[t]->cold : 0;
+  const Stream* s = Find(t);
+  return s ? s->cold : 0;
 }
 
 std::optional<uint64_t> LineQuantiles::Quantile(int t, double x) const {
-  if (static_cast<size_t>(t) >= streams_.size() || !streams_[t]) return std::nullopt;
-  const Stream& s = *streams_[t];
+  const Stream* found = Find(t);
+  if (!found) return std::nullopt;
+  const Stream& s = *found;
   // The histogram's own quantile, with every finite distance at or beyond depth counted at depth:
   // an answer below depth is the true one, an answer of depth means "depth or more".
   ReuseHistogram h;

