@@ -1,8 +1,9 @@
 // LineQuantiles; see line_quantiles.h.
 #include "analysis/line_quantiles.h"
 
-#include <cstring>
+#include <algorithm>
 #include <stdexcept>
+#include <utility>
 
 #if defined(__SSE2__)
 #include <emmintrin.h>
@@ -19,6 +20,7 @@ LineQuantiles::LineQuantiles(uint32_t line_bytes, uint32_t depth)
   if (depth < 1 || depth > 4096)
     throw std::invalid_argument("LineQuantiles: depth must be 1..4096");
   shift_ = __builtin_ctz(line_bytes);
+  slots_ = (depth + 3) / 4 * 4;
 }
 
 void LineQuantiles::Begin(const StreamInfo& info) {
@@ -28,85 +30,110 @@ void LineQuantiles::Begin(const StreamInfo& info) {
 
 LineQuantiles::Stream& LineQuantiles::At(size_t t) {
   if (t >= streams_.size()) streams_.resize(t + 1);
-  if (!streams_[t]) streams_[t] = std::make_unique<Stream>(canonical_, line_bytes_, depth_);
+  if (!streams_[t]) streams_[t] = std::make_unique<Stream>(canonical_, line_bytes_, slots_);
   return *streams_[t];
 }
 
-// Moves `line` to the front of `top` and answers where it was among its first `blocks` x 8 entries
-// (blocks x 8 when not there: then every entry moved one down, the last of them out). One pass of
-// blocks of eight entries, each compared and shifted in registers and stored as it was loaded.
-// (A scan with a branch per entry, then memmove, took 16 ns an access on lake's smart-laplacian
-// stream in a probe, the whole LRU stack 15; what made the array pay in the report was mostly
-// Add's repeat check, below.) SSE2 (x86-64's baseline): a 64-bit lane equals when both its 32-bit
-// halves do.
+namespace {
+
+// How many of stamp[0..n) (n a multiple of 4) exceed x.
+inline uint32_t CountAbove(const int32_t* stamp, uint32_t n, int32_t x) {
 #if defined(__SSE2__)
-inline uint32_t MoveToFront(uint64_t* top, uint32_t blocks, uint64_t line) {
-  const __m128i want = _mm_set1_epi64x(static_cast<long long>(line));
-  auto eq = [&](__m128i v) {
-    const __m128i m = _mm_cmpeq_epi32(v, want);
-    return static_cast<uint64_t>(
-        _mm_movemask_epi8(_mm_and_si128(m, _mm_shuffle_epi32(m, _MM_SHUFFLE(2, 3, 0, 1)))));
+  const __m128i k = _mm_set1_epi32(x);
+  auto above = [&](uint32_t i) {  // a true compare is -1 in its lane
+    return _mm_cmpgt_epi32(_mm_loadu_si128(reinterpret_cast<const __m128i*>(stamp + i)), k);
   };
-  // Lane i of the shifted block is entry i - 1: (the previous vector's high lane, this one's low).
-  auto shift = [](__m128i before, __m128i v) {
-    return _mm_castpd_si128(_mm_shuffle_pd(_mm_castsi128_pd(before), _mm_castsi128_pd(v), 1));
-  };
-  __m128i carry = want;  // its high lane enters at entry 0
-  for (uint32_t b = 0; b < blocks; ++b) {
-    __m128i* p = reinterpret_cast<__m128i*>(top + 8 * b);
-    const __m128i v0 = _mm_loadu_si128(p), v1 = _mm_loadu_si128(p + 1);
-    const __m128i v2 = _mm_loadu_si128(p + 2), v3 = _mm_loadu_si128(p + 3);
-    const __m128i s0 = shift(carry, v0), s1 = shift(v0, v1), s2 = shift(v1, v2), s3 = shift(v2, v3);
-    const uint64_t m = eq(v0) | eq(v1) << 16 | eq(v2) << 32 | eq(v3) << 48;
-    if (!m) {
-      _mm_storeu_si128(p, s0), _mm_storeu_si128(p + 1, s1);
-      _mm_storeu_si128(p + 2, s2), _mm_storeu_si128(p + 3, s3);
-      carry = v3;
-      continue;
-    }
-    // Found at entry j of the block: entries up to j take the shifted values, the rest stay.
-    const int j = __builtin_ctzll(m) / 8;
-    const __m128i jj = _mm_set1_epi32(j);
-    auto keep = [&](__m128i old, __m128i moved, int k) {  // entries 2k, 2k + 1
-      const __m128i after = _mm_cmpgt_epi32(_mm_set_epi32(2 * k + 1, 2 * k + 1, 2 * k, 2 * k), jj);
-      return _mm_or_si128(_mm_and_si128(after, old), _mm_andnot_si128(after, moved));
-    };
-    _mm_storeu_si128(p, keep(v0, s0, 0)), _mm_storeu_si128(p + 1, keep(v1, s1, 1));
-    _mm_storeu_si128(p + 2, keep(v2, s2, 2)), _mm_storeu_si128(p + 3, keep(v3, s3, 3));
-    return 8 * b + static_cast<uint32_t>(j);
-  }
-  return 8 * blocks;
-}
+  __m128i acc = _mm_setzero_si128(), acc2 = _mm_setzero_si128();  // two chains
+  uint32_t i = 0;
+  for (; i + 8 <= n; i += 8)
+    acc = _mm_sub_epi32(acc, above(i)), acc2 = _mm_sub_epi32(acc2, above(i + 4));
+  if (i < n) acc = _mm_sub_epi32(acc, above(i));
+  acc = _mm_add_epi32(acc, acc2);
+  acc = _mm_add_epi32(acc, _mm_shuffle_epi32(acc, _MM_SHUFFLE(1, 0, 3, 2)));
+  acc = _mm_add_epi32(acc, _mm_shuffle_epi32(acc, _MM_SHUFFLE(2, 3, 0, 1)));
+  return static_cast<uint32_t>(_mm_cvtsi128_si32(acc));
 #else
-inline uint32_t MoveToFront(uint64_t* top, uint32_t blocks, uint64_t line) {
-  const uint32_t n = 8 * blocks;
-  uint32_t d = 0;
-  while (d < n && top[d] != line) ++d;
-  std::memmove(top + 1, top, sizeof(uint64_t) * (d < n ? d : n - 1));
-  top[0] = line;
-  return d;
-}
+  uint32_t c = 0;
+  for (uint32_t i = 0; i < n; ++i) c += stamp[i] > x;
+  return c;
 #endif
+}
+
+// The slot of the smallest stamp (the first of equals: an empty slot while one is left).
+inline uint32_t Oldest(const int32_t* stamp, uint32_t n) {
+#if defined(__SSE2__)
+  auto min = [](__m128i a, __m128i b) {
+    const __m128i lt = _mm_cmplt_epi32(a, b);
+    return _mm_or_si128(_mm_and_si128(lt, a), _mm_andnot_si128(lt, b));
+  };
+  auto at = [&](uint32_t i) {
+    return _mm_loadu_si128(reinterpret_cast<const __m128i*>(stamp + i));
+  };
+  __m128i m = at(0);
+  for (uint32_t i = 4; i < n; i += 4) m = min(m, at(i));
+  m = min(m, _mm_shuffle_epi32(m, _MM_SHUFFLE(1, 0, 3, 2)));
+  m = min(m, _mm_shuffle_epi32(m, _MM_SHUFFLE(2, 3, 0, 1)));  // every lane the minimum
+  for (uint32_t i = 0;; i += 4)
+    if (const int eq = _mm_movemask_ps(_mm_castsi128_ps(_mm_cmpeq_epi32(at(i), m))))
+      return i + static_cast<uint32_t>(__builtin_ctz(static_cast<unsigned>(eq)));
+#else
+  uint32_t v = 0;
+  for (uint32_t i = 1; i < n; ++i) v = stamp[i] < stamp[v] ? i : v;
+  return v;
+#endif
+}
+
+// stamp[j] = x, stored as the whole vector of four that holds it (stamp 16-byte aligned): the next
+// access's loads of that vector then take it from the store, where a 4-byte store under a 16-byte
+// load would make the load wait until the store reached the host's cache.
+inline void SetStamp(int32_t* stamp, uint32_t j, int32_t x) {
+#if defined(__SSE2__)
+  __m128i* p = reinterpret_cast<__m128i*>(stamp + (j & ~3u));
+  const __m128i lane =
+      _mm_cmpeq_epi32(_mm_set_epi32(3, 2, 1, 0), _mm_set1_epi32(static_cast<int>(j & 3)));
+  _mm_store_si128(p, _mm_or_si128(_mm_and_si128(lane, _mm_set1_epi32(x)),
+                                  _mm_andnot_si128(lane, _mm_load_si128(p))));
+#else
+  stamp[j] = x;
+#endif
+}
+
+}  // namespace
+
+// The stamps renumbered 1.. in their order (empty slots stay 0) when the clock reaches its
+// limit: only their order is ever compared.
+void LineQuantiles::Renumber(Stream& s) const {
+  std::vector<std::pair<int32_t, uint32_t>> order;
+  for (uint32_t j = 0; j < slots_; ++j)
+    if (s.stamp[j] != 0) order.emplace_back(s.stamp[j], j);
+  std::sort(order.begin(), order.end());
+  for (size_t k = 0; k < order.size(); ++k) s.stamp[order[k].second] = static_cast<int32_t>(k + 1);
+  s.clock = static_cast<int32_t>(order.size());
+}
 
 inline void LineQuantiles::Add(Stream& s, uint64_t line) {
   ++s.accesses;
-  if (s.top[0] == line) {  // a repeat, over a third of a kernel's accesses: nothing moves
+  if (s.front == line) {  // a repeat, over a third of a kernel's accesses: nothing changes
     ++s.below[0];
     return;
   }
-  // The blocks that hold the top's lines, and while it is not full the entry after them: a line
-  // not there moves the others one down into it.
-  const uint32_t blocks = s.held < depth_ ? s.held / 8 + 1 : (depth_ + 7) / 8;
-  const uint32_t d = MoveToFront(s.top.data(), blocks, line);
-  if (d < s.held) {
-    ++s.below[d];
+  s.front = line;
+  if (__builtin_expect(s.clock >= clock_limit_, 0)) Renumber(s);
+  const int32_t now = ++s.clock;
+  uint16_t& m = s.mark.At(line);
+  if (m >= 2) {  // held: its distance is the count of more recent slots
+    const uint32_t j = m - 2u;
+    ++s.below[CountAbove(s.stamp.data(), slots_, s.stamp[j])];
+    SetStamp(s.stamp.data(), j, now);
     return;
   }
-  // Beyond the top (or found in the padding past depth, where the last line fell before): cold,
-  // or a reuse at depth or more.
-  uint8_t& mark = s.seen.At(line);
-  if (!mark) mark = 1, ++s.cold;
-  if (s.held < depth_) ++s.held;
+  // Not held: cold, or a reuse at slots_ (>= depth) or more. It takes the oldest slot.
+  if (m == 0) ++s.cold;
+  const uint32_t j = Oldest(s.stamp.data(), slots_);
+  m = static_cast<uint16_t>(j + 2);
+  if (s.line[j] != kNone) s.mark.At(s.line[j]) = 1;  // (after m: At may move the marks)
+  s.line[j] = line;
+  SetStamp(s.stamp.data(), j, now);
 }
 
 void LineQuantiles::Consume(const Access* a, size_t n) {

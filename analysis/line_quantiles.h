@@ -1,21 +1,26 @@
 // Quantiles of each thread stream's line reuse distances (ReuseHistogram::Quantile's definition:
 // the smallest observed d with at least a fraction X of the finite distances <= d) in memory
-// O(depth) a stream plus a mark per line, where they are small: the top `depth` lines of the LRU
-// stack as an array, most recent first (a line found at index d was reused at distance d: the d
-// lines above it are the distinct ones touched since; found or not, it moves to the front), the
-// cold accesses (each line's first) counted from the marks, and every other access known only to
-// be a finite distance >= depth. Quantile X is exact whenever it lies below depth: the finite
-// count is exact, and the distances at or beyond depth come after every one below it. Otherwise
-// the answer is "at least depth", and a caller that needs it runs the whole analysis
-// (ReuseAnalysis). Lines as ReuseAnalysis's: address / line_bytes, an access that straddles two
-// lines touches both.
+// O(depth) a stream plus a mark per line, where they are small: the top lines of the LRU stack
+// (depth rounded up to a multiple of four) in slots that never move, each with the stamp of its
+// last use; a held line's distance is the number of slots of a larger stamp (the distinct lines
+// used since, every one of them held), counted by SIMD compares of all the stamps, and its stamp
+// then becomes the newest; a line not held (its mark says so) is cold or a reuse at distance >=
+// the slots, and takes the slot of the oldest stamp. Quantile X is exact whenever it lies below
+// depth: the finite count is exact, and the distances at or beyond depth come after every one
+// below it. Otherwise the answer is "at least depth", and a caller that needs it runs the whole
+// analysis (ReuseAnalysis). Lines as ReuseAnalysis's: address / line_bytes, an access that
+// straddles two lines touches both.
 // Why: the other kernels' table (reports/kernel_runs.h) reads two quantiles of line distances per
 // run, which on the paper's meshes and orderings lie below 32 lines; on lake 36-51% of a
-// kernel's accesses repeat the line on top (nothing moves) and 54-66% are at distance 3 or
-// less. The whole LRU stack (StackDistance) cost about a third of the kernels
-// part's samples (perf), the bounded one (BoundedStackDistance: a hashed position, a Fenwick tree,
-// popcounts) as much; with this array the part's simulated share on lake took 11.8 s against
-// 14.3 (reports/docs/kernels.md, "Cost").
+// kernel's accesses repeat the line on top (nothing changes) and 54-66% are at distance 3 or
+// less. The whole LRU stack (StackDistance) cost about a third of the kernels part's samples
+// (perf), the bounded one (BoundedStackDistance: a hashed position, a Fenwick tree, popcounts) as
+// much; an array of the top lines moved to the front as in a list (the form before: a block of
+// eight compared and shifted at a time) cut the part's simulated share on lake from 14.3 s to
+// 11.8, but was still 27-31% of the kernels part's samples; stamps that never move, compared all
+// at once without a branch on where the line was, took 0.94 of that part's time on lake and on
+// the --quick meshes (reports/docs/kernels.md, "Cost"). A non-canonical stream's marks are a hash
+// table, looked up at every access but a repeat (the report's streams are canonical).
 #pragma once
 
 #include <cstdint>
@@ -24,6 +29,7 @@
 #include <vector>
 
 #include "analysis/line_marks.h"
+#include "core/aligned.h"
 #include "tracer/access_stream.h"
 
 namespace meshreuse {
@@ -31,7 +37,7 @@ namespace meshreuse {
 class LineQuantiles : public AccessConsumer {
  public:
   // line_bytes a power of two, depth in 1..4096 (std::invalid_argument otherwise): an access
-  // beyond the top costs O(depth).
+  // but a repeat costs O(depth) compares.
   LineQuantiles(uint32_t line_bytes, uint32_t depth);
   void Begin(const StreamInfo& info) override;
   void Consume(const Access* a, size_t n) override;
@@ -41,26 +47,34 @@ class LineQuantiles : public AccessConsumer {
   std::optional<uint64_t> Quantile(int thread, double x) const;
   uint64_t accesses(int thread) const;  // line accesses of stream t (a straddle counts two)
   uint64_t cold(int thread) const;      // its distinct lines
+  // Tests: renumber a stream's stamps when its clock reaches `limit` (>= 2) instead of 2^31 - 2.
+  void LimitClockForTest(int32_t limit) { clock_limit_ = limit; }
 
  private:
   static constexpr uint64_t kNone = ~uint64_t{0};
   struct Stream {
-    Stream(bool canonical, uint32_t line_bytes, uint32_t depth)
-        : top(((depth + 7) / 8 + 1) * 8, kNone), seen(canonical, line_bytes), below(depth, 0) {}
-    // The stack's top lines, most recent first; `held` of them, then kNone (no line's number:
-    // lines are addresses / line_bytes) or the lines that fell off, in whole blocks of 8
-    // entries and one block more.
-    std::vector<uint64_t> top;
-    uint32_t held = 0;
-    LineMarks<uint8_t> seen;      // lines touched before
-    std::vector<uint64_t> below;  // accesses at each distance below depth
+    Stream(bool canonical, uint32_t line_bytes, uint32_t slots)
+        : line(slots, kNone), stamp(slots, 0), mark(canonical, line_bytes), below(slots, 0) {}
+    // The stack's top lines, in slots that never move: slot j holds line[j] (kNone: empty),
+    // last used at stamp[j] (the stream's clock then; 0: empty). A held line's distance is the
+    // number of slots of a larger stamp: the distinct lines used since, all of them held.
+    std::vector<uint64_t> line;
+    AlignedVector<int32_t> stamp;  // aligned: SetStamp stores whole vectors
+    int32_t clock = 0;
+    uint64_t front = kNone;  // the line used last (the largest stamp)
+    // Per line: 0 never used, 1 used and not held, j + 2 held in slot j.
+    LineMarks<uint16_t> mark;
+    std::vector<uint64_t> below;  // accesses at each distance below the slots
     uint64_t accesses = 0, cold = 0;
   };
   void Add(Stream& s, uint64_t line);
+  void Renumber(Stream& s) const;
   Stream& At(size_t t);
   const Stream* Find(int t) const;  // nullptr: no access of stream t yet
 
   uint32_t line_bytes_, depth_;
+  uint32_t slots_;  // depth rounded up to whole vectors of four stamps
+  int32_t clock_limit_ = INT32_MAX - 1;
   int shift_;
   bool canonical_ = false;
   std::vector<std::unique_ptr<Stream>> streams_;

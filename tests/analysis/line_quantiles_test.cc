@@ -23,7 +23,7 @@ constexpr double kXs[] = {0.0, 0.1, 0.25, 0.5, 0.75, 0.9, 0.99, 1.0};
 
 // Returns how many quantiles were answered and how many lay at depth or beyond.
 std::pair<int, int> ExpectExact(const std::vector<Access>& stream, bool canonical, int threads,
-                                uint32_t depth) {
+                                uint32_t depth, int32_t clock_limit = 0) {
   StreamInfo info;
   info.threads = threads;
   info.canonical = canonical;
@@ -32,6 +32,7 @@ std::pair<int, int> ExpectExact(const std::vector<Access>& stream, bool canonica
   o.profile = false;
   ReuseAnalysis exact(o);
   LineQuantiles lq(64, depth);
+  if (clock_limit) lq.LimitClockForTest(clock_limit);
   FanOut both({&exact, &lq});
   both.Begin(info);
   for (size_t i = 0; i < stream.size(); i += 1000)
@@ -99,6 +100,29 @@ TEST(LineQuantiles, EqualsTheWholeAnalysisWhereItAnswersAndAnswersBelowItsDepth)
     }
   EXPECT_GT(answered, 0);  // both paths, over the depths
   EXPECT_GT(beyond, 0);
+}
+
+// The stamps renumbered every few accesses (the clock's limit made small): the same answers.
+TEST(LineQuantiles, RenumberedStampsKeepTheirOrder) {
+  for (uint32_t depth : {1u, 8u, 30u, 64u})
+    for (int32_t limit : {2, 37, 1000})
+      ExpectExact(MixedStream(AddressCanonicalizer::kCanonicalBase, 3000, depth + 11, 20000), true,
+                  2, depth, limit);
+}
+
+// A canonical stream with other addresses in its second half (a host address, a line below the
+// canonical base): their marks in the hash table, the others' in the array, one top for both.
+// Exact at each depth.
+TEST(LineQuantiles, ACanonicalStreamWithOtherAddressesLaterIsExact) {
+  for (uint32_t depth : {1u, 8u, 32u, 64u})
+    for (const uint64_t other : {uint64_t{0x7f12345678c0}, uint64_t{0x1000}}) {
+      std::vector<Access> s =
+          MixedStream(AddressCanonicalizer::kCanonicalBase, 5000, depth + other % 7, 40000);
+      std::mt19937_64 rng(depth);
+      for (size_t i = s.size() / 2; i < s.size(); ++i)  // the second half: some elsewhere
+        if (rng() % 10 == 0) s[i].address = other + 64 * (rng() % 40) + s[i].address % 64;
+      ExpectExact(s, true, 2, depth);
+    }
 }
 
 TEST(LineQuantiles, ACyclicScanAnswersAtDepthMinusOneAndNotAtDepth) {
