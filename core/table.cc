@@ -24,6 +24,13 @@ void Table::AddRow(const std::vector<std::string>& row) {
   }
 }
 
+void Table::Append(const Table& other) {
+  if (other.header_ != header_) throw std::logic_error("appending a table of other columns");
+  const uint64_t at = cells_.size();
+  cells_ += other.cells_;
+  for (uint64_t start : other.row_start_) row_start_.push_back(at + start);
+}
+
 std::vector<std::string> Table::Row(size_t r) const {
   std::vector<std::string> out;
   const char* p = cells_.data() + row_start_.at(r);

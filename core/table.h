@@ -21,6 +21,8 @@ class Table {
  public:
   explicit Table(std::vector<std::string> header) : header_(std::move(header)) {}
   void AddRow(const std::vector<std::string>& row);
+  // Every row of `other`, after these (std::logic_error unless the headers are equal).
+  void Append(const Table& other);
   size_t Rows() const { return row_start_.size(); }
   const std::vector<std::string>& Header() const { return header_; }
   // Row r's cells (a copy; for tests and small tables).

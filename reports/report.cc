@@ -10,7 +10,9 @@
 #include <cmath>
 #include <exception>
 #include <filesystem>
+#include <functional>
 #include <limits>
+#include <mutex>
 #include <set>
 
 #include "analysis/machine.h"
@@ -78,14 +80,19 @@ class Steps {
                     (p > 1 ? 2 : (cfg.prefetch_levels.empty() ? 1 : 2));
     }
   }
+  // Say and Done may be called from the jobs that run side by side.
   void Say(const std::string& what) const {
+    const std::lock_guard<std::mutex> hold(lock_);
     const double el = std::chrono::duration<double>(Clock::now() - t0_).count();
     std::string left = "?";
     if (done_ > 0 && done_ < total_) left = Duration(el / done_ * (total_ - done_));
     if (done_ >= total_) left = "0s";
     log_.Say(what + " [" + Duration(el) + " elapsed, ~" + left + " left]");
   }
-  void Done(double units) { done_ += units; }
+  void Done(double units) {
+    const std::lock_guard<std::mutex> hold(lock_);
+    done_ += units;
+  }
   // The kernels part of one mesh: its simulated and its timed sweeps.
   static double KernelUnits(const ReportConfig& cfg, const ReportMesh& m) {
     return m.weight * kKernel * static_cast<double>(cfg.kernels.size()) *
@@ -98,6 +105,7 @@ class Steps {
   const Log& log_;
   Clock::time_point t0_;
   double total_ = 0, done_ = 0;
+  mutable std::mutex lock_;
 };
 
 // The element stream of one traced sweep into an exact stack; every distance in order too when
@@ -144,9 +152,18 @@ Figure1Data BinFigure1(const std::string& ordering, const ReuseHistogram& h,
   return f;
 }
 
+// What MeasureReuse adds to the report's data for one ordering, kept apart while the mesh's jobs
+// run side by side and added in ordering order after them (ReportData's fields of the same names).
+struct ReusePart {
+  Table positions = OrderPositionsTable(), profile{ReuseAnalysis::ProfileColumns()},
+        histogram{ReuseAnalysis::HistogramColumns()};
+  std::vector<Figure1Data> fig1;
+  std::vector<FirstSweep> first;
+};
+
 // Table 2's histogram (and Figure 1's bins) of one ordering, and the profile on the profile mesh.
 void MeasureReuse(const ReportConfig& cfg, const ReportMesh& mr, const Mesh& base,
-                  const std::string& spec, const std::string& label, bool in_tables, ReportData* d,
+                  const std::string& spec, const std::string& label, bool in_tables, ReusePart* d,
                   Steps& steps) {
   const bool in_fig1 = mr.name == cfg.figure1_mesh && Contains(cfg.figure1_orderings, spec);
   steps.Say("reuse distances: " + mr.name + " " + label + ", first sweep");
@@ -178,83 +195,107 @@ void MeasureReuse(const ReportConfig& cfg, const ReportMesh& mr, const Mesh& bas
   }
 }
 
-// The many-core part for one mesh: every ordering at every thread count, both placements fed
-// from one stream; at one thread also with the prefetcher. All of the mesh's runs (orderings x
-// thread counts) are jobs side by side on the host's cores, the one-thread runs (the slowest:
-// with the prefetcher's third simulation) first, then by falling thread count, so the last
-// job to finish is a short one; each job its own stream and simulators, results kept in
-// ordering then thread-count order, so nothing depends on the schedule. Every ordering's layout
-// is in memory for the phase (each job runs on its own copy).
-void MeasureMachine(const ReportConfig& cfg, const ReportMesh& mr, const Mesh& base, ReportData* d,
-                    Steps& steps, PhaseTimes* phases) {
-  Machine machine = ParseMachine(cfg.machine);
-  Machine prefetching = machine;
-  SetPrefetch(&prefetching, cfg.prefetch_levels);
-  const int counts = static_cast<int>(cfg.machine_threads.size());
-  const int orderings = static_cast<int>(cfg.orderings.size());
-  std::vector<Mesh> laid;
-  for (int k = 0; k < orderings; ++k)
-    laid.push_back(
-        ApplyPermutation(base, ComputeOrdering(ForMesh(cfg.orderings[k], mr.name), base, cfg.seed),
-                         cfg.triangle_order));
-  // Jobs (ordering, thread-count index), in the order they start.
-  std::vector<std::pair<int, int>> jobs;
-  for (int k = 0; k < orderings; ++k)
-    for (int j = 0; j < counts; ++j) jobs.emplace_back(k, j);
-  std::stable_sort(jobs.begin(), jobs.end(), [&](const auto& x, const auto& y) {
-    const int a = cfg.machine_threads[x.second], b = cfg.machine_threads[y.second];
-    return (a == 1) != (b == 1) ? a == 1 : a > b;
-  });
-  std::vector<std::vector<MachineRun>> runs(jobs.size());  // by ordering * counts + count
+// One of a mesh's simulation jobs, run side by side with the others on the host's cores; `cost`
+// orders them (the longest first, so that the last to finish is a short one).
+struct Job {
+  double cost;
+  std::function<void()> run;
+};
+
+// Runs `jobs` side by side, a job a thread at a time, the costliest first (ties in the order
+// given); every job writes its own results, so nothing depends on the schedule. The first
+// exception is rethrown after all have ended. `threads` 1: one after another.
+void RunJobs(std::vector<Job> jobs, int threads) {
+  std::stable_sort(jobs.begin(), jobs.end(),
+                   [](const Job& x, const Job& y) { return x.cost > y.cost; });
   std::exception_ptr failed;
   const int n = static_cast<int>(jobs.size());
-#pragma omp parallel for schedule(dynamic, 1) \
-    num_threads(std::max(1, std::min(n, omp_get_max_threads())))
+#pragma omp parallel for schedule(dynamic, 1) num_threads(std::max(1, std::min(n, threads)))
   for (int i = 0; i < n; ++i) {
     try {
-      const auto [k, j] = jobs[i];
-      const int threads = cfg.machine_threads[j];
-      const std::string& label = d->orderings[k];
-      const auto w0 = Clock::now();
-      const double c0 = ThreadCpuSeconds();
-#pragma omp critical(meshreuse_report_steps)
-      steps.Say("many-core simulation: " + mr.name + " " + label + ", " + std::to_string(threads) +
-                " thread(s) on " + machine.name);
-      SmoothOptions o = ExactSweeps(cfg.machine_sweeps);
-      o.threads = threads;
-      o.interleave = 1;
-      MulticoreSimulation compact(machine, Placement::kCompact),
-          scatter(machine, Placement::kScatter), pre(prefetching, Placement::kCompact);
-      std::vector<AccessConsumer*> to = {&compact};
-      if (threads > 1) to.push_back(&scatter);
-      if (threads == 1 && !cfg.prefetch_levels.empty()) to.push_back(&pre);
-      FanOut all(to);
-      Mesh m = laid[k].Clone();
-      StreamMesh(m, o, mr.name, label, all);
-      std::vector<MachineRun>& r = runs[static_cast<size_t>(k) * counts + j];
-      r.push_back(CollectMachineRun(compact, mr.name, label, false));
-      if (threads > 1) r.push_back(CollectMachineRun(scatter, mr.name, label, false));
-      if (threads == 1 && !cfg.prefetch_levels.empty())
-        r.push_back(CollectMachineRun(pre, mr.name, label, true));
-#pragma omp critical(meshreuse_report_steps)
-      {
-        steps.Done(mr.weight * Steps::kMachine * cfg.machine_sweeps *
-                   static_cast<double>(to.size()));
-        phases->Add("many-core simulation, " + std::to_string(threads) + " thread(s)",
-                    std::chrono::duration<double>(Clock::now() - w0).count(),
-                    ThreadCpuSeconds() - c0, "inside the one above");
-      }
+      jobs[i].run();
     } catch (...) {
 #pragma omp critical(meshreuse_report_failed)
       if (!failed) failed = std::current_exception();
     }
   }
   if (failed) std::rethrow_exception(failed);
-  for (std::vector<MachineRun>& r : runs)
-    for (MachineRun& x : r) d->machine.push_back(std::move(x));
 }
 
-// Everything but the timing, for one mesh: Table 1's counts, the reuse analyses, Table 3.
+// A job's wall and thread CPU seconds into `phases` under `name`, inside the one above.
+class JobTime {
+ public:
+  JobTime(PhaseTimes* phases, std::string name)
+      : phases_(phases), name_(std::move(name)), w0_(Clock::now()), c0_(ThreadCpuSeconds()) {}
+  ~JobTime() {
+    const double wall = std::chrono::duration<double>(Clock::now() - w0_).count();
+    const double cpu = ThreadCpuSeconds() - c0_;
+#pragma omp critical(meshreuse_report_phases)
+    phases_->Add(name_, wall, cpu, "inside the one above");
+  }
+
+ private:
+  PhaseTimes* phases_;
+  std::string name_;
+  Clock::time_point w0_;
+  double c0_;
+};
+
+// The many-core part's jobs for one mesh: every ordering at every thread count, both placements
+// fed from one stream; at one thread also with the prefetcher (the costliest: a third
+// simulation). Each job its own stream and simulators, on its own copy of the ordering's layout
+// (`laid`, which must outlive the jobs); results into `runs`, by ordering * counts + count.
+void MachineJobs(const ReportConfig& cfg, const ReportMesh& mr, const ReportData& d,
+                 const std::vector<Mesh>& laid, std::vector<std::vector<MachineRun>>* runs,
+                 Steps& steps, PhaseTimes* phases, std::vector<Job>* jobs) {
+  const Machine machine = ParseMachine(cfg.machine);
+  Machine prefetching = machine;
+  SetPrefetch(&prefetching, cfg.prefetch_levels);
+  const int counts = static_cast<int>(cfg.machine_threads.size());
+  runs->assign(laid.size() * counts, {});
+  for (size_t k = 0; k < laid.size(); ++k)
+    for (int j = 0; j < counts; ++j) {
+      const int threads = cfg.machine_threads[j];
+      // CPU seconds a job took on the full run's meshes, 1.5 at one thread (with the
+      // prefetcher's third simulation) to 2.4 at 32: more caches to keep coherent.
+      const double cost = 1.5 + 0.027 * threads;
+      jobs->push_back({cost, [&cfg, &mr, &d, &laid, &steps, runs, phases, k, j, counts, threads,
+                              machine, prefetching] {
+                         const JobTime time(phases, "many-core simulation, " +
+                                                        std::to_string(threads) + " thread(s)");
+                         const std::string& label = d.orderings[k];
+                         steps.Say("many-core simulation: " + mr.name + " " + label + ", " +
+                                   std::to_string(threads) + " thread(s) on " + machine.name);
+                         SmoothOptions o = ExactSweeps(cfg.machine_sweeps);
+                         o.threads = threads;
+                         o.interleave = 1;
+                         MulticoreSimulation compact(machine, Placement::kCompact),
+                             scatter(machine, Placement::kScatter),
+                             pre(prefetching, Placement::kCompact);
+                         std::vector<AccessConsumer*> to = {&compact};
+                         if (threads > 1) to.push_back(&scatter);
+                         if (threads == 1 && !cfg.prefetch_levels.empty()) to.push_back(&pre);
+                         FanOut all(to);
+                         Mesh m = laid[k].Clone();
+                         StreamMesh(m, o, mr.name, label, all);
+                         std::vector<MachineRun>& r = (*runs)[k * counts + j];
+                         r.push_back(CollectMachineRun(compact, mr.name, label, false));
+                         if (threads > 1)
+                           r.push_back(CollectMachineRun(scatter, mr.name, label, false));
+                         if (threads == 1 && !cfg.prefetch_levels.empty())
+                           r.push_back(CollectMachineRun(pre, mr.name, label, true));
+                         steps.Done(mr.weight * Steps::kMachine * cfg.machine_sweeps *
+                                    static_cast<double>(to.size()));
+                       }});
+    }
+}
+
+// Everything but the timing, for one mesh: Table 1's counts, the reuse analyses (Table 2, Figure
+// 1, the profile), Table 3's simulations and the many-core part, their jobs side by side on the
+// host's cores (one pool: a part of few jobs leaves no core idle while another has jobs left),
+// each job writing its own results, added to `d` in ordering order after them. Where a counter
+// will count, Table 3's jobs run after the pool, one at a time: its untimed run wants the
+// machine to itself. Every ordering's layout is in memory for the many-core jobs.
 void MeasureMesh(const ReportConfig& cfg, ReportMesh& mr, ReportData* d, Steps& steps,
                  const Log& log, PhaseTimes* phases) {
   const Mesh base = [&] {
@@ -269,15 +310,26 @@ void MeasureMesh(const ReportConfig& cfg, ReportMesh& mr, ReportData* d, Steps& 
     steps.Say("smoothing picture: " + mr.name);
     AppendSmoothingWindow(mr.name, base, cfg.smooth, &d->smoothing);
   }
+  const PhaseTimes::Scope whole = phases->Time("simulations (reuse distances, misses, many-core)");
+  std::vector<Job> jobs;
+  // Table 2, Figure 1 and the profile: an ordering a job.
   std::vector<std::string> specs = cfg.orderings;
   if (mr.name == cfg.figure1_mesh)
     for (const std::string& o : cfg.figure1_orderings)
       if (!Contains(specs, o)) specs.push_back(o);
-  for (const std::string& spec : specs) {
-    const PhaseTimes::Scope t = phases->Time("reuse distances (Table 2, Figure 1, profiles)");
-    const bool in_tables = Contains(cfg.orderings, spec);
-    MeasureReuse(cfg, mr, base, spec, ParseOrderingSpec(spec).label, in_tables, d, steps);
+  std::vector<ReusePart> reuse(specs.size());
+  for (size_t i = 0; i < specs.size(); ++i) {
+    const bool profile = mr.name == cfg.profile_mesh && Contains(cfg.orderings, specs[i]);
+    jobs.push_back({profile ? 2.0 : 0.6, [&, i] {  // CPU seconds on the full run
+                      const JobTime time(phases, "reuse distances (Table 2, Figure 1, profiles)");
+                      const bool in_tables = Contains(cfg.orderings, specs[i]);
+                      MeasureReuse(cfg, mr, base, specs[i], ParseOrderingSpec(specs[i]).label,
+                                   in_tables, &reuse[i], steps);
+                    }});
   }
+  // Table 3: an ordering a job, or after the pool where a counter counts. Where none can, the
+  // jobs do not ask PAPI again (its calls are not made thread-safe here) and say what an
+  // unavailable PAPI says.
   ValidationConfig vc;
   vc.inputs = {mr.path};
   vc.mesh_name = mr.name;
@@ -287,47 +339,54 @@ void MeasureMesh(const ReportConfig& cfg, ReportMesh& mr, ReportData* d, Steps& 
   vc.cache = cfg.cache;
   vc.element_bytes = cfg.element_bytes, vc.line_bytes = cfg.line_bytes;
   vc.counter_events = cfg.counter_events;
+  const bool counting = !cfg.counter_events.empty() && ProbeCounters(cfg.counter_events).available;
+  if (!counting) vc.counter_events.clear();
+  std::vector<OrderingValidation> validation(cfg.orderings.size());
+  std::vector<Job> table3;
+  for (size_t k = 0; k < cfg.orderings.size(); ++k)
+    table3.push_back({2.2, [&, k] {
+                        const JobTime time(phases, "misses (Table 3: the simulator, the model)");
+                        ValidationConfig one = vc;
+                        one.orderings = {ForMesh(cfg.orderings[k], mr.name)};
+                        std::vector<OrderingValidation> vs =
+                            RunValidation(base, one, [&](const std::string& s) { steps.Say(s); });
+                        vs[0].ordering = d->orderings[k];
+                        if (!counting && !cfg.counter_events.empty()) vs[0].counters = "simulated";
+                        validation[k] = std::move(vs[0]);
+                        steps.Done(mr.weight * Steps::kSimulation * cfg.validate_sweeps);
+                      }});
   steps.Say("misses (Table 3): " + mr.name + ", " + std::to_string(cfg.orderings.size()) +
-            " orderings x " + std::to_string(cfg.validate_sweeps) + " traced sweeps");
-  {
-    // An ordering a job, side by side on the host's cores, unless a counter will count: its
-    // untraced run wants the machine to itself. Where none can, the jobs do not ask PAPI again
-    // (its calls are not made thread-safe here) and say what an unavailable PAPI says.
-    // Results in ordering order.
-    const PhaseTimes::Scope t = phases->Time("misses (Table 3: the simulator, the model)");
-    const bool counting =
-        !cfg.counter_events.empty() && ProbeCounters(cfg.counter_events).available;
-    if (!counting) vc.counter_events.clear();
-    const int jobs = static_cast<int>(cfg.orderings.size());
-    std::vector<OrderingValidation> done(cfg.orderings.size());
-    std::exception_ptr failed;
-#pragma omp parallel for schedule(dynamic, 1) \
-    num_threads(counting ? 1 : std::max(1, std::min(jobs, omp_get_max_threads())))
-    for (int k = 0; k < jobs; ++k) {
-      try {
-        ValidationConfig one = vc;
-        one.orderings = {ForMesh(cfg.orderings[k], mr.name)};
-        std::vector<OrderingValidation> vs = RunValidation(base, one, [&](const std::string& s) {
-#pragma omp critical(meshreuse_report_steps)
-          steps.Say(s);
-        });
-        vs[0].ordering = d->orderings[k];
-        if (!counting && !cfg.counter_events.empty()) vs[0].counters = "simulated";
-        done[k] = std::move(vs[0]);
-#pragma omp critical(meshreuse_report_steps)
-        steps.Done(mr.weight * Steps::kSimulation * cfg.validate_sweeps);
-      } catch (...) {
-#pragma omp critical(meshreuse_report_failed)
-        if (!failed) failed = std::current_exception();
-      }
-    }
-    if (failed) std::rethrow_exception(failed);
-    for (OrderingValidation& v : done) d->validation.push_back(std::move(v));
-  }
+            " orderings x " + std::to_string(cfg.validate_sweeps) + " traced sweeps" +
+            (counting ? " (after the other simulations: counters count)" : ""));
+  if (!counting) jobs.insert(jobs.end(), table3.begin(), table3.end());
+  // The many-core part.
+  std::vector<Mesh> laid;
+  std::vector<std::vector<MachineRun>> machine;
   if (!cfg.machine.empty()) {
-    const PhaseTimes::Scope t = phases->Time("many-core simulation (" + cfg.machine + ")");
-    MeasureMachine(cfg, mr, base, d, steps, phases);
+    for (const std::string& o : cfg.orderings)
+      laid.push_back(ApplyPermutation(base, ComputeOrdering(ForMesh(o, mr.name), base, cfg.seed),
+                                      cfg.triangle_order));
+    MachineJobs(cfg, mr, *d, laid, &machine, steps, phases, &jobs);
   }
+  // The kinds of job listed in this order, whichever finishes first.
+  phases->Add("reuse distances (Table 2, Figure 1, profiles)", 0, 0, "inside the one above");
+  phases->Add("misses (Table 3: the simulator, the model)", 0, 0, "inside the one above");
+  if (!cfg.machine.empty())
+    for (int p : cfg.machine_threads)
+      phases->Add("many-core simulation, " + std::to_string(p) + " thread(s)", 0, 0,
+                  "inside the one above");
+  RunJobs(std::move(jobs), omp_get_max_threads());
+  if (counting) RunJobs(std::move(table3), 1);
+  for (ReusePart& r : reuse) {
+    d->positions.Append(r.positions);
+    d->profile.Append(r.profile);
+    d->histogram.Append(r.histogram);
+    for (Figure1Data& f : r.fig1) d->fig1.push_back(std::move(f));
+    for (FirstSweep& f : r.first) d->first.push_back(std::move(f));
+  }
+  for (OrderingValidation& v : validation) d->validation.push_back(std::move(v));
+  for (std::vector<MachineRun>& r : machine)
+    for (MachineRun& x : r) d->machine.push_back(std::move(x));
 }
 
 // One run's noise into the report's: the loads at the first start and the last end, the lowest

@@ -24,6 +24,20 @@ TEST(Table, AlignedCsvMarkdown) {
   EXPECT_THROW(t.AddRow({"short"}), std::logic_error);
 }
 
+TEST(Table, AppendAddsTheOtherTablesRowsAfterItsOwn) {
+  Table a({"mesh", "q"}), b({"mesh", "q"}), empty({"mesh", "q"});
+  a.AddRow({"lake", "1"});
+  b.AddRow({"ocean", ""});
+  b.AddRow({"valve", "3"});
+  a.Append(b);
+  a.Append(empty);
+  ASSERT_EQ(a.Rows(), 3u);
+  EXPECT_EQ(a.Row(1), (std::vector<std::string>{"ocean", ""}));
+  EXPECT_EQ(a.Csv(), "mesh,q\nlake,1\nocean,\nvalve,3\n");
+  EXPECT_EQ(b.Rows(), 2u);  // unchanged
+  EXPECT_THROW(a.Append(Table({"mesh"})), std::logic_error);
+}
+
 TEST(Table, AnEmptyCellIsMissingInEveryFormat) {
   Table t({"mesh", "paper_q50", "mean"});
   t.AddRow({"ocean", "", "12.5"});
