@@ -43,6 +43,7 @@
 #include <omp.h>
 
 #include <chrono>
+#include <cmath>
 #include <cstdint>
 #include <functional>
 #include <limits>
@@ -93,6 +94,11 @@ struct SmoothOptions {
   // boundary and interior as they were instead of rebuilding them from its new triangles (untimed
   // either way: on lake, 375k vertices, 0.05 s of a run's 0.23, its five sweeps 0.08).
   bool adjacency_after = true;
+  // Whether the caller reads SmoothResult::quality_before and quality_after, a pass over the
+  // mesh each (the global quality; edge-swap's share of Delaunay edges, untangle's after). false
+  // (a timed runner after its first round, a traced run for its stream): they are NaN (untangle's
+  // before, which its sweeps start from, is kept); the sweeps and their qualities are the same.
+  bool end_qualities = true;
   // Optional, not owned: called after each sweep by the kernels of core/kernels/ (progress while
   // they run; Smooth itself takes its callback as an argument).
   const std::function<void(const SweepRecord&)>* on_sweep = nullptr;
@@ -492,7 +498,7 @@ SmoothResult Smooth(Mesh& mesh, const SmoothOptions& opt, Sink& sink,
                     const std::function<void(const SweepRecord&)>& on_sweep = {}) {
   using Clock = std::chrono::steady_clock;
   SmoothResult r;
-  r.quality_before = GlobalQuality(mesh);
+  r.quality_before = opt.end_qualities ? GlobalQuality(mesh) : NAN;
   // Per triangle its weight and its quality side by side (wq[2t], wq[2t+1]): one line holds both,
   // and the sweep needs one pointer less (without it GCC spills two to the stack). Aligned like the
   // mesh's arrays, so line-level results do not depend on malloc.
@@ -558,7 +564,7 @@ SmoothResult Smooth(Mesh& mesh, const SmoothOptions& opt, Sink& sink,
       break;
     }
   }
-  r.quality_after = GlobalQuality(mesh);
+  r.quality_after = opt.end_qualities ? GlobalQuality(mesh) : NAN;
   return r;
 }
 

@@ -86,7 +86,8 @@ class MeshTiming {
         SmoothOptions o = cfg_.smooth;
         o.threads = t;
         if (!timed) o.max_iters = std::min(o.max_iters, cfg_.warmup_sweeps);
-        o.adjacency_after = false;  // the next run applies the ordering anew
+        o.adjacency_after = false;              // the next run applies the ordering anew
+        o.end_qualities = timed && round == 0;  // the final quality: the first round's
         std::unique_ptr<PapiCounters> papi;
         if (timed && !cfg_.counter_events.empty()) {
           papi = std::make_unique<PapiCounters>(cfg_.counter_events, t);

@@ -36,8 +36,10 @@ void Simulate(const KernelRunsConfig& cfg, const KernelInfo& k, const Mesh& base
   SweepFootprint footprint(cfg.line_bytes);
   LineQuantiles quantiles(cfg.line_bytes, cfg.quantile_depth);
   FanOut all({&sim, &footprint, &quantiles});
-  // None of the three reads the per-sweep counts: no counting run before.
-  StreamMesh(work, ExactSweeps(cfg.traced_sweeps), r->mesh, r->ordering, all, &k, false);
+  // None of the three reads the per-sweep counts: no counting run before; nor the qualities.
+  SmoothOptions o = ExactSweeps(cfg.traced_sweeps);
+  o.end_qualities = false;
+  StreamMesh(work, o, r->mesh, r->ordering, all, &k, false);
   const std::vector<LevelStats> last = sim.SweepStats(0, sim.sweeps() - 1);
   r->accesses = last.empty() ? 0 : last[0].accesses;
   for (const LevelStats& s : last) r->misses.push_back(s.misses);
@@ -136,6 +138,7 @@ void MeasureKernels(const KernelRunsConfig& cfg, const std::string& mesh, const 
           SmoothOptions o =
               ExactSweeps(round == 0 ? std::min(cfg.sweeps, cfg.warmup_sweeps) : cfg.sweeps);
           o.adjacency_after = false;  // the next run copies the layout anew
+          o.end_qualities = false;    // the final quality is the last sweep's
           const SmoothResult res = RunKernel(k, work, o);
           if (round == 0) continue;
           CompareRound c;

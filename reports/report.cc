@@ -269,6 +269,7 @@ void MachineJobs(const ReportConfig& cfg, const ReportMesh& mr, const ReportData
                          SmoothOptions o = ExactSweeps(cfg.machine_sweeps);
                          o.threads = threads;
                          o.interleave = 1;
+                         o.end_qualities = false;
                          MulticoreSimulation compact(machine, Placement::kCompact),
                              scatter(machine, Placement::kScatter),
                              pre(prefetching, Placement::kCompact);

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <chrono>
+#include <cmath>
 #include <cstdint>
 #include <initializer_list>
 
@@ -176,7 +177,7 @@ void BindSmoothingArrays(Sink& sink, const Mesh& m, const AlignedVector<double>&
 template <class Sink, class Visit>
 SmoothResult RunSmoothingKernel(Mesh& m, const SmoothOptions& o, Sink& sink, const Visit& visit) {
   SmoothResult r;
-  r.quality_before = GlobalQuality(m);
+  r.quality_before = o.end_qualities ? GlobalQuality(m) : NAN;
   double q = 0.0;
   AlignedVector<double> wq = WeightsAndQualities(m, &q);
   BindSmoothingArrays(sink, m, wq);
@@ -191,7 +192,7 @@ SmoothResult RunSmoothingKernel(Mesh& m, const SmoothOptions& o, Sink& sink, con
         return q;
       },
       [](double) { return false; });
-  r.quality_after = GlobalQuality(m);
+  r.quality_after = o.end_qualities ? GlobalQuality(m) : NAN;
   return r;
 }
 

@@ -250,7 +250,9 @@ SmoothResult KernelEdgeSwap(Mesh& m, const SmoothOptions& o, Sink& sink) {
              kernel_detail::Of(Array::kTriNeighbours, nbr)});
   SmoothOptions until = o;
   until.tol = -INFINITY;
-  r.quality_before = 1.0 - static_cast<double>(NotDelaunayEdges(m, nbr)) / (2 * interior_edges);
+  r.quality_before =
+      o.end_qualities ? 1.0 - static_cast<double>(NotDelaunayEdges(m, nbr)) / (2 * interior_edges)
+                      : NAN;
   const double* xy = m.xy.data();
   int32_t* tri = m.tri.data();
   int32_t* n = nbr.data();
@@ -266,7 +268,9 @@ SmoothResult KernelEdgeSwap(Mesh& m, const SmoothOptions& o, Sink& sink) {
         return 1.0 - flips / interior_edges;
       },
       [&](double) { return flips == 0.0; });
-  r.quality_after = 1.0 - static_cast<double>(NotDelaunayEdges(m, nbr)) / (2 * interior_edges);
+  r.quality_after = o.end_qualities
+                        ? 1.0 - static_cast<double>(NotDelaunayEdges(m, nbr)) / (2 * interior_edges)
+                        : NAN;
   // The flips changed the triangles: the vertex adjacency anew (untimed), where the caller reads
   // it.
   if (!o.adjacency_after) return r;

@@ -176,7 +176,8 @@ SmoothResult KernelUntangle(Mesh& m, const SmoothOptions& o, Sink& sink) {
         return 1.0 - static_cast<double>(inverted) / nt;
       },
       [&](double) { return inverted == 0; });
-  r.quality_after = 1.0 - static_cast<double>(CountInverted(m, orient)) / nt;
+  r.quality_after =
+      o.end_qualities ? 1.0 - static_cast<double>(CountInverted(m, orient)) / nt : NAN;
   return r;
 }
 MESHREUSE_KERNEL_ENTRIES(KernelUntangle)

@@ -404,6 +404,59 @@ TEST(Kernels, EdgeSwapWithoutTheAdjacencyAfterIsTheSameRun) {
   EXPECT_GT(flipped, 0);
 }
 
+// Without the end qualities (a pass over the mesh each, which timed and traced runners do not
+// read): every kernel's sweeps, their qualities and the mesh the same; the passes' values NaN
+// (untangle's starting share kept: its sweeps start from it), values a kernel takes from its
+// sweeps the same; with them, the smoothing kernels' are the global quality of the mesh before and
+// after. Traced too: the same access count.
+TEST(Kernels, WithoutTheEndQualitiesTheSameRun) {
+  const std::vector<Mesh> meshes = Meshes();
+  const Mesh& base = meshes[0];
+  for (const KernelInfo& k : Kernels()) {
+    Mesh with = base.Clone(), without = base.Clone(), traced = base.Clone();
+    SmoothOptions o = ExactSweeps(3);
+    const SmoothResult a = RunKernel(k, with, o);
+    o.end_qualities = false;
+    const SmoothResult b = RunKernel(k, without, o);
+    CountingSink count;
+    KernelSinkOf<CountingSink> sink(count);
+    RunKernel(k, traced, o, sink);
+    ASSERT_EQ(a.sweeps.size(), b.sweeps.size()) << k.name;
+    for (size_t i = 0; i < a.sweeps.size(); ++i)
+      EXPECT_EQ(a.sweeps[i].quality, b.sweeps[i].quality) << k.name;
+    EXPECT_EQ(with.xy, without.xy) << k.name;
+    EXPECT_EQ(with.tri, without.tri) << k.name;
+    EXPECT_EQ(traced.xy, without.xy) << k.name;
+    const std::vector<uint64_t> refs = k.refs(base, o);
+    if (!refs.empty()) {
+      EXPECT_EQ(count.Refs(), refs[0] * b.sweeps.size()) << k.name;
+    }
+    const std::string n = k.name;
+    const bool passes = n == "laplacian" || n == "smart-laplacian" || n == "local-opt" ||
+                        n == "edge-swap" || n == "untangle";
+    if (passes) {
+      EXPECT_TRUE(std::isnan(b.quality_after)) << n;
+      if (n == "untangle")
+        EXPECT_EQ(a.quality_before, b.quality_before);
+      else
+        EXPECT_TRUE(std::isnan(b.quality_before)) << n;
+    } else {
+      EXPECT_EQ(a.quality_before, b.quality_before) << n;
+      EXPECT_EQ(a.quality_after, b.quality_after) << n;
+    }
+    if (n == "laplacian" || n == "smart-laplacian" || n == "local-opt") {
+      EXPECT_EQ(a.quality_before, GlobalQuality(base)) << n;
+      EXPECT_EQ(a.quality_after, GlobalQuality(with)) << n;
+    }
+  }
+  Mesh m = base.Clone();
+  SmoothOptions o = ExactSweeps(2);
+  o.end_qualities = false;
+  const SmoothResult r = Smooth(m, o);  // the smoother itself
+  EXPECT_TRUE(std::isnan(r.quality_before) && std::isnan(r.quality_after));
+  EXPECT_EQ(r.sweeps.size(), 2u);
+}
+
 // The stiffness matrix as a map (i, j) -> value, from the definition, triangles in storage order.
 std::map<std::pair<int32_t, int32_t>, double> NaiveStiffness(const Mesh& m) {
   std::map<std::pair<int32_t, int32_t>, double> a;
