@@ -242,9 +242,10 @@ class JobTime {
 };
 
 // The many-core part's jobs for one mesh: every ordering at every thread count, both placements
-// fed from one stream; at one thread also with the prefetcher (the costliest: a third
-// simulation). Each job its own stream and simulators, on its own copy of the ordering's layout
-// (`laid`, which must outlive the jobs); results into `runs`, by ordering * counts + count.
+// fed from one stream; at one thread also with the prefetcher (a third simulation, yet the
+// cheapest job: one core's caches). Each job its own stream and simulators, on its own copy of
+// the ordering's layout (`laid`, which must outlive the jobs); results into `runs`, by ordering *
+// counts + count.
 void MachineJobs(const ReportConfig& cfg, const ReportMesh& mr, const ReportData& d,
                  const std::vector<Mesh>& laid, std::vector<std::vector<MachineRun>>* runs,
                  Steps& steps, PhaseTimes* phases, std::vector<Job>* jobs) {
