@@ -413,14 +413,19 @@ TEST(Kernels, WithoutTheEndQualitiesTheSameRun) {
   const std::vector<Mesh> meshes = Meshes();
   const Mesh& base = meshes[0];
   for (const KernelInfo& k : Kernels()) {
-    Mesh with = base.Clone(), without = base.Clone(), traced = base.Clone();
+    Mesh with = base.Clone(), without = base.Clone(), traced = base.Clone(),
+         traced_with = base.Clone();
     SmoothOptions o = ExactSweeps(3);
     const SmoothResult a = RunKernel(k, with, o);
+    CountingSink count_with;
+    KernelSinkOf<CountingSink> sink_with(count_with);
+    RunKernel(k, traced_with, o, sink_with);
     o.end_qualities = false;
     const SmoothResult b = RunKernel(k, without, o);
     CountingSink count;
     KernelSinkOf<CountingSink> sink(count);
     RunKernel(k, traced, o, sink);
+    EXPECT_EQ(count.Refs(), count_with.Refs()) << k.name;  // the passes are not traced
     ASSERT_EQ(a.sweeps.size(), b.sweeps.size()) << k.name;
     for (size_t i = 0; i < a.sweeps.size(); ++i)
       EXPECT_EQ(a.sweeps[i].quality, b.sweeps[i].quality) << k.name;
