@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "core/error.h"
+#include "core/table.h"
 
 namespace meshreuse {
 
@@ -122,6 +123,11 @@ std::vector<LevelMisses> ModelMisses(const ReuseHistogram& h, const std::vector<
          h.accesses() ? static_cast<double>(misses) / static_cast<double>(h.accesses()) : 0.0});
   }
   return out;
+}
+
+std::string CapacityCell(uint64_t c, double scale) {
+  if (c == kInfiniteCapacity) return "inf";
+  return scale == 1.0 ? std::to_string(c) : Fixed(static_cast<double>(c) * scale, 2);
 }
 
 uint64_t CapacityForMisses(const ReuseHistogram& h, uint64_t n, bool exclude_cold) {

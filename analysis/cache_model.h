@@ -80,6 +80,9 @@ inline constexpr uint64_t kInfiniteCapacity = ~uint64_t{0};
 // of kInfiniteCapacity. (The paper subtracts the misses it attributes to other causes before it
 // inverts; cold misses are the part our traces can name.)
 uint64_t CapacityForMisses(const ReuseHistogram& h, uint64_t n, bool exclude_cold = false);
+// A capacity as a table cell: "inf" for kInfiniteCapacity, else the count (times `scale`, with
+// two decimals, where scale is not 1: e.g. thousands).
+std::string CapacityCell(uint64_t c, double scale = 1.0);
 
 struct CostRange {
   double low, high;  // additional cycles

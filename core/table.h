@@ -17,6 +17,11 @@
 
 namespace meshreuse {
 
+// A table row's cells with `more` added at its end.
+inline void Append(std::vector<std::string>* row, const std::vector<std::string>& more) {
+  row->insert(row->end(), more.begin(), more.end());
+}
+
 class Table {
  public:
   explicit Table(std::vector<std::string> header) : header_(std::move(header)) {}

@@ -35,8 +35,6 @@ std::string Full(double v) {
   return b;
 }
 
-std::string Cap(uint64_t c) { return c == kInfiniteCapacity ? "inf" : std::to_string(c); }
-
 std::string QuantileName(double q) {
   return "q" + Fixed(100 * q, q * 100 == std::floor(q * 100) ? 0 : 1);
 }
@@ -302,7 +300,8 @@ Table AnalyzeTable(const AnalyzeResult& r, const AnalyzeConfig& cfg, bool human)
           row.push_back(Fixed(c->low, 0));
           row.push_back(Fixed(c->high, 0));
         }
-        for (const CacheLevel& l : cfg.inverse) row.push_back(Cap(CapacityForMisses(h, l.bytes)));
+        for (const CacheLevel& l : cfg.inverse)
+          row.push_back(CapacityCell(CapacityForMisses(h, l.bytes)));
         t.AddRow(row);
       }
   return t;

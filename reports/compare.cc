@@ -16,6 +16,7 @@
 #include "core/permutation.h"
 #include "reports/run_info.h"
 #include "reports/speedup.h"
+#include "reports/timing.h"
 
 namespace meshreuse {
 
@@ -28,10 +29,6 @@ std::vector<double> CompareRow::Values(double CompareRound::*field) const {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-double Since(Clock::time_point t0) {
-  return std::chrono::duration<double>(Clock::now() - t0).count();
-}
-
 double MedianSweep(const SmoothResult& res, double SweepRecord::*field) {
   std::vector<double> v;
   for (const SweepRecord& s : res.sweeps) v.push_back(s.*field);
@@ -240,9 +237,6 @@ std::string SweepRange(const CompareRow& r) {
   int lo = r.rounds[0].sweeps, hi = lo;
   for (const CompareRound& c : r.rounds) lo = std::min(lo, c.sweeps), hi = std::max(hi, c.sweeps);
   return lo == hi ? std::to_string(lo) : std::to_string(lo) + "-" + std::to_string(hi);
-}
-void Append(std::vector<std::string>* row, const std::vector<std::string>& more) {
-  row->insert(row->end(), more.begin(), more.end());
 }
 std::string VerdictOf(const Spread& ratio) {
   return std::isfinite(ratio.median) ? VerdictName(SpeedupVerdict(ratio)) : "";

@@ -17,6 +17,7 @@
 #include "reports/inputs.h"
 #include "reports/run_info.h"
 #include "reports/shared_mesh_file.h"
+#include "reports/timing.h"
 
 namespace meshreuse {
 
@@ -31,10 +32,6 @@ void CheckDistRefineConfig(const DistRefineConfig& cfg) {
 }
 
 namespace {
-
-double Since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
 
 int64_t BoundaryVertices(const std::vector<uint8_t>& b) {
   return std::count(b.begin(), b.end(), uint8_t{1});

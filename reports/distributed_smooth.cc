@@ -25,6 +25,7 @@
 #include "core/vtu_io.h"
 #include "reports/inputs.h"
 #include "reports/shared_mesh_file.h"
+#include "reports/timing.h"
 
 namespace meshreuse {
 
@@ -96,10 +97,6 @@ class Unpacker {
   const std::string& b_;
   size_t at_ = 0;
 };
-
-double Since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
 
 // The smoothed mesh file written by every rank (mesh_file.h): a copy of the input in P byte
 // ranges, each rank's owned coordinates over it, each rank's share of the coordinate blocks

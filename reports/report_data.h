@@ -89,9 +89,6 @@ double Mean(const std::vector<double>& v);  // of the finite values, NaN when no
 double LastSweepMisses(const OrderingValidation& v, size_t level, LevelStats* sum,
                        uint64_t* line_accesses);
 
-inline void Append(std::vector<std::string>* row, const std::vector<std::string>& more) {
-  row->insert(row->end(), more.begin(), more.end());
-}
 // "faster", "slower", "not distinguishable" for a speedup (a gain with `gain`); "" when unknown.
 std::string VerdictCell(const Spread& s, bool gain = false);
 

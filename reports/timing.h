@@ -9,6 +9,7 @@
 // bound makes the run "busy", said on stderr, in run.json and at the top of a results README.
 #pragma once
 
+#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <functional>
@@ -25,6 +26,11 @@ struct Spread {
   // Half the interval's width relative to the median (0.02: +-2%); NaN when unknown.
   double RelativeHalfWidth() const { return (hi - lo) / 2 / std::fabs(median); }
 };
+
+// Wall seconds from t0 to now, on the steady clock.
+inline double Since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
 
 // Median, min, max of `v` and the bootstrap interval of the median.
 Spread SpreadOf(const std::vector<double>& v, uint64_t seed);

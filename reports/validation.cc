@@ -25,11 +25,7 @@ namespace meshreuse {
 
 namespace {
 
-std::string Cap(uint64_t c, double scale = 1.0) {
-  if (c == kInfiniteCapacity) return "inf";
-  return scale == 1.0 ? std::to_string(c) : Fixed(static_cast<double>(c) * scale, 2);
-}
-std::string Ratio(double a, double b) { return b > 0 ? ExactNumber(a / b) : ""; }
+std::string RatioCell(double a, double b) { return b > 0 ? ExactNumber(a / b) : ""; }
 
 }  // namespace
 
@@ -188,8 +184,8 @@ Table ValidationTable(const std::vector<OrderingValidation>& r) {
                 std::to_string(l.model_element), std::to_string(l.model_line),
                 std::to_string(s.misses), std::to_string(s.cold), std::to_string(s.misses - s.cold),
                 l.measured ? Fixed(l.counter, 0) : "",
-                Ratio(static_cast<double>(l.model_line), static_cast<double>(s.misses)),
-                l.measured ? Ratio(static_cast<double>(s.misses), l.counter) : "",
+                RatioCell(static_cast<double>(l.model_line), static_cast<double>(s.misses)),
+                l.measured ? RatioCell(static_cast<double>(s.misses), l.counter) : "",
                 ExactNumber(s.MissRate()),
                 v.line_accesses ? ExactNumber(static_cast<double>(s.misses) / v.line_accesses) : "",
                 l.measured ? "measured" : "simulated", std::to_string(l.floor),
@@ -236,10 +232,11 @@ Table Table3(const std::vector<OrderingValidation>& r) {
       row.push_back(Fixed(static_cast<double>(l.table3_misses) / 1e3 / v.iterations, 2));
     if (n == 3)
       for (int i = 0; i < 3; ++i) row.push_back(has_paper ? Fixed((*pt)[i], 2) : "");
-    for (const LevelValidation& l : v.levels) row.push_back(Cap(l.capacity_elements, 1e-3));
+    for (const LevelValidation& l : v.levels)
+      row.push_back(CapacityCell(l.capacity_elements, 1e-3));
     if (n == 3)
       for (int i = 3; i < 6; ++i) row.push_back(has_paper ? Fixed((*pt)[i], 2) : "");
-    for (const LevelValidation& l : v.levels) row.push_back(Cap(l.capacity_lines));
+    for (const LevelValidation& l : v.levels) row.push_back(CapacityCell(l.capacity_lines));
     t.AddRow(row);
   }
   return t;

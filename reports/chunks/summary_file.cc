@@ -34,8 +34,13 @@ uint64_t Checksum(const char* p, size_t n) {
   return Mix64(h ^ w ^ (n - i));
 }
 
+}  // namespace
+
 // Checksum over bytes that arrive in pieces: equal to Checksum of their concatenation (`n`, the
-// total, is known before the first piece: the header announces it).
+// total, is known before the first piece: the header announces it). Not in the anonymous
+// namespace: SummaryHasher::State holds one (GCC warns of a class with external linkage holding a
+// file-local type where the file is included, as a unity build includes it).
+namespace summary_file_detail {
 class ChecksumStream {
  public:
   explicit ChecksumStream(uint64_t n) : h_(0x9E3779B97F4A7C15ull ^ n) {}
@@ -68,6 +73,11 @@ class ChecksumStream {
   char buf_[8] = {};
   size_t held_ = 0;
 };
+}  // namespace summary_file_detail
+
+using summary_file_detail::ChecksumStream;
+
+namespace {
 
 // Serialises into a sink through a 64 KiB buffer (arrays go straight through), so a summary is
 // encoded without a second copy of it in memory.
