@@ -24,8 +24,6 @@ namespace meshreuse {
 
 namespace {
 
-constexpr int kMaxCols = 64;
-
 class GmshReader {
  public:
   explicit GmshReader(const std::string& path) : f_(path, '\0') {

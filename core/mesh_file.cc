@@ -40,7 +40,7 @@ void Layout(int64_t v, int64_t t, int64_t* off) {
   off[MeshFile::kSections] = off[MeshFile::kTri] + Pad8(12 * t);
 }
 
-int64_t Blocks(int64_t data_end) {
+int64_t BlockCount(int64_t data_end) {
   return (data_end - kMeshFileHeader + kMeshFileBlock - 1) / kMeshFileBlock;
 }
 int64_t Pages(int64_t blocks) { return (blocks + kMeshFilePage - 1) / kMeshFilePage; }
@@ -147,7 +147,7 @@ uint64_t FinishMeshFile(const std::string& path, const std::vector<uint64_t>& ha
   int64_t v, t, off[MeshFile::kSections + 1];
   Sizes(f.fd, path, &v, &t);
   Layout(v, t, off);
-  const int64_t end = off[MeshFile::kSections], blocks = Blocks(end);
+  const int64_t end = off[MeshFile::kSections], blocks = BlockCount(end);
   if (static_cast<int64_t>(hashes.size()) > blocks)
     throw std::logic_error("FinishMeshFile: more hashes than blocks");
   PwriteFully(f.fd, reinterpret_cast<const char*>(hashes.data()),
@@ -175,7 +175,7 @@ uint64_t FinishMeshFile(const std::string& path, const std::vector<uint64_t>& ha
 int64_t MeshFileBlocks(int64_t vertices, int64_t triangles) {
   int64_t off[MeshFile::kSections + 1];
   Layout(vertices, triangles, off);
-  return Blocks(off[MeshFile::kSections]);
+  return BlockCount(off[MeshFile::kSections]);
 }
 
 void CreateMeshFile(const std::string& path, int64_t v, int64_t t) {
@@ -183,7 +183,7 @@ void CreateMeshFile(const std::string& path, int64_t v, int64_t t) {
     throw std::logic_error("CreateMeshFile: sizes out of range");
   int64_t off[MeshFile::kSections + 1];
   Layout(v, t, off);
-  const int64_t end = off[MeshFile::kSections], blocks = Blocks(end);
+  const int64_t end = off[MeshFile::kSections], blocks = BlockCount(end);
   OpenFd f(path, O_WRONLY);
   if (::ftruncate(f.fd, 0) != 0 || ::ftruncate(f.fd, end + 8 * blocks + 8 * Pages(blocks)) != 0)
     throw EnvironmentError(path, std::string("cannot size: ") + std::strerror(errno));
@@ -231,7 +231,7 @@ std::string RehashMeshFile(std::string b) {
   if (v < 1 || v > kMaxId || t < 1 || t > kMaxId / 3) return b;
   int64_t off[MeshFile::kSections + 1];
   Layout(v, t, off);
-  const int64_t end = off[MeshFile::kSections], blocks = Blocks(end);
+  const int64_t end = off[MeshFile::kSections], blocks = BlockCount(end);
   if (static_cast<int64_t>(b.size()) != end + 8 * blocks + 8 * Pages(blocks)) return b;
   std::vector<uint64_t> table;
   for (int64_t a = kMeshFileHeader; a < end; a += kMeshFileBlock)
@@ -376,7 +376,7 @@ MeshFile::MeshFile(const std::string& path) : path_(path) {
     if (h[i] != 0) Fail(i, "a reserved header byte is not zero");
   Layout(vertices_, triangles_, offset_);
   data_end_ = offset_[kSections];
-  blocks_ = Blocks(data_end_);
+  blocks_ = BlockCount(data_end_);
   const int64_t pages = Pages(blocks_);
   const int64_t expected = data_end_ + 8 * blocks_ + 8 * pages;
   if (file_bytes_ != expected)

@@ -25,9 +25,9 @@ bool EndsWith(const std::string& s, const std::string& suffix) {
          s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
 }
 
-bool Exists(const std::string& p) { return ::access(p.c_str(), F_OK) == 0; }
-
 }  // namespace
+
+bool FileExists(const std::string& p) { return ::access(p.c_str(), F_OK) == 0; }
 
 RawMesh ReadRawMesh(const std::string& path) {
   if (EndsWith(path, ".msh")) return ReadGmsh(path);
@@ -36,9 +36,9 @@ RawMesh ReadRawMesh(const std::string& path) {
     return ReadTriangleFiles(path, path.substr(0, path.size() - 5) + ".ele");
   if (EndsWith(path, ".ele"))
     return ReadTriangleFiles(path.substr(0, path.size() - 4) + ".node", path);
-  if (Exists(path + ".node") || Exists(path + ".ele"))
+  if (FileExists(path + ".node") || FileExists(path + ".ele"))
     return ReadTriangleFiles(path + ".node", path + ".ele");
-  if (!Exists(path)) throw InputError(path, 0, "cannot open: No such file or directory");
+  if (!FileExists(path)) throw InputError(path, 0, "cannot open: No such file or directory");
   throw InputError(path, 0,
                    "cannot tell the mesh format: expected FILE.msh, FILE.node, FILE.ele or a "
                    "prefix P with P.node and P.ele");
@@ -172,7 +172,7 @@ std::vector<std::string> InputFiles(const std::vector<std::string>& inputs) {
     else if (EndsWith(p, ".ele"))
       prefix = p.substr(0, p.size() - 4);
     else if (!EndsWith(p, ".msh") && !EndsWith(p, ".mrm") &&
-             (Exists(p + ".node") || Exists(p + ".ele")))
+             (FileExists(p + ".node") || FileExists(p + ".ele")))
       prefix = p;
     if (prefix.empty()) {
       out.push_back(p);

@@ -25,6 +25,7 @@ RawMesh ReadGmshBinary(const std::string& msh_path);  // 4.1 binary; ReadGmsh pi
 // Picks the reader from the path: FILE.msh; FILE.mrm (mesh_file.h); FILE.node or FILE.ele (the
 // other one beside it); or a prefix P with P.node and P.ele.
 RawMesh ReadRawMesh(const std::string& path);
+bool FileExists(const std::string& path);  // whether `path` names anything (access F_OK)
 
 // Read + BuildMesh. Reader and builder warnings (skipped elements, dropped vertices) go to
 // `warnings` when given.

@@ -59,6 +59,9 @@ class TextFile {
   std::string pair_mark_;
 };
 
+// The most tokens a line of the text mesh formats is split into (their readers' limit).
+inline constexpr int kMaxCols = 64;
+
 // Splits a line on blanks (spaces, tabs, carriage returns).
 class Tokens {
  public:

@@ -23,8 +23,6 @@ namespace meshreuse {
 
 namespace {
 
-constexpr int kMaxCols = 64;
-
 struct Header {
   int64_t v[4];
   int n;

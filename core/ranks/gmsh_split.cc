@@ -34,8 +34,6 @@ bool SplitName(const std::string& path, std::string* prefix, int64_t* k) {
   return true;
 }
 
-bool Exists(const std::string& p) { return ::access(p.c_str(), F_OK) == 0; }
-
 // The number after "$PartitionedEntities" in an ASCII file (-1: no such section in the file's
 // first 16 MiB, where Gmsh writes it before the nodes, or a binary file, whose parts are then
 // counted by their files alone). Reads at most 16 MiB whatever the file.
@@ -66,7 +64,7 @@ int64_t DeclaredParts(const std::string& path) {
 bool IsGmshSplitPath(const std::string& path) {
   std::string prefix;
   int64_t k = 0;
-  return SplitName(path, &prefix, &k) && Exists(prefix + "1.msh");
+  return SplitName(path, &prefix, &k) && FileExists(prefix + "1.msh");
 }
 
 GmshSplit ReadGmshSplit(const std::string& path) {
@@ -83,19 +81,19 @@ GmshSplit ReadGmshSplit(const std::string& path) {
   if (declared >= 1) {
     for (int64_t i = 1; i <= declared; ++i) {
       const std::string f = prefix + std::to_string(i) + ".msh";
-      if (!Exists(f))
+      if (!FileExists(f))
         throw InputError(f, 0,
                          "cannot open: part " + std::to_string(i) + " of the " +
                              std::to_string(declared) + " that " + path +
                              " declares ($PartitionedEntities) is missing");
       s.files.push_back(f);
     }
-    for (int64_t i = declared + 1; Exists(prefix + std::to_string(i) + ".msh"); ++i)
+    for (int64_t i = declared + 1; FileExists(prefix + std::to_string(i) + ".msh"); ++i)
       s.raw.warnings.push_back(prefix + std::to_string(i) + ".msh: left out: " + path +
                                " declares " + std::to_string(declared) +
                                " parts (a file of an older split?)");
   } else {
-    for (int64_t i = 1; Exists(prefix + std::to_string(i) + ".msh"); ++i) {
+    for (int64_t i = 1; FileExists(prefix + std::to_string(i) + ".msh"); ++i) {
       if (i > INT32_MAX) throw InputError(path, 0, "too many part files");
       s.files.push_back(prefix + std::to_string(i) + ".msh");
     }
