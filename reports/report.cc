@@ -54,31 +54,57 @@ bool Contains(const std::vector<std::string>& v, const std::string& x) {
 }
 
 // Progress with the elapsed time and an estimate of what remains, from work units done so far.
-// Units: file bytes x sweeps, each sweep weighted by its cost relative to a timed sweep, measured
-// on the nine meshes and at 10^7 vertices: a traced sweep into the analyzer costs 12-20 timed
-// sweeps, into the analyzer and the simulator 70-130; a run to convergence takes about 65 sweeps.
+// Units: file bytes x the wall seconds a kind of work takes, in timed sweeps of the same mesh
+// (one core). The CPU costs, from the full run's phases (the nine paper meshes, the 2-core Xeon
+// VM, 2026-12-05: a timed sweep 11 ms on carabiner): a reuse-distance job (one traced sweep into
+// the exact stack, the layout, the stream) 36 sweeps, each profile sweep 22; Table 3's simulation
+// 100 a traced sweep; a many-core simulation 45 a sweep and placement; a kernel's simulated run
+// 50 a traced sweep; a kernel's timed sweep 3 (its set-up, copy and layout included); a timed run
+// of the Laplacian to convergence 95 (65 sweeps, its warm-up, ordering and layout, and a second
+// thread's sweep worth more than half). The jobs that run side by side count their CPU over the
+// host's cores. (Before, the estimate counted the kernels' timed sweeps 30 each and the timed
+// runs 65 sweeps: in the first minutes of that full run it said 11 to 28 minutes were left of 9.)
 class Steps {
  public:
-  static constexpr double kAnalysis = 15, kSimulation = 100, kSweepsToConverge = 65, kMachine = 60,
-                          kKernel = 30;
+  static constexpr double kFirstSweep = 36, kProfileSweep = 22, kSimulation = 100, kMachine = 45,
+                          kKernelTraced = 50, kKernelSweep = 3, kTimedRun = 95;
   Steps(const Log& log, const ReportConfig& cfg, const std::vector<ReportMesh>& meshes)
-      : log_(log), t0_(Clock::now()) {
-    double p_sum = 0;
-    for (int p : cfg.threads) p_sum += 1.0 / p;
+      : log_(log), cfg_(cfg), t0_(Clock::now()), cores_(std::max(1, omp_get_max_threads())) {
     const double no = static_cast<double>(cfg.orderings.size());
     for (const ReportMesh& m : meshes) {
-      total_ += m.weight * no * (kAnalysis + kSimulation * cfg.validate_sweeps);
-      if (m.name == cfg.profile_mesh) total_ += m.weight * no * kAnalysis * cfg.profile_sweeps;
+      total_ += no * (Reuse(m) + Table3(m));
+      if (m.name == cfg.profile_mesh) total_ += no * Profile(m);
       if (m.name == cfg.figure1_mesh)
         for (const std::string& o : cfg.figure1_orderings)
-          if (!Contains(cfg.orderings, o)) total_ += m.weight * kAnalysis;
-      if (cfg.timing) total_ += m.weight * no * cfg.repeat * kSweepsToConverge * p_sum;
-      total_ += KernelUnits(cfg, m);
+          if (!Contains(cfg.orderings, o)) total_ += Reuse(m);
+      if (cfg.timing) total_ += Timed(m);
+      total_ += Kernels(m);
       if (!cfg.machine.empty())
         for (int p : cfg.machine_threads)
-          total_ += m.weight * no * kMachine * cfg.machine_sweeps *
-                    (p > 1 ? 2 : (cfg.prefetch_levels.empty() ? 1 : 2));
+          total_ += no * Machine(m, p > 1 ? 2 : (cfg.prefetch_levels.empty() ? 1 : 2));
     }
+  }
+  // The units of each kind of work on mesh m (an ordering's, where it is done per ordering).
+  double Reuse(const ReportMesh& m) const { return m.weight * kFirstSweep / cores_; }
+  double Profile(const ReportMesh& m) const {
+    return m.weight * kProfileSweep * cfg_.profile_sweeps / cores_;
+  }
+  double Table3(const ReportMesh& m) const {
+    return m.weight * kSimulation * cfg_.validate_sweeps / cores_;
+  }
+  double Machine(const ReportMesh& m, size_t simulations) const {
+    return m.weight * kMachine * cfg_.machine_sweeps * static_cast<double>(simulations) / cores_;
+  }
+  double Timed(const ReportMesh& m) const {  // every ordering on every thread count
+    double p_sum = 0;
+    for (int p : cfg_.threads) p_sum += 1.0 / p;
+    return m.weight * static_cast<double>(cfg_.orderings.size()) * cfg_.repeat * kTimedRun * p_sum;
+  }
+  double Kernels(const ReportMesh& m) const {  // the kernels part: simulated and timed
+    return m.weight * static_cast<double>(cfg_.kernels.size()) *
+           static_cast<double>(cfg_.kernel_orderings.size()) *
+           (cfg_.validate_sweeps * kKernelTraced / cores_ +
+            (cfg_.timing ? (cfg_.repeat + 1) * cfg_.kernel_sweeps * kKernelSweep : 0));
   }
   // Say and Done may be called from the jobs that run side by side.
   void Say(const std::string& what) const {
@@ -93,17 +119,12 @@ class Steps {
     const std::lock_guard<std::mutex> hold(lock_);
     done_ += units;
   }
-  // The kernels part of one mesh: its simulated and its timed sweeps.
-  static double KernelUnits(const ReportConfig& cfg, const ReportMesh& m) {
-    return m.weight * kKernel * static_cast<double>(cfg.kernels.size()) *
-           static_cast<double>(cfg.kernel_orderings.size()) *
-           (cfg.validate_sweeps * kSimulation / kKernel +
-            (cfg.timing ? (cfg.repeat + 1) * cfg.kernel_sweeps : 0));
-  }
 
  private:
   const Log& log_;
+  const ReportConfig& cfg_;
   Clock::time_point t0_;
+  double cores_;
   double total_ = 0, done_ = 0;
   mutable std::mutex lock_;
 };
@@ -177,7 +198,7 @@ void MeasureReuse(const ReportConfig& cfg, const ReportMesh& mr, const Mesh& bas
   std::vector<uint32_t> series;
   FirstSweepConsumer first(mr.vertices, in_fig1 ? &series : nullptr);
   StreamMesh(m, ExactSweeps(1), mr.name, label, first);
-  steps.Done(mr.weight * Steps::kAnalysis);
+  steps.Done(steps.Reuse(mr));
   if (in_fig1) d->fig1.push_back(BinFigure1(label, first.hist(), series, mr.vertices, cfg));
   if (profile) {
     steps.Say("reuse-distance profile: " + mr.name + " " + label + ", " +
@@ -187,7 +208,7 @@ void MeasureReuse(const ReportConfig& cfg, const ReportMesh& mr, const Mesh& bas
     ReuseAnalysis a(o);
     StreamMesh(start, ExactSweeps(cfg.profile_sweeps), mr.name, label, a);
     a.AppendProfileRows(&d->profile);
-    steps.Done(mr.weight * Steps::kAnalysis * cfg.profile_sweeps);
+    steps.Done(steps.Profile(mr));
   }
   if (in_tables) {
     first.hist().AppendRows(&d->histogram, {mr.name, label, "0", "element"});
@@ -286,8 +307,7 @@ void MachineJobs(const ReportConfig& cfg, const ReportMesh& mr, const ReportData
                            r.push_back(CollectMachineRun(scatter, mr.name, label, false));
                          if (threads == 1 && !cfg.prefetch_levels.empty())
                            r.push_back(CollectMachineRun(pre, mr.name, label, true));
-                         steps.Done(mr.weight * Steps::kMachine * cfg.machine_sweeps *
-                                    static_cast<double>(to.size()));
+                         steps.Done(steps.Machine(mr, to.size()));
                        }});
     }
 }
@@ -357,7 +377,7 @@ void MeasureMesh(const ReportConfig& cfg, ReportMesh& mr, ReportData* d, Steps& 
                         vs[0].ordering = d->orderings[k];
                         if (!counting && !cfg.counter_events.empty()) vs[0].counters = "simulated";
                         validation[k] = std::move(vs[0]);
-                        steps.Done(mr.weight * Steps::kSimulation * cfg.validate_sweeps);
+                        steps.Done(steps.Table3(mr));
                       }});
   steps.Say("misses (Table 3): " + mr.name + ", " + std::to_string(cfg.orderings.size()) +
             " orderings x " + std::to_string(cfg.validate_sweeps) + " traced sweeps" +
@@ -410,8 +430,6 @@ void MeasureTiming(const ReportConfig& cfg, ReportData* d, Steps& steps) {
   CompareConfig cc;
   static_cast<TimingOptions&>(cc) = cfg;
   cc.seed = cfg.seed;
-  double p_sum = 0;
-  for (int p : cfg.threads) p_sum += 1.0 / p;
   for (size_t mi = 0; mi < d->meshes.size(); ++mi) {
     const ReportMesh& m = d->meshes[mi];
     cc.meshes = {m.path};
@@ -432,8 +450,7 @@ void MeasureTiming(const ReportConfig& cfg, ReportData* d, Steps& steps) {
       if (k < d->orderings.size()) r.ordering = d->orderings[k];
       d->timing.push_back(std::move(r));
     }
-    steps.Done(m.weight * static_cast<double>(cfg.orderings.size()) * cfg.repeat *
-               Steps::kSweepsToConverge * p_sum);
+    steps.Done(steps.Timed(m));
   }
   const ReportMesh* fig1 = d->Mesh(cfg.figure1_mesh);
   std::vector<std::string> extra;
@@ -615,7 +632,7 @@ std::string RunReport(const ReportConfig& in_cfg, const std::string& out_dir, co
       const Mesh base = LoadMesh(m.path, log);
       MeasureKernels(
           kc, m.name, base, &d.kernels, [&](const std::string& s) { steps.Say(s); }, &phases);
-      steps.Done(Steps::KernelUnits(cfg, m));
+      steps.Done(steps.Kernels(m));
     }
   }
 
