@@ -58,16 +58,20 @@ bool Contains(const std::vector<std::string>& v, const std::string& x) {
 // (one core). The CPU costs, from the full run's phases (the nine paper meshes, the 2-core Xeon
 // VM, 2026-12-05: a timed sweep 11 ms on carabiner): a reuse-distance job (one traced sweep into
 // the exact stack, the layout, the stream) 36 sweeps, each profile sweep 22; Table 3's simulation
-// 100 a traced sweep; a many-core simulation 45 a sweep and placement; a kernel's simulated run
+// 100 a traced sweep; a many-core simulation 34 + 0.66 p a sweep and placement at p threads (more
+// caches to keep coherent: a job took 1.5 CPU seconds at one thread, with the prefetcher's
+// simulation beside the compact one, and 2.4 at 32, on carabiner); a kernel's simulated run
 // 50 a traced sweep; a kernel's timed sweep 3 (its set-up, copy and layout included); a timed run
 // of the Laplacian to convergence 95 (65 sweeps, its warm-up, ordering and layout, and a second
 // thread's sweep worth more than half). The jobs that run side by side count their CPU over the
-// host's cores. (Before, the estimate counted the kernels' timed sweeps 30 each and the timed
-// runs 65 sweeps: in the first minutes of that full run it said 11 to 28 minutes were left of 9.)
+// host's cores. The same units order the pool's jobs, the costliest first. (Before, the estimate
+// counted the kernels' timed sweeps 30 each and the timed runs 65 sweeps: in the first minutes of
+// that full run it said 11 to 28 minutes were left of 9.)
 class Steps {
  public:
-  static constexpr double kFirstSweep = 36, kProfileSweep = 22, kSimulation = 100, kMachine = 45,
-                          kKernelTraced = 50, kKernelSweep = 3, kTimedRun = 95;
+  static constexpr double kFirstSweep = 36, kProfileSweep = 22, kSimulation = 100, kMachine = 34,
+                          kMachinePerThread = 0.66, kKernelTraced = 50, kKernelSweep = 3,
+                          kTimedRun = 95;
   Steps(const Log& log, const ReportConfig& cfg, const std::vector<ReportMesh>& meshes)
       : log_(log), cfg_(cfg), t0_(Clock::now()), cores_(std::max(1, omp_get_max_threads())) {
     const double no = static_cast<double>(cfg.orderings.size());
@@ -80,8 +84,7 @@ class Steps {
       if (cfg.timing) total_ += Timed(m);
       total_ += Kernels(m);
       if (!cfg.machine.empty())
-        for (int p : cfg.machine_threads)
-          total_ += no * Machine(m, p > 1 ? 2 : (cfg.prefetch_levels.empty() ? 1 : 2));
+        for (int p : cfg.machine_threads) total_ += no * Machine(m, p);
     }
   }
   // The units of each kind of work on mesh m (an ordering's, where it is done per ordering).
@@ -92,8 +95,14 @@ class Steps {
   double Table3(const ReportMesh& m) const {
     return m.weight * kSimulation * cfg_.validate_sweeps / cores_;
   }
-  double Machine(const ReportMesh& m, size_t simulations) const {
-    return m.weight * kMachine * cfg_.machine_sweeps * static_cast<double>(simulations) / cores_;
+  // A many-core job at p threads: both placements, at one thread the compact one and the
+  // prefetcher's (where it has levels).
+  static size_t MachineSimulations(const ReportConfig& cfg, int p) {
+    return p > 1 || !cfg.prefetch_levels.empty() ? 2 : 1;
+  }
+  double Machine(const ReportMesh& m, int p) const {
+    return m.weight * (kMachine + kMachinePerThread * p) * cfg_.machine_sweeps *
+           static_cast<double>(MachineSimulations(cfg_, p)) / cores_;
   }
   double Timed(const ReportMesh& m) const {  // every ordering on every thread count
     double p_sum = 0;
@@ -217,7 +226,7 @@ void MeasureReuse(const ReportConfig& cfg, const ReportMesh& mr, const Mesh& bas
 }
 
 // One of a mesh's simulation jobs, run side by side with the others on the host's cores; `cost`
-// orders them (the longest first, so that the last to finish is a short one).
+// (its Steps units) orders them (the longest first, so that the last to finish is a short one).
 struct Job {
   double cost;
   std::function<void()> run;
@@ -278,11 +287,8 @@ void MachineJobs(const ReportConfig& cfg, const ReportMesh& mr, const ReportData
   for (size_t k = 0; k < laid.size(); ++k)
     for (int j = 0; j < counts; ++j) {
       const int threads = cfg.machine_threads[j];
-      // CPU seconds a job took on the full run's meshes, 1.5 at one thread (with the
-      // prefetcher's third simulation) to 2.4 at 32: more caches to keep coherent.
-      const double cost = 1.5 + 0.027 * threads;
-      jobs->push_back({cost, [&cfg, &mr, &d, &laid, &steps, runs, phases, k, j, counts, threads,
-                              machine, prefetching] {
+      jobs->push_back({steps.Machine(mr, threads), [&cfg, &mr, &d, &laid, &steps, runs, phases, k,
+                                                    j, counts, threads, machine, prefetching] {
                          const JobTime time(phases, "many-core simulation, " +
                                                         std::to_string(threads) + " thread(s)");
                          const std::string& label = d.orderings[k];
@@ -307,7 +313,7 @@ void MachineJobs(const ReportConfig& cfg, const ReportMesh& mr, const ReportData
                            r.push_back(CollectMachineRun(scatter, mr.name, label, false));
                          if (threads == 1 && !cfg.prefetch_levels.empty())
                            r.push_back(CollectMachineRun(pre, mr.name, label, true));
-                         steps.Done(steps.Machine(mr, to.size()));
+                         steps.Done(steps.Machine(mr, threads));
                        }});
     }
 }
@@ -342,9 +348,7 @@ void MeasureMesh(const ReportConfig& cfg, ReportMesh& mr, ReportData* d, Steps& 
   std::vector<ReusePart> reuse(specs.size());
   for (size_t i = 0; i < specs.size(); ++i) {
     const bool profile = mr.name == cfg.profile_mesh && Contains(cfg.orderings, specs[i]);
-    // CPU seconds: 2.3 a job with the profile's eight sweeps, 0.4 without (carabiner, the full
-    // run's reuse distances).
-    jobs.push_back({profile ? 2.3 : 0.4, [&, i] {
+    jobs.push_back({steps.Reuse(mr) + (profile ? steps.Profile(mr) : 0), [&, i] {
                       const JobTime time(phases, "reuse distances (Table 2, Figure 1, profiles)");
                       const bool in_tables = Contains(cfg.orderings, specs[i]);
                       MeasureReuse(cfg, mr, base, specs[i], ParseOrderingSpec(specs[i]).label,
@@ -368,7 +372,7 @@ void MeasureMesh(const ReportConfig& cfg, ReportMesh& mr, ReportData* d, Steps& 
   std::vector<OrderingValidation> validation(cfg.orderings.size());
   std::vector<Job> table3;
   for (size_t k = 0; k < cfg.orderings.size(); ++k)
-    table3.push_back({2.2, [&, k] {
+    table3.push_back({steps.Table3(mr), [&, k] {
                         const JobTime time(phases, "misses (Table 3: the simulator, the model)");
                         ValidationConfig one = vc;
                         one.orderings = {ForMesh(cfg.orderings[k], mr.name)};
