@@ -1,9 +1,8 @@
 // LineQuantiles; see line_quantiles.h.
 #include "analysis/line_quantiles.h"
 
-#include <algorithm>
+#include <cstring>
 #include <stdexcept>
-#include <utility>
 
 #if defined(__SSE2__)
 #include <emmintrin.h>
@@ -20,7 +19,9 @@ LineQuantiles::LineQuantiles(uint32_t line_bytes, uint32_t depth)
   if (depth < 1 || depth > 4096)
     throw std::invalid_argument("LineQuantiles: depth must be 1..4096");
   shift_ = __builtin_ctz(line_bytes);
-  slots_ = (depth + 3) / 4 * 4;
+  slots_ = (depth + 15) / 16 * 16;  // vectors of 16 byte ranks
+  wide_ = slots_ > 128;             // ranks up to 127 in a signed byte
+  if (wide_) slots_ = (depth + 7) / 8 * 8;
 }
 
 void LineQuantiles::Begin(const StreamInfo& info) {
@@ -30,87 +31,59 @@ void LineQuantiles::Begin(const StreamInfo& info) {
 
 LineQuantiles::Stream& LineQuantiles::At(size_t t) {
   if (t >= streams_.size()) streams_.resize(t + 1);
-  if (!streams_[t]) streams_[t] = std::make_unique<Stream>(canonical_, line_bytes_, slots_);
+  if (!streams_[t]) {
+    streams_[t] =
+        std::make_unique<Stream>(canonical_, line_bytes_, slots_, wide_ ? sizeof(int16_t) : 1);
+    uint8_t* rank = streams_[t]->rank.data();
+    for (uint32_t j = 0; j < slots_; ++j) {  // the empty slots ranked in order
+      const int16_t r16 = static_cast<int16_t>(j);
+      const int8_t r8 = static_cast<int8_t>(j);
+      if (wide_)
+        std::memcpy(rank + 2 * j, &r16, 2);
+      else
+        std::memcpy(rank + j, &r8, 1);
+    }
+  }
   return *streams_[t];
 }
 
 namespace {
 
-// How many of stamp[0..n) (n a multiple of 4) exceed x.
-inline uint32_t CountAbove(const int32_t* stamp, uint32_t n, int32_t x) {
+// The LRU update of the ranks rank[0..slots) (a multiple of the vector's lanes) for the slot of
+// rank r: every rank below r one more, rank r 0. kFind: returns the slot whose rank was r
+// (otherwise 0).
+template <class R, bool kFind>
+inline uint32_t Promote(uint8_t* rank, uint32_t slots, R r) {
+  uint32_t found = 0;
 #if defined(__SSE2__)
-  const __m128i k = _mm_set1_epi32(x);
-  auto above = [&](uint32_t i) {  // a true compare is -1 in its lane
-    return _mm_cmpgt_epi32(_mm_loadu_si128(reinterpret_cast<const __m128i*>(stamp + i)), k);
-  };
-  __m128i acc = _mm_setzero_si128(), acc2 = _mm_setzero_si128();  // two chains
-  uint32_t i = 0;
-  for (; i + 8 <= n; i += 8)
-    acc = _mm_sub_epi32(acc, above(i)), acc2 = _mm_sub_epi32(acc2, above(i + 4));
-  if (i < n) acc = _mm_sub_epi32(acc, above(i));
-  acc = _mm_add_epi32(acc, acc2);
-  acc = _mm_add_epi32(acc, _mm_shuffle_epi32(acc, _MM_SHUFFLE(1, 0, 3, 2)));
-  acc = _mm_add_epi32(acc, _mm_shuffle_epi32(acc, _MM_SHUFFLE(2, 3, 0, 1)));
-  return static_cast<uint32_t>(_mm_cvtsi128_si32(acc));
+  constexpr bool k8 = sizeof(R) == 1;
+  constexpr uint32_t kLanes = 16 / sizeof(R);
+  const __m128i x = k8 ? _mm_set1_epi8(static_cast<char>(r)) : _mm_set1_epi16(r);
+  for (uint32_t i = 0; i < slots; i += kLanes) {
+    __m128i* p = reinterpret_cast<__m128i*>(rank + i * sizeof(R));
+    const __m128i v = _mm_load_si128(p);
+    const __m128i eq = k8 ? _mm_cmpeq_epi8(v, x) : _mm_cmpeq_epi16(v, x);
+    const __m128i lt = k8 ? _mm_cmplt_epi8(v, x) : _mm_cmplt_epi16(v, x);  // -1 where below
+    _mm_store_si128(p, _mm_andnot_si128(eq, k8 ? _mm_sub_epi8(v, lt) : _mm_sub_epi16(v, lt)));
+    if constexpr (kFind)
+      if (const int m = _mm_movemask_epi8(eq))
+        found = i + static_cast<uint32_t>(__builtin_ctz(static_cast<unsigned>(m))) / sizeof(R);
+  }
 #else
-  uint32_t c = 0;
-  for (uint32_t i = 0; i < n; ++i) c += stamp[i] > x;
-  return c;
+  for (uint32_t j = 0; j < slots; ++j) {
+    R v;
+    std::memcpy(&v, rank + j * sizeof(R), sizeof(R));
+    if (v == r) found = j;
+    v = v == r ? R(0) : static_cast<R>(v < r ? v + 1 : v);
+    std::memcpy(rank + j * sizeof(R), &v, sizeof(R));
+  }
 #endif
-}
-
-// The slot of the smallest stamp (the first of equals: an empty slot while one is left).
-inline uint32_t Oldest(const int32_t* stamp, uint32_t n) {
-#if defined(__SSE2__)
-  auto min = [](__m128i a, __m128i b) {
-    const __m128i lt = _mm_cmplt_epi32(a, b);
-    return _mm_or_si128(_mm_and_si128(lt, a), _mm_andnot_si128(lt, b));
-  };
-  auto at = [&](uint32_t i) {
-    return _mm_loadu_si128(reinterpret_cast<const __m128i*>(stamp + i));
-  };
-  __m128i m = at(0);
-  for (uint32_t i = 4; i < n; i += 4) m = min(m, at(i));
-  m = min(m, _mm_shuffle_epi32(m, _MM_SHUFFLE(1, 0, 3, 2)));
-  m = min(m, _mm_shuffle_epi32(m, _MM_SHUFFLE(2, 3, 0, 1)));  // every lane the minimum
-  for (uint32_t i = 0;; i += 4)
-    if (const int eq = _mm_movemask_ps(_mm_castsi128_ps(_mm_cmpeq_epi32(at(i), m))))
-      return i + static_cast<uint32_t>(__builtin_ctz(static_cast<unsigned>(eq)));
-#else
-  uint32_t v = 0;
-  for (uint32_t i = 1; i < n; ++i) v = stamp[i] < stamp[v] ? i : v;
-  return v;
-#endif
-}
-
-// stamp[j] = x, stored as the whole vector of four that holds it (stamp 16-byte aligned): the next
-// access's loads of that vector then take it from the store, where a 4-byte store under a 16-byte
-// load would make the load wait until the store reached the host's cache.
-inline void SetStamp(int32_t* stamp, uint32_t j, int32_t x) {
-#if defined(__SSE2__)
-  __m128i* p = reinterpret_cast<__m128i*>(stamp + (j & ~3u));
-  const __m128i lane =
-      _mm_cmpeq_epi32(_mm_set_epi32(3, 2, 1, 0), _mm_set1_epi32(static_cast<int>(j & 3)));
-  _mm_store_si128(p, _mm_or_si128(_mm_and_si128(lane, _mm_set1_epi32(x)),
-                                  _mm_andnot_si128(lane, _mm_load_si128(p))));
-#else
-  stamp[j] = x;
-#endif
+  return kFind ? found : 0;
 }
 
 }  // namespace
 
-// The stamps renumbered 1.. in their order (empty slots stay 0) when the clock reaches its
-// limit: only their order is ever compared.
-void LineQuantiles::Renumber(Stream& s) const {
-  std::vector<std::pair<int32_t, uint32_t>> order;
-  for (uint32_t j = 0; j < slots_; ++j)
-    if (s.stamp[j] != 0) order.emplace_back(s.stamp[j], j);
-  std::sort(order.begin(), order.end());
-  for (size_t k = 0; k < order.size(); ++k) s.stamp[order[k].second] = static_cast<int32_t>(k + 1);
-  s.clock = static_cast<int32_t>(order.size());
-}
-
+template <class R>
 inline void LineQuantiles::Add(Stream& s, uint64_t line) {
   ++s.accesses;
   if (s.front == line) {  // a repeat, over a third of a kernel's accesses: nothing changes
@@ -118,25 +91,25 @@ inline void LineQuantiles::Add(Stream& s, uint64_t line) {
     return;
   }
   s.front = line;
-  if (__builtin_expect(s.clock >= clock_limit_, 0)) Renumber(s);
-  const int32_t now = ++s.clock;
   uint16_t& m = s.mark.At(line);
-  if (m >= 2) {  // held: its distance is the count of more recent slots
-    const uint32_t j = m - 2u;
-    ++s.below[CountAbove(s.stamp.data(), slots_, s.stamp[j])];
-    SetStamp(s.stamp.data(), j, now);
+  if (m >= 2) {  // held: its distance is its rank
+    R r;
+    std::memcpy(&r, s.rank.data() + (m - 2u) * sizeof(R), sizeof(R));
+    ++s.below[static_cast<uint32_t>(r)];
+    Promote<R, false>(s.rank.data(), slots_, r);
     return;
   }
-  // Not held: cold, or a reuse at slots_ (>= depth) or more. It takes the oldest slot.
+  // Not held: cold, or a reuse at slots_ (>= depth) or more. It takes the slot of the highest
+  // rank.
   if (m == 0) ++s.cold;
-  const uint32_t j = Oldest(s.stamp.data(), slots_);
+  const uint32_t j = Promote<R, true>(s.rank.data(), slots_, static_cast<R>(slots_ - 1));
   m = static_cast<uint16_t>(j + 2);
   if (s.line[j] != kNone) s.mark.At(s.line[j]) = 1;  // (after m: At may move the marks)
   s.line[j] = line;
-  SetStamp(s.stamp.data(), j, now);
 }
 
-void LineQuantiles::Consume(const Access* a, size_t n) {
+template <class R>
+void LineQuantiles::ConsumeAs(const Access* a, size_t n) {
   Stream* s = nullptr;
   int thread = -1;
   for (size_t i = 0; i < n; ++i) {
@@ -144,9 +117,16 @@ void LineQuantiles::Consume(const Access* a, size_t n) {
     if (x.thread != thread) thread = x.thread, s = &At(x.thread);
     const uint64_t first = x.address >> shift_;
     const uint64_t last = (x.address + (x.size ? x.size - 1 : 0)) >> shift_;
-    Add(*s, first);
-    if (last != first) Add(*s, last);
+    Add<R>(*s, first);
+    if (last != first) Add<R>(*s, last);
   }
+}
+
+void LineQuantiles::Consume(const Access* a, size_t n) {
+  if (wide_)
+    ConsumeAs<int16_t>(a, n);
+  else
+    ConsumeAs<int8_t>(a, n);
 }
 
 const LineQuantiles::Stream* LineQuantiles::Find(int t) const {

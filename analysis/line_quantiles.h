@@ -1,26 +1,30 @@
 // Quantiles of each thread stream's line reuse distances (ReuseHistogram::Quantile's definition:
 // the smallest observed d with at least a fraction X of the finite distances <= d) in memory
 // O(depth) a stream plus a mark per line, where they are small: the top lines of the LRU stack
-// (depth rounded up to a multiple of four) in slots that never move, each with the stamp of its
-// last use; a held line's distance is the number of slots of a larger stamp (the distinct lines
-// used since, every one of them held), counted by SIMD compares of all the stamps, and its stamp
-// then becomes the newest; a line not held (its mark says so) is cold or a reuse at distance >=
-// the slots, and takes the slot of the oldest stamp. Quantile X is exact whenever it lies below
-// depth: the finite count is exact, and the distances at or beyond depth come after every one
-// below it. Otherwise the answer is "at least depth", and a caller that needs it runs the whole
-// analysis (ReuseAnalysis). Lines as ReuseAnalysis's: address / line_bytes, an access that
-// straddles two lines touches both.
+// (depth rounded up to whole vectors) in slots that never move, each with its rank, its place in
+// the stack (0 the line used last): the ranks are always a permutation of 0..slots-1, the empty
+// slots the highest. A held line's distance is its rank (the distinct lines used since, every one
+// of them held); using it adds one to every rank below it and makes its own 0, one compare and
+// subtract over all the ranks with SIMD. A line not held (its mark says so) is cold or a reuse at
+// distance >= the slots, and takes the slot of the highest rank (the oldest line, or an empty slot
+// while one is left), the same update. Quantile X is exact whenever it lies below depth: the
+// finite count is exact, and the distances at or beyond depth come after every one below it.
+// Otherwise the answer is "at least depth", and a caller that needs it runs the whole analysis
+// (ReuseAnalysis). Lines as ReuseAnalysis's: address / line_bytes, an access that straddles two
+// lines touches both.
 // Why: the other kernels' table (reports/kernel_runs.h) reads two quantiles of line distances per
 // run, which on the paper's meshes and orderings lie below 32 lines; on lake 36-51% of a
 // kernel's accesses repeat the line on top (nothing changes) and 54-66% are at distance 3 or
 // less. The whole LRU stack (StackDistance) cost about a third of the kernels part's samples
 // (perf), the bounded one (BoundedStackDistance: a hashed position, a Fenwick tree, popcounts) as
-// much; an array of the top lines moved to the front as in a list (the form before: a block of
-// eight compared and shifted at a time) cut the part's simulated share on lake from 14.3 s to
-// 11.8, but was still 27-31% of the kernels part's samples; stamps that never move, compared all
-// at once without a branch on where the line was, took 0.94 of that part's time on lake and on
-// the --quick meshes (reports/docs/kernels.md, "Cost"). A non-canonical stream's marks are a hash
-// table, looked up at every access but a repeat (the report's streams are canonical).
+// much; an array of the top lines moved to the front as in a list cut the part's simulated share
+// on lake from 14.3 s to 11.8; slots that never move with the stamp of their last use (a distance
+// the count of newer stamps, a line not held the slot of the smallest stamp: two passes over 32
+// 32-bit stamps) took 0.94 of that, and were still a quarter of the part's samples. Ranks of a
+// byte (16-bit beyond 128 slots) are one pass over two vectors for 32 slots, with no count to
+// reduce and no clock to renumber (reports/docs/kernels.md, "Cost"). A non-canonical stream's
+// marks are a hash table, looked up at every access but a repeat (the report's streams are
+// canonical).
 #pragma once
 
 #include <cstdint>
@@ -47,34 +51,35 @@ class LineQuantiles : public AccessConsumer {
   std::optional<uint64_t> Quantile(int thread, double x) const;
   uint64_t accesses(int thread) const;  // line accesses of stream t (a straddle counts two)
   uint64_t cold(int thread) const;      // its distinct lines
-  // Tests: renumber a stream's stamps when its clock reaches `limit` (>= 2) instead of 2^31 - 2.
-  void LimitClockForTest(int32_t limit) { clock_limit_ = limit; }
 
  private:
   static constexpr uint64_t kNone = ~uint64_t{0};
   struct Stream {
-    Stream(bool canonical, uint32_t line_bytes, uint32_t slots)
-        : line(slots, kNone), stamp(slots, 0), mark(canonical, line_bytes), below(slots, 0) {}
-    // The stack's top lines, in slots that never move: slot j holds line[j] (kNone: empty),
-    // last used at stamp[j] (the stream's clock then; 0: empty). A held line's distance is the
-    // number of slots of a larger stamp: the distinct lines used since, all of them held.
+    Stream(bool canonical, uint32_t line_bytes, uint32_t slots, size_t rank_bytes)
+        : line(slots, kNone),
+          rank(slots * rank_bytes),
+          mark(canonical, line_bytes),
+          below(slots, 0) {}
+    // The stack's top lines, in slots that never move: slot j holds line[j] (kNone: empty), its
+    // rank the j-th entry of `rank` (int8_t entries, int16_t where wide_; 0..slots-1 at first).
     std::vector<uint64_t> line;
-    AlignedVector<int32_t> stamp;  // aligned: SetStamp stores whole vectors
-    int32_t clock = 0;
-    uint64_t front = kNone;  // the line used last (the largest stamp)
+    AlignedVector<uint8_t> rank;  // aligned: whole vectors are loaded and stored
+    uint64_t front = kNone;       // the line used last (rank 0)
     // Per line: 0 never used, 1 used and not held, j + 2 held in slot j.
     LineMarks<uint16_t> mark;
     std::vector<uint64_t> below;  // accesses at each distance below the slots
     uint64_t accesses = 0, cold = 0;
   };
+  template <class R>
   void Add(Stream& s, uint64_t line);
-  void Renumber(Stream& s) const;
+  template <class R>
+  void ConsumeAs(const Access* a, size_t n);
   Stream& At(size_t t);
   const Stream* Find(int t) const;  // nullptr: no access of stream t yet
 
   uint32_t line_bytes_, depth_;
-  uint32_t slots_;  // depth rounded up to whole vectors of four stamps
-  int32_t clock_limit_ = INT32_MAX - 1;
+  uint32_t slots_;  // depth rounded up to whole vectors of ranks
+  bool wide_;       // ranks of 16 bits (more than 128 slots), else 8
   int shift_;
   bool canonical_ = false;
   std::vector<std::unique_ptr<Stream>> streams_;

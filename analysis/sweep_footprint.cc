@@ -25,21 +25,26 @@ void SweepFootprint::BeginSweep(int sweep) {
 void SweepFootprint::Consume(const Access* a, size_t n) {
   const bool pow2 = line_bytes_ != 0 && (line_bytes_ & (line_bytes_ - 1)) == 0;
   const int shift = pow2 ? __builtin_ctz(line_bytes_) : 0;
-  for (size_t k = 0; k < n; ++k) {
+  const uint32_t sweep = sweep_;
+  for (size_t k = 0; k < n;) {  // a run of one thread's accesses at a time
     const size_t t = a[k].thread;
     if (t >= threads_.size()) {  // a stream announced with fewer threads: grow
       threads_.resize(t + 1, Thread(canonical_, line_bytes_));
       lines_.resize(t + 1, std::vector<uint64_t>(sweep_, 0));
       recent_.resize(t + 1, kNoLine);
     }
-    const uint64_t line = pow2 ? a[k].address >> shift : a[k].address / line_bytes_;
-    if (line == recent_[t]) continue;  // the thread's line before: marked in this sweep already
-    recent_[t] = line;
-    uint32_t& last = threads_[t].At(line);
-    if (last != sweep_) {
-      last = sweep_;
-      ++lines_[t][sweep_ - 1];
+    Thread& marks = threads_[t];
+    uint64_t recent = recent_[t], fresh = 0;
+    for (; k < n && a[k].thread == t; ++k) {
+      const uint64_t line = pow2 ? a[k].address >> shift : a[k].address / line_bytes_;
+      if (line == recent) continue;  // the thread's line before: marked in this sweep already
+      recent = line;
+      uint32_t& last = marks.At(line);
+      fresh += last != sweep;
+      last = sweep;
     }
+    recent_[t] = recent;
+    lines_[t][sweep - 1] += fresh;
   }
 }
 

@@ -23,7 +23,7 @@ constexpr double kXs[] = {0.0, 0.1, 0.25, 0.5, 0.75, 0.9, 0.99, 1.0};
 
 // Returns how many quantiles were answered and how many lay at depth or beyond.
 std::pair<int, int> ExpectExact(const std::vector<Access>& stream, bool canonical, int threads,
-                                uint32_t depth, int32_t clock_limit = 0) {
+                                uint32_t depth) {
   StreamInfo info;
   info.threads = threads;
   info.canonical = canonical;
@@ -32,7 +32,6 @@ std::pair<int, int> ExpectExact(const std::vector<Access>& stream, bool canonica
   o.profile = false;
   ReuseAnalysis exact(o);
   LineQuantiles lq(64, depth);
-  if (clock_limit) lq.LimitClockForTest(clock_limit);
   FanOut both({&exact, &lq});
   both.Begin(info);
   for (size_t i = 0; i < stream.size(); i += 1000)
@@ -102,12 +101,15 @@ TEST(LineQuantiles, EqualsTheWholeAnalysisWhereItAnswersAndAnswersBelowItsDepth)
   EXPECT_GT(beyond, 0);
 }
 
-// The stamps renumbered every few accesses (the clock's limit made small): the same answers.
-TEST(LineQuantiles, RenumberedStampsKeepTheirOrder) {
-  for (uint32_t depth : {1u, 8u, 30u, 64u})
-    for (int32_t limit : {2, 37, 1000})
-      ExpectExact(MixedStream(AddressCanonicalizer::kCanonicalBase, 3000, depth + 11, 20000), true,
-                  2, depth, limit);
+// Ranks of a byte up to 128 slots, of 16 bits beyond: exact on both sides of the change, with
+// quantiles answered and not (a few dozen lines back is the stream's usual reuse).
+TEST(LineQuantiles, ByteAndWideRanksAreExactAroundTheirBoundary) {
+  for (uint32_t depth : {16u, 17u, 112u, 113u, 128u, 129u, 136u, 137u}) {
+    const auto [a, b] = ExpectExact(
+        MixedStream(AddressCanonicalizer::kCanonicalBase, 3000, depth + 11, 30000), true, 2, depth);
+    EXPECT_GT(a, 0) << depth;
+    EXPECT_GT(b, 0) << depth;
+  }
 }
 
 // A canonical stream with other addresses in its second half (a host address, a line below the
