@@ -71,6 +71,7 @@ QualityMode ParseQualityMode(const std::string& s);  // per-move | per-sweep
 UpdateMode ParseUpdateMode(const std::string& s);
 
 struct SweepRecord;
+struct KernelSetup;
 struct SmoothOptions {
   int max_iters = 100;
   double tol = 5e-6;
@@ -102,6 +103,10 @@ struct SmoothOptions {
   // Optional, not owned: called after each sweep by the kernels of core/kernels/ (progress while
   // they run; Smooth itself takes its callback as an argument).
   const std::function<void(const SweepRecord&)>* on_sweep = nullptr;
+  // Optional, not owned: the kernel's untimed set-up made beforehand from this same mesh
+  // (PrepareKernel, core/kernels/kernel.h), for runs repeated on one layout; nullptr: the kernel
+  // makes its own. The Laplacian and the kernels without one ignore it.
+  const KernelSetup* setup = nullptr;
 };
 inline constexpr int kSerialShares = 0;
 inline constexpr int kAccessGrain = -1;

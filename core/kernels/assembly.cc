@@ -56,10 +56,28 @@ double AssembleStiffness(const Mesh& m, StiffnessMatrix& a, Sink& sink) {
 }
 template double AssembleStiffness(const Mesh&, StiffnessMatrix&, NullSink&);
 
+namespace {
+
+struct AssemblySetup : KernelSetup {  // KernelSetup: the pattern and element map, values zero
+  StiffnessMatrix a;
+};
+
+}  // namespace
+
+std::unique_ptr<KernelSetup> KernelAssemblySetup(const Mesh& m) {
+  auto s = std::make_unique<AssemblySetup>();
+  s->a = StiffnessPattern(m);
+  return s;
+}
+
 template <class Sink>
 SmoothResult KernelAssembly(Mesh& m, const SmoothOptions& o, Sink& sink) {
   SmoothResult r;
-  StiffnessMatrix a = StiffnessPattern(m);
+  const AssemblySetup* s = kernel_detail::SetupOf<AssemblySetup>(o, [&](const auto& x) {
+    return x.a.off.size() == static_cast<size_t>(m.NumVertices()) + 1 &&
+           x.a.map.size() == 9 * static_cast<size_t>(m.NumTriangles());
+  });
+  StiffnessMatrix a = s ? s->a : StiffnessPattern(m);
   kernel_detail::BindArrays(
       sink,
       {kernel_detail::Of(Array::kTriangles, m.tri), kernel_detail::Of(Array::kCoords, m.xy),
@@ -80,7 +98,7 @@ SmoothResult KernelAssembly(Mesh& m, const SmoothOptions& o, Sink& sink) {
   r.quality_after = r.sweeps.empty() ? 0.0 : r.sweeps.back().quality;
   return r;
 }
-MESHREUSE_KERNEL_ENTRIES(KernelAssembly)
+MESHREUSE_KERNEL_ENTRIES_WITH_SETUP(KernelAssembly)
 
 std::vector<uint64_t> KernelAssemblyRefs(const Mesh& m, const SmoothOptions&) {
   const uint64_t nnz = m.v2v.idx.size() + static_cast<uint64_t>(m.NumVertices());

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdint>
 #include <initializer_list>
+#include <stdexcept>
 
 #include "core/kernels/kernel.h"
 #include "core/quality.h"
@@ -36,6 +37,16 @@ void BindArrays(Sink& sink, std::initializer_list<Bound> arrays) {
 template <class V>
 Bound Of(Array a, const V& v) {
   return {a, v.data(), static_cast<uint64_t>(v.size() * sizeof(v[0]))};
+}
+
+// The set-up of type S that `o` carries (SmoothOptions::setup; nullptr: none). One of another
+// kernel, or one that `fits` says was made from a mesh of other sizes, is a caller's bug.
+template <class S, class Fits>
+const S* SetupOf(const SmoothOptions& o, Fits fits) {
+  if (!o.setup) return nullptr;
+  const S* s = dynamic_cast<const S*>(o.setup);
+  if (!s || !fits(*s)) throw std::logic_error("a kernel set-up made for another kernel or mesh");
+  return s;
 }
 
 // Runs sweep(threads, region) -> the measure after the sweep, from measure `q0`, under the

@@ -1,7 +1,8 @@
 // edge-swap: quality-driven edge flips, the paper's "mesh swapping" (Lawson 1977: flipping every
 // edge that is not locally Delaunay ends at the Delaunay triangulation, which maximises the least
 // angle; Freitag and Ollivier-Gooch 1997 for swapping in mesh improvement). The kernel first
-// perturbs its input (JitterMesh, below: outside the timed and traced sweeps), then each sweep
+// perturbs its input (JitterMesh, below: outside the timed and traced sweeps; or takes the jittered
+// coordinates and the triangles' neighbours from a shared set-up, KernelSetup), then each sweep
 // visits the triangles in storage order (the order of the triangles follows the vertex ordering,
 // --triangle-order), and each edge of triangle t, in corner-slot order, whose other triangle u has
 // a higher id (each edge once, from its lower-numbered triangle): when the corner of u opposite the
@@ -12,8 +13,8 @@
 // sweeps stop after one that flips nothing (every edge locally Delaunay), at most max_iters (tol
 // does not apply). The measure: 1 - flips / interior edges in the sweep (1: none flipped). The
 // mesh's vertex adjacency is rebuilt after the last sweep (untimed; not when the caller says it
-// reads none, SmoothOptions::adjacency_after). Serial: two flips sharing a
-// triangle would race (--threads 1 only).
+// reads none, SmoothOptions::adjacency_after). Serial: two flips sharing a triangle would race
+// (--threads 1 only).
 // Access sequence of a visit of triangle t (besides the loop bound, smoother.h ForStatic):
 // tri[3t..3t+2] 4 B each, x then y of each corner 8 B each (kCoordRead on the x); then per slot j:
 // t2t[3t+j] 4 B; when u = t2t[3t+j] > t: tri[3u..3u+2] 4 B each and x then y of u's corner
@@ -237,11 +238,39 @@ bool IsDelaunay(const Mesh& m) { return NotDelaunayEdges(m) == 0; }
 
 int64_t NotDelaunayEdges(const Mesh& m) { return NotDelaunayEdges(m, TriangleNeighbours(m)); }
 
+namespace {
+
+// The untimed set-up (KernelSetup): the jittered coordinates and the triangles' neighbours of the
+// mesh it was made from.
+struct EdgeSwapSetup : KernelSetup {
+  AlignedVector<double> xy;
+  AlignedVector<int32_t> nbr;
+};
+
+}  // namespace
+
+std::unique_ptr<KernelSetup> KernelEdgeSwapSetup(const Mesh& m) {
+  auto s = std::make_unique<EdgeSwapSetup>();
+  Mesh jittered = m.Clone();
+  JitterMesh(jittered, kJitterAmount, kJitterSeed);
+  s->xy = std::move(jittered.xy);
+  s->nbr = TriangleNeighbours(m);  // of the triangles alone
+  return s;
+}
+
 template <class Sink>
 SmoothResult KernelEdgeSwap(Mesh& m, const SmoothOptions& o, Sink& sink) {
   SmoothResult r;
-  JitterMesh(m, kJitterAmount, kJitterSeed);
-  AlignedVector<int32_t> nbr = TriangleNeighbours(m);
+  AlignedVector<int32_t> nbr;
+  if (const EdgeSwapSetup* s = kernel_detail::SetupOf<EdgeSwapSetup>(o, [&](const auto& x) {
+        return x.xy.size() == m.xy.size() && x.nbr.size() == m.tri.size();
+      })) {
+    m.xy = s->xy;
+    nbr = s->nbr;
+  } else {
+    JitterMesh(m, kJitterAmount, kJitterSeed);
+    nbr = TriangleNeighbours(m);
+  }
   int64_t edges = 0;  // interior edges, each counted from both sides
   for (int32_t x : nbr) edges += x >= 0;
   const double interior_edges = edges > 0 ? static_cast<double>(edges / 2) : 1.0;
@@ -280,7 +309,7 @@ SmoothResult KernelEdgeSwap(Mesh& m, const SmoothOptions& o, Sink& sink) {
   m = BuildMesh(std::move(raw));
   return r;
 }
-MESHREUSE_KERNEL_ENTRIES(KernelEdgeSwap)
+MESHREUSE_KERNEL_ENTRIES_WITH_SETUP(KernelEdgeSwap)
 
 std::vector<uint64_t> KernelEdgeSwapRefs(const Mesh&, const SmoothOptions&) { return {}; }
 

@@ -2,6 +2,8 @@
 //   template <class Sink> SmoothResult FUNCTION(Mesh&, const SmoothOptions&, Sink&);
 //   MESHREUSE_KERNEL_ENTRIES(FUNCTION)
 //   std::vector<uint64_t> FUNCTIONRefs(const Mesh&, const SmoothOptions&);  // {} when unknown
+// (MESHREUSE_KERNEL_ENTRIES_WITH_SETUP and a FUNCTIONSetup instead where its untimed set-up can be
+// shared by runs on one input: kernel.h, KernelSetup)
 // with its definition, reference and access sequence at its head, and add one line here (the build
 // picks the file up by itself):
 //   MESHREUSE_KERNEL(FUNCTION, "name", unit, jacobi, threads, moves, fixed, "measure",

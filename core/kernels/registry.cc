@@ -10,7 +10,8 @@ namespace meshreuse {
 #define MESHREUSE_KERNEL(fn, ...)                                    \
   SmoothResult fn##Timed(Mesh&, const SmoothOptions&);               \
   SmoothResult fn##Traced(Mesh&, const SmoothOptions&, KernelSink&); \
-  std::vector<uint64_t> fn##Refs(const Mesh&, const SmoothOptions&);
+  std::vector<uint64_t> fn##Refs(const Mesh&, const SmoothOptions&); \
+  std::unique_ptr<KernelSetup> fn##Setup(const Mesh&);
 #include "core/kernels/list.h"
 #undef MESHREUSE_KERNEL
 
@@ -19,7 +20,7 @@ const std::vector<KernelInfo>& Kernels() {
 #define MESHREUSE_KERNEL(fn, name, unit, jacobi, threads, moves, fixed, measure, parallel, desc, \
                          ref)                                                                    \
   {name,  fn##Timed, fn##Traced, fn##Refs, unit, jacobi, threads,                                \
-   moves, fixed,     measure,    parallel, desc, ref},
+   moves, fixed,     measure,    parallel, desc, ref,    fn##Setup},
 #include "core/kernels/list.h"
 #undef MESHREUSE_KERNEL
   };

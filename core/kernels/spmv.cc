@@ -16,14 +16,33 @@ namespace meshreuse {
 namespace {
 using kernel_detail::Load;
 using kernel_detail::Report;
+
+struct SpmvSetup : KernelSetup {  // KernelSetup: the assembled matrix (no element map)
+  StiffnessMatrix a;
+};
+
+StiffnessMatrix Assembled(const Mesh& m) {
+  StiffnessMatrix a = StiffnessPattern(m);
+  NullSink none;
+  AssembleStiffness(m, a, none);
+  return a;
+}
+
 }  // namespace
+
+std::unique_ptr<KernelSetup> KernelSpmvSetup(const Mesh& m) {
+  auto s = std::make_unique<SpmvSetup>();
+  s->a = Assembled(m);
+  s->a.map = {};
+  return s;
+}
 
 template <class Sink>
 SmoothResult KernelSpmv(Mesh& m, const SmoothOptions& o, Sink& sink) {
   SmoothResult r;
-  StiffnessMatrix a = StiffnessPattern(m);
-  NullSink none;
-  AssembleStiffness(m, a, none);
+  const SpmvSetup* s = kernel_detail::SetupOf<SpmvSetup>(
+      o, [&](const auto& x) { return x.a.off.size() == static_cast<size_t>(m.NumVertices()) + 1; });
+  StiffnessMatrix a = s ? s->a : Assembled(m);
   const int32_t nv = m.NumVertices();
   AlignedVector<double> x(static_cast<size_t>(nv)), y(static_cast<size_t>(nv), 0.0);
   for (int32_t i = 0; i < nv; ++i) x[i] = m.xy[2 * int64_t{i}];
@@ -63,7 +82,7 @@ SmoothResult KernelSpmv(Mesh& m, const SmoothOptions& o, Sink& sink) {
   r.quality_after = r.sweeps.empty() ? 0.0 : r.sweeps.back().quality;
   return r;
 }
-MESHREUSE_KERNEL_ENTRIES(KernelSpmv)
+MESHREUSE_KERNEL_ENTRIES_WITH_SETUP(KernelSpmv)
 
 std::vector<uint64_t> KernelSpmvRefs(const Mesh& m, const SmoothOptions& o) {
   const int threads = o.threads < 1 ? 1 : o.threads;

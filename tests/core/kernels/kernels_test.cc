@@ -9,6 +9,8 @@
 #include <cstring>
 #include <functional>
 #include <map>
+#include <memory>
+#include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
@@ -402,6 +404,54 @@ TEST(Kernels, EdgeSwapWithoutTheAdjacencyAfterIsTheSameRun) {
     flipped += with.tri != base.tri;
   }
   EXPECT_GT(flipped, 0);
+}
+
+// A kernel's set-up made once (PrepareKernel) and handed to several runs on the same mesh: each run
+// the same as one that makes its own, bit for bit (its sweeps' measures, both end qualities, the
+// mesh after), timed and traced (the same accesses); the set-up itself unchanged by the runs. The
+// kernels that share one (edge-swap, assembly, spmv) have one; a set-up of another kernel, or made
+// from a mesh of other sizes, is refused.
+TEST(Kernels, ASharedSetUpGivesTheSameRunsAsTheirOwn) {
+  const std::vector<Mesh> meshes = Meshes();
+  std::vector<std::string> with_setup;
+  for (const KernelInfo& k : Kernels())
+    for (const Mesh& base : meshes) {
+      const std::unique_ptr<KernelSetup> setup = PrepareKernel(k, base);
+      if (!setup) continue;
+      if (&base == &meshes[0]) with_setup.push_back(k.name);
+      Mesh own = base.Clone(), own_traced = base.Clone();
+      const SmoothResult a = RunKernel(k, own, ExactSweeps(3));
+      CountingSink count_own;
+      KernelSinkOf<CountingSink> sink_own(count_own);
+      RunKernel(k, own_traced, ExactSweeps(3), sink_own);
+      SmoothOptions o = ExactSweeps(3);
+      o.setup = setup.get();
+      for (int run = 0; run < 2; ++run) {  // the second run: the set-up as the first left it
+        Mesh shared = base.Clone(), traced = base.Clone();
+        const SmoothResult b = RunKernel(k, shared, o);
+        ASSERT_EQ(a.sweeps.size(), b.sweeps.size()) << k.name;
+        for (size_t i = 0; i < a.sweeps.size(); ++i)
+          EXPECT_EQ(a.sweeps[i].quality, b.sweeps[i].quality) << k.name;
+        EXPECT_EQ(a.quality_before, b.quality_before) << k.name;
+        EXPECT_EQ(a.quality_after, b.quality_after) << k.name;
+        EXPECT_EQ(own.xy, shared.xy) << k.name;
+        EXPECT_EQ(own.tri, shared.tri) << k.name;
+        CountingSink count;
+        KernelSinkOf<CountingSink> sink(count);
+        RunKernel(k, traced, o, sink);
+        EXPECT_EQ(count.Refs(), count_own.Refs()) << k.name;
+        EXPECT_EQ(traced.xy, own_traced.xy) << k.name;
+      }
+      Mesh other = meshes[&base == &meshes[1] ? 2 : 1].Clone();
+      EXPECT_THROW(RunKernel(k, other, o), std::logic_error) << k.name;
+    }
+  EXPECT_EQ(with_setup, (std::vector<std::string>{"edge-swap", "assembly", "spmv"}));
+  // One kernel's set-up handed to another that has one.
+  Mesh m = meshes[1].Clone();
+  const std::unique_ptr<KernelSetup> swap = PrepareKernel(K("edge-swap"), m);
+  SmoothOptions o = ExactSweeps(1);
+  o.setup = swap.get();
+  EXPECT_THROW(RunKernel(K("spmv"), m, o), std::logic_error);
 }
 
 // Without the end qualities (a pass over the mesh each, which timed and traced runners do not
