@@ -96,10 +96,14 @@ build_release() {
   say "building Release in build/release"
   # Ninja for a fresh folder, as scripts/test.sh (a first build 110 s instead of make's 120); a
   # folder configured before keeps its generator.
+  # A folder configured for Release already is not configured again (a second a run, --quick's
+  # budget): its build re-runs CMake itself where a CMakeLists.txt changed.
   local gen=()
   [[ ! -f build/release/CMakeCache.txt ]] && command -v ninja >/dev/null && gen=(-G Ninja)
-  cmake "${gen[@]}" -S . -B build/release -DCMAKE_BUILD_TYPE=Release >build/release.configure.log 2>&1 ||
-    { cat build/release.configure.log; exit 1; }
+  if ! grep -qx 'CMAKE_BUILD_TYPE:STRING=Release' build/release/CMakeCache.txt 2>/dev/null; then
+    cmake "${gen[@]}" -S . -B build/release -DCMAKE_BUILD_TYPE=Release >build/release.configure.log 2>&1 ||
+      { cat build/release.configure.log; exit 1; }
+  fi
   # The program alone (not the tests and benchmarks), its progress shown: a first build takes
   # minutes.
   if [[ -n $quiet ]]; then
