@@ -27,6 +27,13 @@ double MedianOf(const SmoothResult& r, double SweepRecord::*field) {
   return Median(v);
 }
 
+// The memory of a mesh's arrays.
+uint64_t MeshBytes(const Mesh& m) {
+  return 8 * uint64_t{m.xy.size()} + 4 * uint64_t{m.tri.size()} + uint64_t{m.boundary.size()} +
+         8 * uint64_t{m.v2v.off.size() + m.v2t.off.size()} +
+         4 * uint64_t{m.v2v.idx.size() + m.v2t.idx.size() + m.interior.size()};
+}
+
 // The simulated part of one run: misses and floor of the last traced sweep, line quantiles. Each
 // stream starts from the ordering applied to `base` afresh (a kernel changes its mesh).
 void Simulate(const KernelRunsConfig& cfg, const KernelInfo& k, const Mesh& base,
@@ -121,28 +128,42 @@ void MeasureKernels(const KernelRunsConfig& cfg, const std::string& mesh, const 
     // Round 0 warms up (untimed, warmup_sweeps sweeps a run of each kernel in the first
     // ordering: what a warm-up leaves is the process's state, the layout's and the working
     // mesh's pages and each kernel's code, the same whichever ordering; timings.md measured
-    // it); then every ordering x kernel once per round. An ordering is laid out once a round and
-    // each kernel's run starts from a copy of that layout: a copy is sequential where applying the
-    // permutation gathers (on lake, 375k vertices, an apply took 0.12-0.15 s, half of a
-    // smart-laplacian run's untimed time); one layout is held at a time. A kernel's set-up
-    // (PrepareKernel: edge-swap's jitter and triangle neighbours, the stiffness pattern) is made
-    // from an ordering's layout the first time it runs and kept for the rounds after (the same
-    // layout every round): edge-swap's was 0.17 s of a 0.26-s run on lake; on lake's six
-    // orderings its set-ups hold about 90 MB.
-    Mesh laid, work;
-    std::vector<std::unique_ptr<KernelSetup>> setups(cfg.kernels.size() * cfg.orderings.size());
-    std::vector<bool> prepared(setups.size(), false);
+    // it); then every ordering x kernel once per round. Each kernel's run starts from a copy of
+    // its ordering's layout: a copy is sequential where applying the permutation gathers (on
+    // lake, 375k vertices, an apply took 0.12-0.15 s, half of a smart-laplacian run's untimed
+    // time). A kernel's set-up (PrepareKernel: edge-swap's jitter and triangle neighbours, the
+    // stiffness pattern) is made from the layout. Both are the same every round, so they are made
+    // once and kept for the rounds after, as long as what is kept fits cfg.held_bytes (every
+    // layout first, then set-ups as they come); what does not fit is made again each round (one
+    // layout held at a time). On lake the six layouts hold about 300 MB and edge-swap's set-ups
+    // 90 MB; its set-up was 0.17 s of a 0.26-s run, and the applies 0.5 s of the kernels' 10 s.
+    const size_t no = cfg.orderings.size();
+    const bool hold_layouts = MeshBytes(base) * no <= cfg.held_bytes;
+    uint64_t held = hold_layouts ? MeshBytes(base) * no : 0;
+    std::vector<Mesh> layouts(hold_layouts ? no : 1);
+    std::vector<bool> laid_out(layouts.size(), false);
+    Mesh work;
+    std::vector<std::unique_ptr<KernelSetup>> setups(cfg.kernels.size() * no);
+    std::vector<bool> prepared(setups.size(), false), kept(setups.size(), false);
     for (int round = 0; round <= cfg.rounds; ++round) {
       say("kernels: " + mesh +
           (round == 0 ? ", warm-up round" : ", round " + std::to_string(round)) + " of " +
           std::to_string(cfg.rounds));
-      for (size_t o = 0; o < (round == 0 ? 1 : cfg.orderings.size()); ++o) {
-        ApplyPermutationInto(base, perms[o], cfg.triangle_order, &laid);
+      for (size_t o = 0; o < (round == 0 ? 1 : no); ++o) {
+        const size_t l = hold_layouts ? o : 0;
+        Mesh& laid = layouts[l];
+        if (!hold_layouts || !laid_out[l])
+          ApplyPermutationInto(base, perms[o], cfg.triangle_order, &laid), laid_out[l] = true;
         for (size_t kk = 0; kk < cfg.kernels.size(); ++kk) {
           const size_t at = kk * cfg.orderings.size() + o;  // rows: kernel, then ordering
           const size_t i = first + at;
           const KernelInfo& k = ParseKernel(cfg.kernels[kk]);
-          if (!prepared[at]) setups[at] = PrepareKernel(k, laid), prepared[at] = true;
+          if (!prepared[at]) {
+            setups[at] = PrepareKernel(k, laid), prepared[at] = true;
+            const uint64_t bytes = setups[at] ? setups[at]->Bytes() : 0;
+            kept[at] = held + bytes <= cfg.held_bytes;
+            if (kept[at]) held += bytes;
+          }
           laid.CopyInto(&work);
           SmoothOptions o =
               ExactSweeps(round == 0 ? std::min(cfg.sweeps, cfg.warmup_sweeps) : cfg.sweeps);
@@ -150,6 +171,7 @@ void MeasureKernels(const KernelRunsConfig& cfg, const std::string& mesh, const 
           o.end_qualities = false;    // the final quality is the last sweep's
           o.setup = setups[at].get();
           const SmoothResult res = RunKernel(k, work, o);
+          if (!kept[at]) setups[at].reset(), prepared[at] = false;
           if (round == 0) continue;
           CompareRound c;
           c.sweeps = static_cast<int>(res.sweeps.size());

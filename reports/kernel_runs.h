@@ -50,6 +50,9 @@ struct KernelRunsConfig {
   // stream (the paper's meshes and orderings: q90 <= 22 lines; one `--quick` row has 36), above
   // it a second.
   uint32_t quantile_depth = 32;
+  // What the timed rounds keep from one round to the next (every ordering's layout, then the
+  // kernels' set-ups) within this many bytes; the rest is made again each round (the same runs).
+  uint64_t held_bytes = uint64_t{1} << 30;
 };
 
 struct KernelRun {

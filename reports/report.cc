@@ -61,7 +61,8 @@ bool Contains(const std::vector<std::string>& v, const std::string& x) {
 // 100 a traced sweep; a many-core simulation 34 + 0.66 p a sweep and placement at p threads (more
 // caches to keep coherent: a job took 1.5 CPU seconds at one thread, with the prefetcher's
 // simulation beside the compact one, and 2.4 at 32, on carabiner); a kernel's simulated run
-// 50 a traced sweep; a kernel's timed sweep 3 (its set-up, copy and layout included); a timed run
+// 43 a traced sweep, a kernel's timed sweep 2.7 (its set-up, copy and layout included: 50 and 3
+// before the kernels part took 151 s instead of 171, 2026-12-05's second full run); a timed run
 // of the Laplacian to convergence 95 (65 sweeps, its warm-up, ordering and layout, and a second
 // thread's sweep worth more than half). The jobs that run side by side count their CPU over the
 // host's cores. The same units order the pool's jobs, the costliest first. (Before, the estimate
@@ -70,7 +71,7 @@ bool Contains(const std::vector<std::string>& v, const std::string& x) {
 class Steps {
  public:
   static constexpr double kFirstSweep = 36, kProfileSweep = 22, kSimulation = 100, kMachine = 34,
-                          kMachinePerThread = 0.66, kKernelTraced = 50, kKernelSweep = 3,
+                          kMachinePerThread = 0.66, kKernelTraced = 43, kKernelSweep = 2.7,
                           kTimedRun = 95;
   Steps(const Log& log, const ReportConfig& cfg, const std::vector<ReportMesh>& meshes)
       : log_(log), cfg_(cfg), t0_(Clock::now()), cores_(std::max(1, omp_get_max_threads())) {

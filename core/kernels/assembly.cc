@@ -60,6 +60,7 @@ namespace {
 
 struct AssemblySetup : KernelSetup {  // KernelSetup: the pattern and element map, values zero
   StiffnessMatrix a;
+  uint64_t Bytes() const override { return a.Bytes(); }
 };
 
 }  // namespace

@@ -245,6 +245,7 @@ namespace {
 struct EdgeSwapSetup : KernelSetup {
   AlignedVector<double> xy;
   AlignedVector<int32_t> nbr;
+  uint64_t Bytes() const override { return 8 * uint64_t{xy.size()} + 4 * uint64_t{nbr.size()}; }
 };
 
 }  // namespace

@@ -57,6 +57,7 @@ const char* VisitUnitName(VisitUnit u);
 // 0.17 s of a 0.26-s run; the report's timed rounds run each ordering's layout three times.
 struct KernelSetup {
   virtual ~KernelSetup() = default;
+  virtual uint64_t Bytes() const = 0;  // the memory it holds (a caller keeping many budgets it)
 };
 using KernelSetupFn = std::unique_ptr<KernelSetup> (*)(const Mesh&);  // nullptr: none to share
 

@@ -19,6 +19,7 @@ using kernel_detail::Report;
 
 struct SpmvSetup : KernelSetup {  // KernelSetup: the assembled matrix (no element map)
   StiffnessMatrix a;
+  uint64_t Bytes() const override { return a.Bytes(); }
 };
 
 StiffnessMatrix Assembled(const Mesh& m) {

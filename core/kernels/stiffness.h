@@ -23,6 +23,10 @@ struct StiffnessMatrix {
   AlignedVector<double> val;   // nnz, zero until assembled
   AlignedVector<int64_t> map;  // 9 per triangle: map[9t + 3a + b] = position of (corner a, b)
   int64_t nnz() const { return static_cast<int64_t>(col.size()); }
+  uint64_t Bytes() const {
+    return 8 * uint64_t{off.size()} + 4 * uint64_t{col.size()} + 8 * uint64_t{val.size()} +
+           8 * uint64_t{map.size()};
+  }
 };
 
 // The pattern and the element map of `m`; values zero.

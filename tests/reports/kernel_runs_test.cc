@@ -58,5 +58,33 @@ TEST(KernelRuns, LineQuantilesEqualTheWholeAnalysisOnEitherPath) {
   EXPECT_TRUE(below);
 }
 
+// The timed rounds keeping every layout and set-up from one round to the next, or none (a budget
+// of 0 bytes: each made again in every round), or the layouts alone: the same runs (each round's
+// sweeps and the kernel's final measure).
+TEST(KernelRuns, TimedRoundsKeepingLayoutsAndSetUpsRunTheSameSweeps) {
+  const Mesh base = testing::Synthetic(40, 30, 2, 5);
+  KernelRunsConfig c;
+  c.kernels = {"smart-laplacian", "edge-swap", "assembly"};
+  c.orderings = c.labels = {"ori", "bfs", "random"};
+  c.cache = ParseCacheSpec("L1=4K/4");
+  c.rounds = 2, c.sweeps = 3;
+  std::vector<std::vector<KernelRun>> runs(3);
+  for (int budget = 0; budget < 3; ++budget) {
+    c.held_bytes = budget == 0 ? (uint64_t{1} << 30) : budget == 1 ? 0 : 3 * 200000;
+    MeasureKernels(c, "m", base, &runs[budget], [](const std::string&) {});
+  }
+  ASSERT_EQ(runs[0].size(), 9u);
+  for (int budget = 1; budget < 3; ++budget) {
+    ASSERT_EQ(runs[budget].size(), runs[0].size());
+    for (size_t i = 0; i < runs[0].size(); ++i) {
+      const CompareRow &a = runs[0][i].time, &b = runs[budget][i].time;
+      EXPECT_EQ(a.final_quality, b.final_quality) << runs[0][i].kernel << " " << i;
+      ASSERT_EQ(a.rounds.size(), 2u);
+      ASSERT_EQ(b.rounds.size(), 2u);
+      for (size_t r = 0; r < 2; ++r) EXPECT_EQ(a.rounds[r].sweeps, b.rounds[r].sweeps);
+    }
+  }
+}
+
 }  // namespace
 }  // namespace meshreuse
