@@ -44,6 +44,16 @@ std::vector<Mesh> Meshes() {
 
 const KernelInfo& K(const char* name) { return ParseKernel(name); }
 
+// Two runs of kernel `name` that must be the same: each sweep's measure, and the meshes after.
+void ExpectSameSweeps(const SmoothResult& a, const Mesh& ma, const SmoothResult& b, const Mesh& mb,
+                      const char* name) {
+  ASSERT_EQ(a.sweeps.size(), b.sweeps.size()) << name;
+  for (size_t i = 0; i < a.sweeps.size(); ++i)
+    EXPECT_EQ(a.sweeps[i].quality, b.sweeps[i].quality) << name << " sweep " << i;
+  EXPECT_EQ(ma.xy, mb.xy) << name;
+  EXPECT_EQ(ma.tri, mb.tri) << name;
+}
+
 TEST(KernelRegistry, FindsEveryKernelAndNamesTheKnownOnesForAnUnknownOne) {
   for (const char* n :
        {"laplacian", "smart-laplacian", "local-opt", "untangle", "assembly", "spmv"})
@@ -388,13 +398,9 @@ TEST(Kernels, EdgeSwapWithoutTheAdjacencyAfterIsTheSameRun) {
     const SmoothResult a = RunKernel(K("edge-swap"), with, o);
     o.adjacency_after = false;
     const SmoothResult b = RunKernel(K("edge-swap"), without, o);
-    ASSERT_EQ(a.sweeps.size(), b.sweeps.size());
-    for (size_t i = 0; i < a.sweeps.size(); ++i)
-      EXPECT_EQ(a.sweeps[i].quality, b.sweeps[i].quality);
+    ExpectSameSweeps(a, with, b, without, "edge-swap");
     EXPECT_EQ(a.quality_before, b.quality_before);
     EXPECT_EQ(a.quality_after, b.quality_after);
-    EXPECT_EQ(with.tri, without.tri);
-    EXPECT_EQ(with.xy, without.xy);
     RawMesh raw;
     raw.xy = with.xy, raw.tri = with.tri;
     const Mesh fresh = BuildMesh(std::move(raw));
@@ -429,13 +435,9 @@ TEST(Kernels, ASharedSetUpGivesTheSameRunsAsTheirOwn) {
       for (int run = 0; run < 2; ++run) {  // the second run: the set-up as the first left it
         Mesh shared = base.Clone(), traced = base.Clone();
         const SmoothResult b = RunKernel(k, shared, o);
-        ASSERT_EQ(a.sweeps.size(), b.sweeps.size()) << k.name;
-        for (size_t i = 0; i < a.sweeps.size(); ++i)
-          EXPECT_EQ(a.sweeps[i].quality, b.sweeps[i].quality) << k.name;
+        ExpectSameSweeps(a, own, b, shared, k.name);
         EXPECT_EQ(a.quality_before, b.quality_before) << k.name;
         EXPECT_EQ(a.quality_after, b.quality_after) << k.name;
-        EXPECT_EQ(own.xy, shared.xy) << k.name;
-        EXPECT_EQ(own.tri, shared.tri) << k.name;
         CountingSink count;
         KernelSinkOf<CountingSink> sink(count);
         RunKernel(k, traced, o, sink);
@@ -476,11 +478,7 @@ TEST(Kernels, WithoutTheEndQualitiesTheSameRun) {
     KernelSinkOf<CountingSink> sink(count);
     RunKernel(k, traced, o, sink);
     EXPECT_EQ(count.Refs(), count_with.Refs()) << k.name;  // the passes are not traced
-    ASSERT_EQ(a.sweeps.size(), b.sweeps.size()) << k.name;
-    for (size_t i = 0; i < a.sweeps.size(); ++i)
-      EXPECT_EQ(a.sweeps[i].quality, b.sweeps[i].quality) << k.name;
-    EXPECT_EQ(with.xy, without.xy) << k.name;
-    EXPECT_EQ(with.tri, without.tri) << k.name;
+    ExpectSameSweeps(a, with, b, without, k.name);
     EXPECT_EQ(traced.xy, without.xy) << k.name;
     const std::vector<uint64_t> refs = k.refs(base, o);
     if (!refs.empty()) {
