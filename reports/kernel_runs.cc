@@ -140,11 +140,12 @@ void MeasureKernels(const KernelRunsConfig& cfg, const std::string& mesh, const 
     const size_t no = cfg.orderings.size();
     const bool hold_layouts = MeshBytes(base) * no <= cfg.held_bytes;
     uint64_t held = hold_layouts ? MeshBytes(base) * no : 0;
-    std::vector<Mesh> layouts(hold_layouts ? no : 1);
-    std::vector<bool> laid_out(layouts.size(), false);
+    std::vector<Mesh> layouts(hold_layouts ? no : 1);  // empty until laid out
     Mesh work;
+    // Per kernel x ordering: its set-up (none yet, or none to share: nullptr) and whether it is
+    // kept (fits the budget) or made again at every run.
     std::vector<std::unique_ptr<KernelSetup>> setups(cfg.kernels.size() * no);
-    std::vector<bool> prepared(setups.size(), false), kept(setups.size(), false);
+    std::vector<bool> kept(setups.size(), false);
     for (int round = 0; round <= cfg.rounds; ++round) {
       say("kernels: " + mesh +
           (round == 0 ? ", warm-up round" : ", round " + std::to_string(round)) + " of " +
@@ -152,14 +153,14 @@ void MeasureKernels(const KernelRunsConfig& cfg, const std::string& mesh, const 
       for (size_t o = 0; o < (round == 0 ? 1 : no); ++o) {
         const size_t l = hold_layouts ? o : 0;
         Mesh& laid = layouts[l];
-        if (!hold_layouts || !laid_out[l])
-          ApplyPermutationInto(base, perms[o], cfg.triangle_order, &laid), laid_out[l] = true;
+        if (!hold_layouts || laid.xy.empty())
+          ApplyPermutationInto(base, perms[o], cfg.triangle_order, &laid);
         for (size_t kk = 0; kk < cfg.kernels.size(); ++kk) {
           const size_t at = kk * cfg.orderings.size() + o;  // rows: kernel, then ordering
           const size_t i = first + at;
           const KernelInfo& k = ParseKernel(cfg.kernels[kk]);
-          if (!prepared[at]) {
-            setups[at] = PrepareKernel(k, laid), prepared[at] = true;
+          if (!setups[at]) {
+            setups[at] = PrepareKernel(k, laid);
             const uint64_t bytes = setups[at] ? setups[at]->Bytes() : 0;
             kept[at] = held + bytes <= cfg.held_bytes;
             if (kept[at]) held += bytes;
@@ -171,7 +172,7 @@ void MeasureKernels(const KernelRunsConfig& cfg, const std::string& mesh, const 
           o.end_qualities = false;    // the final quality is the last sweep's
           o.setup = setups[at].get();
           const SmoothResult res = RunKernel(k, work, o);
-          if (!kept[at]) setups[at].reset(), prepared[at] = false;
+          if (!kept[at]) setups[at].reset();
           if (round == 0) continue;
           CompareRound c;
           c.sweeps = static_cast<int>(res.sweeps.size());
