@@ -135,8 +135,8 @@ void MeasureKernels(const KernelRunsConfig& cfg, const std::string& mesh, const 
     // stiffness pattern) is made from the layout. Both are the same every round, so they are made
     // once and kept for the rounds after, as long as what is kept fits cfg.held_bytes (every
     // layout first, then set-ups as they come); what does not fit is made again each round (one
-    // layout held at a time). On lake the six layouts hold about 300 MB and edge-swap's set-ups
-    // 90 MB; its set-up was 0.17 s of a 0.26-s run, and the applies 0.5 s of the kernels' 10 s.
+    // layout held at a time). On lake the six layouts hold about 245 MB and edge-swap's set-ups
+    // 90 MB; its set-ups, one a run, took 1.33 s and the applies 0.53 s of the 10.4-s timed part.
     const size_t no = cfg.orderings.size();
     const bool hold_layouts = MeshBytes(base) * no <= cfg.held_bytes;
     uint64_t held = hold_layouts ? MeshBytes(base) * no : 0;

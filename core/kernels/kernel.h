@@ -53,8 +53,9 @@ const char* VisitUnitName(VisitUnit u);
 // A kernel's untimed set-up that runs on the same input can share (edge-swap's jittered
 // coordinates and triangle neighbours, assembly's and spmv's stiffness pattern): made once from a
 // mesh, handed to each run through SmoothOptions::setup, which then starts from a copy of it
-// instead of making it (the same sweeps, bit for bit). On lake (375k vertices) edge-swap's took
-// 0.17 s of a 0.26-s run; the report's timed rounds run each ordering's layout three times.
+// instead of making it (the same sweeps, bit for bit). On lake (375k vertices) edge-swap's, made
+// in each of its 19 timed runs, took 1.33 s of the report's 10.4-s timed kernels part (timers
+// around each step); the timed rounds run each ordering's layout three times.
 struct KernelSetup {
   virtual ~KernelSetup() = default;
   virtual uint64_t Bytes() const = 0;  // the memory it holds (a caller keeping many budgets it)
