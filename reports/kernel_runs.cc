@@ -34,6 +34,37 @@ uint64_t MeshBytes(const Mesh& m) {
          4 * uint64_t{m.v2v.idx.size() + m.v2t.idx.size() + m.interior.size()};
 }
 
+// The last sweep's floor: the footprint's over every sweep less that of the sweeps before it (a
+// sum over sweeps). lines: per thread, per sweep.
+std::vector<uint64_t> LastSweepFloor(std::vector<std::vector<uint64_t>> lines,
+                                     const KernelRunsConfig& cfg) {
+  const std::vector<uint64_t> all_floor = MissFloor(lines, cfg.cache, cfg.line_bytes);
+  for (auto& t : lines)
+    if (!t.empty()) t.pop_back();
+  const std::vector<uint64_t> before = MissFloor(lines, cfg.cache, cfg.line_bytes);
+  std::vector<uint64_t> floor;
+  for (size_t i = 0; i < all_floor.size(); ++i)
+    floor.push_back(all_floor[i] - (i < before.size() ? before[i] : 0));
+  return floor;
+}
+
+// The simulated part of a Laplacian run read from Table 3's validation of the same stream
+// (KernelRunsConfig::laplacian); false where it does not have all of it (one thread's stream of
+// traced_sweeps sweeps, both quantiles).
+bool FromValidation(const KernelRunsConfig& cfg, const OrderingValidation& v, KernelRun* r) {
+  if (v.threads != 1 || v.iterations != cfg.traced_sweeps ||
+      v.sweeps.size() != static_cast<size_t>(cfg.traced_sweeps) || v.sweeps.back().size() != 1 ||
+      !v.line_q50 || !v.line_q90)
+    return false;
+  const std::vector<LevelStats>& last = v.sweeps.back()[0];
+  r->accesses = last.empty() ? 0 : last[0].accesses;
+  r->misses.clear();
+  for (const LevelStats& s : last) r->misses.push_back(s.misses);
+  r->floor = LastSweepFloor(v.sweep_lines, cfg);
+  r->q50 = *v.line_q50, r->q90 = *v.line_q90;
+  return true;
+}
+
 // The simulated part of one run: misses and floor of the last traced sweep, line quantiles. Each
 // stream starts from the ordering applied to `base` afresh (a kernel changes its mesh).
 void Simulate(const KernelRunsConfig& cfg, const KernelInfo& k, const Mesh& base,
@@ -51,14 +82,7 @@ void Simulate(const KernelRunsConfig& cfg, const KernelInfo& k, const Mesh& base
   const std::vector<LevelStats> last = sim.SweepStats(0, sim.sweeps() - 1);
   r->accesses = last.empty() ? 0 : last[0].accesses;
   for (const LevelStats& s : last) r->misses.push_back(s.misses);
-  // The floor is a sum over sweeps: the last sweep's is the whole minus the sweeps before it.
-  std::vector<std::vector<uint64_t>> lines = footprint.lines();
-  const std::vector<uint64_t> all_floor = MissFloor(lines, cfg.cache, cfg.line_bytes);
-  for (auto& t : lines)
-    if (!t.empty()) t.pop_back();
-  const std::vector<uint64_t> before = MissFloor(lines, cfg.cache, cfg.line_bytes);
-  for (size_t i = 0; i < all_floor.size(); ++i)
-    r->floor.push_back(all_floor[i] - (i < before.size() ? before[i] : 0));
+  r->floor = LastSweepFloor(footprint.lines(), cfg);
   const std::optional<uint64_t> q50 = quantiles.Quantile(0, 0.5), q90 = quantiles.Quantile(0, 0.9);
   if (q50 && q90) {
     r->q50 = *q50, r->q90 = *q90;
@@ -115,7 +139,10 @@ void MeasureKernels(const KernelRunsConfig& cfg, const std::string& mesh, const 
       try {
         KernelRun& r = (*out)[first + j];
         const size_t o = static_cast<size_t>(j) % cfg.orderings.size();
-        Simulate(cfg, ParseKernel(r.kernel), base, perms[o], &r);
+        const KernelInfo& k = ParseKernel(r.kernel);
+        const OrderingValidation* v = o < cfg.laplacian.size() ? cfg.laplacian[o] : nullptr;
+        if (!(v && IsPaperSweep(k) && FromValidation(cfg, *v, &r)))
+          Simulate(cfg, k, base, perms[o], &r);
       } catch (...) {
 #pragma omp critical(meshreuse_kernel_runs_failed)
         if (!failed) failed = std::current_exception();

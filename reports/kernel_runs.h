@@ -5,7 +5,9 @@
 //     the sweep footprint (the floor no layout can beat, analysis/sweep_footprint.h) and the line
 //     distances' quantiles (analysis/line_quantiles.h, exact below `quantile_depth` lines; a
 //     stream whose quantile lies beyond is streamed again into the whole exact line-level reuse
-//     analysis); the last (warm) sweep's misses and floor, the quantiles of every traced access;
+//     analysis); the last (warm) sweep's misses and floor, the quantiles of every traced access
+//     (the paper's Laplacian's read from Table 3's validation of the same stream where the caller
+//     hands it: KernelRunsConfig::laplacian);
 //   - timed: after an untimed warm-up (each kernel once), `rounds` rounds, each running every
 //     kernel in every ordering once from the same layout (so noise hits all alike, as compare's
 //     rounds), each run exactly `sweeps` sweeps: the per-sweep median of each run, its spread
@@ -28,6 +30,7 @@
 #include "reports/phase_times.h"
 #include "reports/timed_runs.h"
 #include "reports/timing.h"
+#include "reports/validation.h"
 
 namespace meshreuse {
 
@@ -53,6 +56,12 @@ struct KernelRunsConfig {
   // What the timed rounds keep from one round to the next (every ordering's layout, then the
   // kernels' set-ups) within this many bytes; the rest is made again each round (the same runs).
   uint64_t held_bytes = uint64_t{1} << 30;
+  // Per ordering, where the caller has it (else empty or null): the paper's Laplacian sweep's
+  // validation of this mesh in this ordering, Table 3's (reports/validation.h), made with these
+  // traced_sweeps, cache, line_bytes, seed and triangle_order on one thread: the same stream the
+  // kernel "laplacian" would trace here. That kernel's simulated part is then read from it (the
+  // simulator's last sweep, the footprint's floor, the line quantiles) instead of streamed again.
+  std::vector<const OrderingValidation*> laplacian;
 };
 
 struct KernelRun {

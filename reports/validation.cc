@@ -133,6 +133,7 @@ class ValidateStreams : public StreamConsumer {
     }
     v.element_accesses = eh.accesses(), v.line_accesses = lh.accesses();
     v.element_cold = eh.cold(), v.line_cold = lh.cold();
+    if (lh.finite() > 0) v.line_q50 = lh.Quantile(0.5), v.line_q90 = lh.Quantile(0.9);
     v.sweep_lines = footprint_->lines();
     for (size_t s = 0; s < sim_->sweeps(); ++s) {
       std::vector<std::vector<LevelStats>> per;

@@ -61,6 +61,10 @@ struct OrderingValidation {
   int iterations = 0, threads = 1;
   uint64_t element_accesses = 0, line_accesses = 0, element_cold = 0, line_cold = 0;
   std::vector<std::vector<uint64_t>> sweep_lines;  // per thread, per sweep: distinct lines
+  // Quantiles 0.5 and 0.9 of the line distances of every traced access, all streams together
+  // (ReuseHistogram::Quantile; none without a finite distance): the kernels table's Laplacian
+  // rows take them from here (reports/kernel_runs.h).
+  std::optional<uint64_t> line_q50, line_q90;
   std::vector<LevelValidation> levels;
   std::vector<std::vector<std::vector<LevelStats>>> sweeps;  // simulated: [sweep][thread][level]
   // Equation 2 on the line model's and the simulator's misses; nullopt without latencies.

@@ -14,6 +14,7 @@
 #include "analysis/reuse_analysis.h"
 #include "core/kernels/kernel.h"
 #include "core/orderings/registry.h"
+#include "reports/validation.h"
 #include "tests/test_util.h"
 #include "tracer/access_stream.h"
 
@@ -56,6 +57,57 @@ TEST(KernelRuns, LineQuantilesEqualTheWholeAnalysisOnEitherPath) {
   }
   EXPECT_TRUE(beyond);
   EXPECT_TRUE(below);
+}
+
+// The Laplacian's simulated part read from Table 3's validation of the same mesh and orderings
+// (KernelRunsConfig::laplacian, as the report hands it) equals the one the kernels part streams
+// itself: accesses, each level's misses and floor of the last sweep, q50 and q90. A validation
+// that does not match (another sweep count) is not used; nor is one for another kernel's rows.
+TEST(KernelRuns, LaplacianFromTable3sValidationEqualsItsOwnSimulation) {
+  const Mesh base = testing::Synthetic(60, 50, 3, 11);
+  KernelRunsConfig c;
+  c.kernels = {"laplacian", "smart-laplacian"};
+  c.orderings = c.labels = {"ori", "random", "rdr"};
+  c.timing = false;
+  c.cache = ParseCacheSpec("L1=4K/4,L2=32K/8");
+  std::vector<KernelRun> own, read;
+  MeasureKernels(c, "m", base, &own, [](const std::string&) {});
+  ValidationConfig vc;
+  vc.mesh_name = "m";
+  vc.orderings = {};
+  for (const std::string& o : c.orderings) vc.orderings.push_back(ParseOrderingSpec(o));
+  vc.iterations = c.traced_sweeps;
+  vc.cache = c.cache;
+  vc.line_bytes = c.line_bytes;
+  vc.counter_events.clear();
+  const std::vector<OrderingValidation> v = RunValidation(base, vc);
+  ASSERT_EQ(v.size(), 3u);
+  for (const OrderingValidation& x : v) c.laplacian.push_back(&x);
+  MeasureKernels(c, "m", base, &read, [](const std::string&) {});
+  ASSERT_EQ(own.size(), 6u);
+  ASSERT_EQ(read.size(), 6u);
+  for (size_t i = 0; i < own.size(); ++i) {
+    const std::string what = own[i].kernel + " " + own[i].ordering;
+    EXPECT_GT(own[i].accesses, 0u) << what;
+    EXPECT_EQ(read[i].accesses, own[i].accesses) << what;
+    EXPECT_EQ(read[i].misses, own[i].misses) << what;
+    EXPECT_EQ(read[i].floor, own[i].floor) << what;
+    EXPECT_EQ(read[i].q50, own[i].q50) << what;
+    EXPECT_EQ(read[i].q90, own[i].q90) << what;
+  }
+  // The validation's sweeps are the rows' source: with its last sweep's counts changed, the
+  // Laplacian's rows change and the others do not; with another sweep count, none does.
+  std::vector<OrderingValidation> changed = v;
+  for (OrderingValidation& x : changed) ++x.sweeps.back()[0][0].misses;
+  for (size_t o = 0; o < 3; ++o) c.laplacian[o] = &changed[o];
+  std::vector<KernelRun> bumped;
+  MeasureKernels(c, "m", base, &bumped, [](const std::string&) {});
+  for (size_t i = 0; i < own.size(); ++i)
+    EXPECT_EQ(bumped[i].misses[0], own[i].misses[0] + (own[i].kernel == "laplacian" ? 1 : 0));
+  for (OrderingValidation& x : changed) x.iterations = c.traced_sweeps + 1;
+  bumped.clear();
+  MeasureKernels(c, "m", base, &bumped, [](const std::string&) {});
+  for (size_t i = 0; i < own.size(); ++i) EXPECT_EQ(bumped[i].misses, own[i].misses);
 }
 
 // The timed rounds keeping every layout and set-up from one round to the next, or none (a budget
