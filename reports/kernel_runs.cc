@@ -66,11 +66,18 @@ bool FromValidation(const KernelRunsConfig& cfg, const OrderingValidation& v, Ke
 }
 
 // The simulated part of one run: misses and floor of the last traced sweep, line quantiles. Each
-// stream starts from the ordering applied to `base` afresh (a kernel changes its mesh).
-void Simulate(const KernelRunsConfig& cfg, const KernelInfo& k, const Mesh& base,
+// stream starts from a copy of the ordering's layout `laid` (a kernel changes its mesh), or where
+// none is held (null), from the ordering applied to `base` afresh.
+void Simulate(const KernelRunsConfig& cfg, const KernelInfo& k, const Mesh* laid, const Mesh& base,
               const Permutation& perm, KernelRun* r) {
   Mesh work;
-  ApplyPermutationInto(base, perm, cfg.triangle_order, &work);
+  auto lay_out = [&] {
+    if (laid)
+      laid->CopyInto(&work);
+    else
+      ApplyPermutationInto(base, perm, cfg.triangle_order, &work);
+  };
+  lay_out();
   CacheSimulation sim(cfg.cache, cfg.line_bytes);
   SweepFootprint footprint(cfg.line_bytes);
   LineQuantiles quantiles(cfg.line_bytes, cfg.quantile_depth);
@@ -89,7 +96,7 @@ void Simulate(const KernelRunsConfig& cfg, const KernelInfo& k, const Mesh& base
     return;
   }
   // A quantile at depth or beyond (or none): the same stream again, into the whole analysis.
-  ApplyPermutationInto(base, perm, cfg.triangle_order, &work);
+  lay_out();
   ReuseOptions ro;
   ro.granularity = Granularity::kLine;
   ro.line_bytes = cfg.line_bytes;
@@ -116,6 +123,15 @@ void MeasureKernels(const KernelRunsConfig& cfg, const std::string& mesh, const 
   const size_t first = out->size();
   std::vector<Permutation> perms;
   for (const std::string& o : cfg.orderings) perms.push_back(ComputeOrdering(o, base, cfg.seed));
+  // Every ordering's layout, made once for the simulations and the timed rounds while they fit
+  // cfg.held_bytes (else each simulation and round applies its ordering itself, one layout held
+  // at a time): a copy is sequential where an apply gathers.
+  const size_t no = cfg.orderings.size();
+  const bool hold_layouts = MeshBytes(base) * no <= cfg.held_bytes;
+  std::vector<Mesh> layouts(hold_layouts ? no : 1);  // empty until laid out
+  if (hold_layouts)
+    for (size_t o = 0; o < no; ++o)
+      ApplyPermutationInto(base, perms[o], cfg.triangle_order, &layouts[o]);
   // The simulations, side by side on the host's cores (each job its own layout, stream and
   // simulators; results in job order, so nothing depends on the schedule).
   for (const std::string& kn : cfg.kernels)
@@ -142,7 +158,7 @@ void MeasureKernels(const KernelRunsConfig& cfg, const std::string& mesh, const 
         const KernelInfo& k = ParseKernel(r.kernel);
         const OrderingValidation* v = o < cfg.laplacian.size() ? cfg.laplacian[o] : nullptr;
         if (!(v && IsPaperSweep(k) && FromValidation(cfg, *v, &r)))
-          Simulate(cfg, k, base, perms[o], &r);
+          Simulate(cfg, k, hold_layouts ? &layouts[o] : nullptr, base, perms[o], &r);
       } catch (...) {
 #pragma omp critical(meshreuse_kernel_runs_failed)
         if (!failed) failed = std::current_exception();
@@ -160,14 +176,12 @@ void MeasureKernels(const KernelRunsConfig& cfg, const std::string& mesh, const 
     // lake, 375k vertices, an apply took 0.12-0.15 s, half of a smart-laplacian run's untimed
     // time). A kernel's set-up (PrepareKernel: edge-swap's jitter and triangle neighbours, the
     // stiffness pattern) is made from the layout. Both are the same every round, so they are made
-    // once and kept for the rounds after, as long as what is kept fits cfg.held_bytes (every
-    // layout first, then set-ups as they come); what does not fit is made again each round (one
-    // layout held at a time). On lake the six layouts hold about 245 MB and edge-swap's set-ups
-    // 90 MB; its set-ups, one a run, took 1.33 s and the applies 0.53 s of the 10.4-s timed part.
-    const size_t no = cfg.orderings.size();
-    const bool hold_layouts = MeshBytes(base) * no <= cfg.held_bytes;
+    // once and kept for the rounds after, as long as what is kept fits cfg.held_bytes (the
+    // layouts, made before the simulations, first; then set-ups as they come); what does not fit
+    // is made again each round (one layout held at a time). On lake the six layouts hold about 245
+    // MB and edge-swap's set-ups 90 MB; its set-ups, one a run, took 1.33 s and the applies 0.53 s
+    // of the 10.4-s timed part.
     uint64_t held = hold_layouts ? MeshBytes(base) * no : 0;
-    std::vector<Mesh> layouts(hold_layouts ? no : 1);  // empty until laid out
     Mesh work;
     // Per kernel x ordering: its set-up (none yet, or none to share: nullptr) and whether it is
     // kept (fits the budget) or made again at every run.

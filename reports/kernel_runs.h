@@ -13,9 +13,9 @@
 //     rounds), each run exactly `sweeps` sweeps: the per-sweep median of each run, its spread
 //     over the rounds, and the speedups against ORI and BFS of the same kernel with their
 //     intervals (speedup.h).
-// Each ordering is computed once per mesh; a simulation applies it into its own copy, a timed
-// round applies it once and starts each kernel's run from a copy of that layout. The simulations
-// run side by side on the host's cores, the timed runs one at a time.
+// Each ordering is computed and laid out once per mesh (while the layouts fit held_bytes); every
+// simulation and timed run starts from a copy of its ordering's layout. The simulations run side
+// by side on the host's cores, the timed runs one at a time.
 #pragma once
 
 #include <cmath>
