@@ -53,7 +53,7 @@ namespace {
 // rank r: every rank below r one more, rank r 0. kFind: returns the slot whose rank was r
 // (otherwise 0).
 template <class R, bool kFind>
-inline uint32_t Promote(uint8_t* rank, uint32_t slots, R r) {
+inline __attribute__((always_inline)) uint32_t Promote(uint8_t* rank, uint32_t slots, R r) {
   uint32_t found = 0;
 #if defined(__SSE2__)
   constexpr bool k8 = sizeof(R) == 1;
@@ -83,8 +83,9 @@ inline uint32_t Promote(uint8_t* rank, uint32_t slots, R r) {
 
 }  // namespace
 
-template <class R>
+template <class R, uint32_t K>
 inline void LineQuantiles::Add(Stream& s, uint64_t line) {
+  const uint32_t slots = K ? K : slots_;
   ++s.accesses;
   if (s.front == line) {  // a repeat, over a third of a kernel's accesses: nothing changes
     ++s.below[0];
@@ -96,19 +97,19 @@ inline void LineQuantiles::Add(Stream& s, uint64_t line) {
     R r;
     std::memcpy(&r, s.rank.data() + (m - 2u) * sizeof(R), sizeof(R));
     ++s.below[static_cast<uint32_t>(r)];
-    Promote<R, false>(s.rank.data(), slots_, r);
+    Promote<R, false>(s.rank.data(), slots, r);
     return;
   }
   // Not held: cold, or a reuse at slots_ (>= depth) or more. It takes the slot of the highest
   // rank.
   if (m == 0) ++s.cold;
-  const uint32_t j = Promote<R, true>(s.rank.data(), slots_, static_cast<R>(slots_ - 1));
+  const uint32_t j = Promote<R, true>(s.rank.data(), slots, static_cast<R>(slots - 1));
   m = static_cast<uint16_t>(j + 2);
   if (s.line[j] != kNone) s.mark.At(s.line[j]) = 1;  // (after m: At may move the marks)
   s.line[j] = line;
 }
 
-template <class R>
+template <class R, uint32_t K>
 void LineQuantiles::ConsumeAs(const Access* a, size_t n) {
   Stream* s = nullptr;
   int thread = -1;
@@ -117,16 +118,19 @@ void LineQuantiles::ConsumeAs(const Access* a, size_t n) {
     if (x.thread != thread) thread = x.thread, s = &At(x.thread);
     const uint64_t first = x.address >> shift_;
     const uint64_t last = (x.address + (x.size ? x.size - 1 : 0)) >> shift_;
-    Add<R>(*s, first);
-    if (last != first) Add<R>(*s, last);
+    Add<R, K>(*s, first);
+    if (last != first) Add<R, K>(*s, last);
   }
 }
 
 void LineQuantiles::Consume(const Access* a, size_t n) {
+  // The report's depth (32 slots) with its loop's count fixed at compile time.
   if (wide_)
-    ConsumeAs<int16_t>(a, n);
+    ConsumeAs<int16_t, 0>(a, n);
+  else if (slots_ == 32)
+    ConsumeAs<int8_t, 32>(a, n);
   else
-    ConsumeAs<int8_t>(a, n);
+    ConsumeAs<int8_t, 0>(a, n);
 }
 
 const LineQuantiles::Stream* LineQuantiles::Find(int t) const {

@@ -90,7 +90,7 @@ std::vector<Access> MixedStream(uint64_t base, uint64_t lines, uint64_t seed, si
 
 TEST(LineQuantiles, EqualsTheWholeAnalysisWhereItAnswersAndAnswersBelowItsDepth) {
   int answered = 0, beyond = 0;
-  for (uint32_t depth : {1u, 2u, 8u, 64u, 300u})
+  for (uint32_t depth : {1u, 2u, 8u, 32u, 64u, 300u})
     for (bool canonical : {true, false}) {
       const uint64_t base = canonical ? AddressCanonicalizer::kCanonicalBase : 0x7f12345678c0ull;
       const auto [a, b] =
@@ -128,7 +128,7 @@ TEST(LineQuantiles, ACanonicalStreamWithOtherAddressesLaterIsExact) {
 }
 
 TEST(LineQuantiles, ACyclicScanAnswersAtDepthMinusOneAndNotAtDepth) {
-  for (uint32_t depth : {1u, 5u, 64u})
+  for (uint32_t depth : {1u, 5u, 32u, 64u})
     for (uint64_t lines : {uint64_t{depth}, uint64_t{depth} + 1}) {
       std::vector<Access> scan;
       for (int round = 0; round < 4; ++round)
