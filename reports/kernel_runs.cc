@@ -52,7 +52,7 @@ std::vector<uint64_t> LastSweepFloor(std::vector<std::vector<uint64_t>> lines,
 // (KernelRunsConfig::laplacian); false where it does not have all of it (one thread's stream of
 // traced_sweeps sweeps, both quantiles).
 bool FromValidation(const KernelRunsConfig& cfg, const OrderingValidation& v, KernelRun* r) {
-  if (v.threads != 1 || v.iterations != cfg.traced_sweeps ||
+  if (v.threads != 1 || v.iterations != cfg.traced_sweeps || v.sweeps.empty() ||
       v.sweeps.size() != static_cast<size_t>(cfg.traced_sweeps) || v.sweeps.back().size() != 1 ||
       !v.line_q50 || !v.line_q90)
     return false;
