@@ -128,12 +128,12 @@ void MeasureKernels(const KernelRunsConfig& cfg, const std::string& mesh, const 
   // at a time): a copy is sequential where an apply gathers.
   const size_t no = cfg.orderings.size();
   const bool hold_layouts = MeshBytes(base) * no <= cfg.held_bytes;
-  std::vector<Mesh> layouts(hold_layouts ? no : 1);  // empty until laid out
+  std::vector<Mesh> layouts(hold_layouts ? no : 1);  // else one, laid out by each round in turn
   if (hold_layouts)
     for (size_t o = 0; o < no; ++o)
       ApplyPermutationInto(base, perms[o], cfg.triangle_order, &layouts[o]);
-  // The simulations, side by side on the host's cores (each job its own layout, stream and
-  // simulators; results in job order, so nothing depends on the schedule).
+  // The simulations, side by side on the host's cores (each job its own copy of the layout, stream
+  // and simulators; results in job order, so nothing depends on the schedule).
   for (const std::string& kn : cfg.kernels)
     for (size_t o = 0; o < cfg.orderings.size(); ++o) {
       KernelRun r;
@@ -194,7 +194,7 @@ void MeasureKernels(const KernelRunsConfig& cfg, const std::string& mesh, const 
       for (size_t o = 0; o < (round == 0 ? 1 : no); ++o) {
         const size_t l = hold_layouts ? o : 0;
         Mesh& laid = layouts[l];
-        if (!hold_layouts || laid.xy.empty())
+        if (!hold_layouts)  // (held ones were made above)
           ApplyPermutationInto(base, perms[o], cfg.triangle_order, &laid);
         for (size_t kk = 0; kk < cfg.kernels.size(); ++kk) {
           const size_t at = kk * cfg.orderings.size() + o;  // rows: kernel, then ordering
