@@ -261,6 +261,7 @@ void CacheHierarchy::Allocate() {
 
 void CacheHierarchy::Access(uint64_t address, uint32_t size, bool write, bool fetch,
                             bool first_missed) {
+  Flush();
   ++accesses_;
   if (config_.empty()) return;
   if (__builtin_expect(levels_.empty(), 0)) Allocate();
@@ -316,6 +317,32 @@ void CacheHierarchy::Access(uint64_t address, uint32_t size, bool write, bool fe
     if (hit) return;
     count_miss(s);
   }
+}
+
+void CacheHierarchy::FlushPending() {
+  // fast_: no I1, so the path is every level in order; one line each.
+  const size_t n = config_.size();
+  for (uint32_t j = 0; j < pending_n_; ++j) {
+    const uint64_t line = pending_[j].line;
+    for (size_t k = 1; k < n; ++k) levels_[k].PrefetchSet(line);
+    if (window_ && line - window_base_ < kWindowLines)
+      window_pages_.Touch(&window_.get()[(line - window_base_) >> 6], 8);
+  }
+  for (uint32_t j = 0; j < pending_n_; ++j) {
+    const uint64_t line = pending_[j].line;
+    const bool cold = FirstTouch(line), write = pending_[j].write;
+    for (size_t k = 0; k < n; ++k) {
+      LevelStats& s = stats_[k];
+      if (k > 0) {
+        ++s.accesses;
+        if (levels_[k].Access(line)) break;
+      }
+      ++s.misses;
+      if (cold) ++s.cold;
+      ++(write ? s.write_misses : s.read_misses);
+    }
+  }
+  pending_n_ = 0;
 }
 
 CacheSimulation::CacheSimulation(const CacheSpec& spec, uint32_t line_bytes)

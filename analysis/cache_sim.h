@@ -393,6 +393,23 @@ class CacheHierarchy {
     stats_.front().accesses += end - from;
     return end;
   }
+  // What Access(address, size, write, false, true) does after HitFirst's kMissed, with the levels
+  // below the first looked up later, in order, by Flush: up to kPending first-level misses at once,
+  // their sets asked of the host together (a level below is a host miss per lookup, and one after
+  // another they do not overlap). Exact: only misses reach those levels and the record of first
+  // touches, in the order they happen; Access flushes before anything else touches them, and the
+  // caller flushes before reading stats() (CacheSimulation: at the end of each Consume).
+  void MissFirst(uint64_t address, bool write) {
+    const uint64_t line = address >> shift_;
+    ++accesses_;
+    ++stats_.front().accesses;
+    levels_.front().InstallMissed(line);
+    pending_[pending_n_++] = {line, write};
+    if (pending_n_ == kPending) Flush();
+  }
+  void Flush() {
+    if (pending_n_) FlushPending();
+  }
   uint32_t FirstGroups() const {
     return config_.empty() ? 0 : SetAssociativeCache::GroupsOf(config_[0].ways);
   }
@@ -403,6 +420,14 @@ class CacheHierarchy {
  private:
   bool FirstTouch(uint64_t line);  // records the line; true if it was never seen
   void Allocate();
+  void FlushPending();
+  static constexpr uint32_t kPending = 16;
+  struct Pending {
+    uint64_t line;
+    bool write;
+  };
+  Pending pending_[kPending];
+  uint32_t pending_n_ = 0;
 
   std::vector<CacheLevel> config_;
   uint32_t line_bytes_;
@@ -500,14 +525,18 @@ class CacheSimulation : public AccessConsumer {
       while (i < n && a[i].thread == t) {
         i = h.HitRun<G>(a, i, n, t);
         if (i == n || a[i].thread != t) break;
-        if (const auto r = h.HitFirst<G>(a[i].address, a[i].size); r != CacheHierarchy::kHit)
-          h.Access(a[i].address, a[i].size, a[i].write,
-                   a[i].kind == static_cast<uint8_t>(AccessKind::kFetch),
+        if (const auto r = h.HitFirst<G>(a[i].address, a[i].size);
+            r == CacheHierarchy::kMissed && a[i].kind != kFetchKind)
+          h.MissFirst(a[i].address, a[i].write);
+        else if (r != CacheHierarchy::kHit)
+          h.Access(a[i].address, a[i].size, a[i].write, a[i].kind == kFetchKind,
                    r == CacheHierarchy::kMissed);
         ++i;
       }
     }
+    for (CacheHierarchy& h : streams_) h.Flush();
   }
+  static constexpr uint8_t kFetchKind = static_cast<uint8_t>(AccessKind::kFetch);
   uint32_t first_groups_ = 0;
   std::vector<LevelStats> StartOf(int thread, size_t s) const;
 };
