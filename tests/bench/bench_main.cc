@@ -534,9 +534,15 @@ void Multicore(benchmark::State& state) {
       CacheSimulation c(spec, 64);
       c.Begin(one.info);
       hot_single.push_back(feed_hot(c, one.all));
-      if (c.Stats(0)[0].misses != b.Stats(0)[0].misses ||
-          h.Stats(0).levels[0].misses != a.Stats(0).levels[0].misses)
-        return state.SkipWithError("a simulation fed in batches counted otherwise");
+      for (size_t l = 0; l < spec.levels.size(); ++l)
+        if (c.Stats(0)[l].misses != b.Stats(0)[l].misses ||
+            c.Stats(0)[l].cold != b.Stats(0)[l].cold)
+          return state.SkipWithError("the per-stream simulator fed in batches counted otherwise");
+      for (int t = 0; t < p; ++t)
+        for (size_t l = 0; l < w.levels.size(); ++l)
+          if (h.Stats(t).levels[l].misses != a.Stats(t).levels[l].misses ||
+              h.Stats(t).levels[l].coherence != a.Stats(t).levels[l].coherence)
+            return state.SkipWithError("the many-core simulator fed in batches counted otherwise");
     }
     multi_before.push_back(ns(t0, t1, keep.all.size()));
     multi.push_back(ns(t1, t2, keep.all.size()));
