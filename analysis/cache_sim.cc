@@ -259,6 +259,36 @@ void CacheHierarchy::Allocate() {
   fast_ = !has_i1_ && !wide_;
 }
 
+// A first-level miss goes on to the levels below, one lookup after another, each likely a host
+// miss (a 24 MiB level is 6 MiB of sets): their sets asked of the host at once overlap, and so
+// does FirstTouch's bit (written if the line is new).
+inline void CacheHierarchy::PrefetchBelow(const uint8_t* path, size_t n, uint64_t line) {
+  for (size_t k = 1; k < n; ++k) levels_[path ? path[k] : k].PrefetchSet(line);
+  if (window_ && line - window_base_ < kWindowLines)
+    window_pages_.Touch(&window_.get()[(line - window_base_) >> 6], 8);
+}
+
+// The first level's miss counted, then each level below looked up (every line) and counted, in
+// path order, until one hits: each level sees the misses of the one before.
+inline void CacheHierarchy::MissBelow(const uint8_t* path, size_t n, uint64_t first, uint64_t last,
+                                      bool cold, bool write, bool fetch) {
+  auto count_miss = [&](LevelStats& s) {
+    ++s.misses;
+    if (cold) ++s.cold;
+    ++(fetch ? s.fetch_misses : write ? s.write_misses : s.read_misses);
+  };
+  count_miss(stats_[path ? path[0] : 0]);
+  for (size_t k = 1; k < n; ++k) {
+    const size_t i = path ? path[k] : k;
+    LevelStats& s = stats_[i];
+    ++s.accesses;
+    bool hit = levels_[i].Access(first);
+    for (uint64_t l = first + 1; l <= last; ++l) hit = levels_[i].Access(l) && hit;
+    if (hit) return;
+    count_miss(s);
+  }
+}
+
 void CacheHierarchy::Access(uint64_t address, uint32_t size, bool write, bool fetch,
                             bool first_missed) {
   Flush();
@@ -279,13 +309,7 @@ void CacheHierarchy::Access(uint64_t address, uint32_t size, bool write, bool fe
   // has); after the first such access every access consults the record, so the counts are those
   // of recording at every access exactly.
   const size_t l0 = path ? path[0] : 0;
-  // A first-level miss goes on to the levels below, one lookup after another, each likely a
-  // host miss (a 24 MiB level is 6 MiB of sets): their sets asked of the host at once overlap.
-  if (first_missed) {
-    for (size_t k = 1; k < n; ++k) levels_[path ? path[k] : k].PrefetchSet(first);
-    if (window_ && first - window_base_ < kWindowLines)  // FirstTouch's bit, written if new
-      window_pages_.Touch(&window_.get()[(first - window_base_) >> 6], 8);
-  }
+  if (first_missed) PrefetchBelow(path, n, first);
   ++stats_[l0].accesses;
   bool hit = false;
   if (first_missed)  // one line (HitFirst looks up no other)
@@ -302,45 +326,16 @@ void CacheHierarchy::Access(uint64_t address, uint32_t size, bool write, bool fe
   bool cold = FirstTouch(first);
   if (last != first) cold = FirstTouch(last) || cold;
   if (hit) return;
-  auto count_miss = [&](LevelStats& s) {
-    ++s.misses;
-    if (cold) ++s.cold;
-    ++(fetch ? s.fetch_misses : write ? s.write_misses : s.read_misses);
-  };
-  count_miss(stats_[l0]);
-  for (size_t k = 1; k < n; ++k) {  // each level sees the misses of the one before
-    const size_t i = path ? path[k] : k;
-    LevelStats& s = stats_[i];
-    ++s.accesses;
-    hit = levels_[i].Access(first);
-    for (uint64_t l = first + 1; l <= last; ++l) hit = levels_[i].Access(l) && hit;
-    if (hit) return;
-    count_miss(s);
-  }
+  MissBelow(path, n, first, last, cold, write, fetch);
 }
 
 void CacheHierarchy::FlushPending() {
   // fast_: no I1, so the path is every level in order; one line each.
   const size_t n = config_.size();
+  for (uint32_t j = 0; j < pending_n_; ++j) PrefetchBelow(nullptr, n, pending_[j].line);
   for (uint32_t j = 0; j < pending_n_; ++j) {
     const uint64_t line = pending_[j].line;
-    for (size_t k = 1; k < n; ++k) levels_[k].PrefetchSet(line);
-    if (window_ && line - window_base_ < kWindowLines)
-      window_pages_.Touch(&window_.get()[(line - window_base_) >> 6], 8);
-  }
-  for (uint32_t j = 0; j < pending_n_; ++j) {
-    const uint64_t line = pending_[j].line;
-    const bool cold = FirstTouch(line), write = pending_[j].write;
-    for (size_t k = 0; k < n; ++k) {
-      LevelStats& s = stats_[k];
-      if (k > 0) {
-        ++s.accesses;
-        if (levels_[k].Access(line)) break;
-      }
-      ++s.misses;
-      if (cold) ++s.cold;
-      ++(write ? s.write_misses : s.read_misses);
-    }
+    MissBelow(nullptr, n, line, line, FirstTouch(line), pending_[j].write, false);
   }
   pending_n_ = 0;
 }

@@ -421,6 +421,10 @@ class CacheHierarchy {
   bool FirstTouch(uint64_t line);  // records the line; true if it was never seen
   void Allocate();
   void FlushPending();
+  // path: the levels in the order tried, n of them (null: every level, in order).
+  void PrefetchBelow(const uint8_t* path, size_t n, uint64_t line);
+  void MissBelow(const uint8_t* path, size_t n, uint64_t first, uint64_t last, bool cold,
+                 bool write, bool fetch);
   static constexpr uint32_t kPending = 16;
   struct Pending {
     uint64_t line;
