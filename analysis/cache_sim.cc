@@ -56,11 +56,10 @@ SetAssociativeCache::SetAssociativeCache(uint64_t bytes, uint32_t ways, uint32_t
   ways_ = ways;
   groups_ = GroupsOf(ways);
   padded_ = 4 * groups_;
-  block_bytes_ = 16 * uint64_t{padded_};
+  block_bytes_ = 8 * uint64_t{padded_};
   pow2_ = (sets_ & (sets_ - 1)) == 0;
   mask_ = sets_ - 1;
-  // 64 B more, so that the sets start on a host cache line: a set of up to eight ways keeps its
-  // signatures and stamps in one.
+  // 64 B more, so that the sets start on a host cache line: a set of up to eight ways is one.
   if (sets_ > (SIZE_MAX - 64) / block_bytes_) throw std::bad_alloc();
   block_.reset(static_cast<uint8_t*>(std::calloc(1, sets_ * block_bytes_ + 64)));
   if (!block_) throw std::bad_alloc();
@@ -85,12 +84,29 @@ void WritablePages::Populate(uint64_t page) {
 #endif
 }
 
+void SetAssociativeCache::KeepTags() {
+  const uint64_t n = sets_ * padded_;  // at most 4 * kMaxLines
+  tags_.reset(static_cast<uint64_t*>(std::calloc(n, sizeof(uint64_t))));
+  if (!tags_) throw std::bad_alloc();
+  for (uint64_t i = 0; i < sets_; ++i) {
+    const uint32_t* sig = reinterpret_cast<const uint32_t*>(base_ + i * block_bytes_);
+    for (uint32_t w = 0; w < ways_; ++w)
+      if (sig[w]) tags_[i * padded_ + w] = high_ << 32 | sig[w];
+  }
+  if (n * sizeof(uint64_t) >= (uint64_t{64} << 10)) tag_pages_.Reset(tags_.get(), n * 8);
+  tagged_ = true;
+}
+
 template <uint32_t G>
 void SetAssociativeCache::Install(Set s, uint64_t tag) {
+  if (!tagged_ && (static_cast<uint32_t>(tag) == 0 || (high_ != kNoHigh && tag >> 32 != high_)))
+    KeepTags();
+  if (high_ == kNoHigh) high_ = tag >> 32;
+  uint64_t* const t = tagged_ ? TagsOf(s) : nullptr;
   uint32_t v = 0;
   if (policy_ == Replacement::kRandom) {
     uint32_t held = 0;  // the ways in use are the first `held` (the old array's positions)
-    while (held < ways_ && s.tag[held] != 0) ++held;
+    while (held < ways_ && (t ? t[held] : s.sig[held]) != 0) ++held;
     if (held < ways_) {
       v = held;
     } else {
@@ -101,14 +117,12 @@ void SetAssociativeCache::Install(Set s, uint64_t tag) {
     v = Oldest<G>(s.stamp);  // an empty way's stamp is 0
     s.stamp[v] = Tick();
   }
-  victim_ = s.tag[v] - 1;    // ~0 when the way was empty
-  if (tag >> 32 != high_) {  // (HitRun reads no tag while every tag has one high half)
-    if (high_ == kNoHigh)
-      high_ = tag >> 32;
-    else
-      mixed_ = true;
+  if (t) {
+    victim_ = t[v] - 1;  // ~0 when the way was empty
+    t[v] = tag;
+  } else {
+    victim_ = s.sig[v] ? (high_ << 32 | s.sig[v]) - 1 : ~uint64_t{0};
   }
-  s.tag[v] = tag;
   s.sig[v] = static_cast<uint32_t>(tag);
 }
 
@@ -171,11 +185,17 @@ bool SetAssociativeCache::Invalidate(uint64_t line) {
   const Set s = SetOf(line);
   const uint32_t w = Find<0>(s, line + 1);
   if (w == kNone) return false;
+  uint64_t* const t = tagged_ ? TagsOf(s) : nullptr;
   if (policy_ == Replacement::kRandom) {  // positions: the ways after it move up
-    for (uint32_t j = w; j + 1 < ways_; ++j) s.tag[j] = s.tag[j + 1], s.sig[j] = s.sig[j + 1];
-    s.tag[ways_ - 1] = 0, s.sig[ways_ - 1] = 0;
+    for (uint32_t j = w; j + 1 < ways_; ++j) {
+      if (t) t[j] = t[j + 1];
+      s.sig[j] = s.sig[j + 1];
+    }
+    if (t) t[ways_ - 1] = 0;
+    s.sig[ways_ - 1] = 0;
   } else {
-    s.tag[w] = 0, s.sig[w] = 0, s.stamp[w] = 0;
+    if (t) t[w] = 0;
+    s.sig[w] = 0, s.stamp[w] = 0;
   }
   return true;
 }

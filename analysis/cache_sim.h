@@ -81,10 +81,15 @@ class WritablePages {
 // One level. Lines are addresses >> log2(line bytes).
 //
 // Layout (issue 40: a hit in a few instructions, no branch on the data). A set is a block of its
-// ways' 32-bit signatures (the low half of the tag), which SSE2 compares four at a time, their
-// 32-bit stamps, then their tags (line + 1; 0 = an empty way), confirming a signature's match (two
-// lines of one set share a signature only 2^32 lines apart). Signatures and stamps of a set of up
-// to eight ways share one host cache line. Tags stay where they were installed:
+// ways' 32-bit signatures (the low half of the tag, line + 1), which SSE2 compares four at a
+// time, then their 32-bit stamps: a set of up to eight ways is one host cache line, of 24 ways
+// three. While every tag installed has one high half and a low half other than 0 (a stream
+// within 2^32 lines: every trace of the smoother), a signature is the whole tag and 0 an empty
+// way, so no tag is kept: a hit reads one block, and a miss names its victim from it. The first
+// tag that breaks this (a raw trace of a program's heap and stack) makes the level keep its tags
+// (line + 1; 0 = an empty way) in an array beside, written from the signatures then, which
+// confirm every signature's match from then on (two lines of one set share a signature only 2^32
+// lines apart). Tags stay where they were installed:
 //   - LRU: a way's stamp is the level's clock at its last use (0 = empty), so a hit is one store,
 //     and a miss replaces the smallest stamp (found by SIMD minimum, no branch on the data): an
 //     empty way while one is left, else the least recently used. The order of the stamps is the
@@ -99,12 +104,13 @@ class WritablePages {
 // a test's) every set's stamps are renumbered 1..k in their order and the clock goes on from the
 // largest: the same choices, with stamps that fit 32 bits (and compare as signed, as SSE2 does).
 // Ways are padded to a multiple of four with signature 0 and tag 0 (never confirmed: a tag is
-// never 0); the padding's stamps read as the largest (never the victim).
+// never 0, and without tags no signature looked up is 0); the padding's stamps read as the largest
+// (never the victim).
 class SetAssociativeCache {
  public:
   // Lines a level may hold: its blocks are allocated up front (calloc: pages as they are touched;
-  // 16 B a way, so at most 1 GiB), and a level of more lines is a mistake (1 B lines in a GiB
-  // cache), refused naming the level.
+  // 8 B a way, 16 with tags, so at most 1 GiB), and a level of more lines is a mistake (1 B lines
+  // in a GiB cache), refused naming the level.
   static constexpr uint64_t kMaxLines = uint64_t{1} << 26;
   // Throws UsageError unless bytes is a multiple of line_bytes * ways.
   SetAssociativeCache(uint64_t bytes, uint32_t ways, uint32_t line_bytes,
@@ -166,18 +172,17 @@ class SetAssociativeCache {
   template <uint32_t G, class LineOf, class OnHit>
   size_t HitRun(size_t from, size_t n, LineOf&& line_of, OnHit&& on_hit) {
     // The loop's variants fixed at compile time (set by mask or remainder; a hit's stamp or not;
-    // the tag read or not), so that a hit is a few dozen instructions. While every tag installed
-    // has one high half (mixed_ false: any stream within 2^32 lines), a signature's match is the
-    // tag's for a line of that half, so a hit reads no tag.
+    // the tags kept or not), so that a hit is a few dozen instructions.
     const bool tick = policy_ == Replacement::kLru;
-    if (pow2_ && !mixed_)
-      return tick ? Run<G, true, true, true>(from, n, line_of, on_hit)
-                  : Run<G, true, false, true>(from, n, line_of, on_hit);
-    if (pow2_)
-      return tick ? Run<G, true, true, false>(from, n, line_of, on_hit)
-                  : Run<G, true, false, false>(from, n, line_of, on_hit);
-    return tick ? Run<G, false, true, false>(from, n, line_of, on_hit)
-                : Run<G, false, false, false>(from, n, line_of, on_hit);
+    auto run = [&](auto pow2, auto tagged) {
+      constexpr bool kPow2 = decltype(pow2)::value, kSig = !decltype(tagged)::value;
+      return tick ? Run<G, kPow2, true, kSig>(from, n, line_of, on_hit)
+                  : Run<G, kPow2, false, kSig>(from, n, line_of, on_hit);
+    };
+    using Yes = std::true_type;
+    using No = std::false_type;
+    if (pow2_) return tagged_ ? run(Yes(), Yes()) : run(Yes(), No());
+    return tagged_ ? run(No(), Yes()) : run(No(), No());
   }
   // What Access does after a miss, for a caller whose Hit just returned false.
   void InstallMissed(uint64_t line) {
@@ -187,9 +192,15 @@ class SetAssociativeCache {
   // knows it will look the line up here soon, after other work, overlaps the set's host misses.
   // The set's pages are made writable first (WritablePages; levels of 64 KiB or more).
   void PrefetchSet(uint64_t line) {
-    const uint8_t* b = base_ + (pow2_ ? (line & mask_) : (line % sets_)) * block_bytes_;
+    const uint64_t set = pow2_ ? (line & mask_) : (line % sets_);
+    const uint8_t* b = base_ + set * block_bytes_;
     pages_.Touch(b, block_bytes_);
     for (uint64_t o = 0; o < block_bytes_; o += 64) __builtin_prefetch(b + o, 1);
+    if (tagged_) {
+      const uint64_t* t = tags_.get() + set * padded_;
+      tag_pages_.Touch(t, 8 * uint64_t{padded_});
+      __builtin_prefetch(t, 1);
+    }
   }
   // The line the last missing Access evicted, ~0 if it filled an empty way.
   uint64_t victim() const { return victim_; }
@@ -208,13 +219,17 @@ class SetAssociativeCache {
   struct Set {
     uint32_t* sig;
     uint32_t* stamp;
-    uint64_t* tag;
+    uint64_t index;
   };
   Set SetOf(uint64_t line) const {
-    uint8_t* b = base_ + (pow2_ ? (line & mask_) : (line % sets_)) * block_bytes_;
-    uint32_t* sig = reinterpret_cast<uint32_t*>(b);
-    return {sig, sig + padded_, reinterpret_cast<uint64_t*>(sig + 2 * padded_)};
+    const uint64_t i = pow2_ ? (line & mask_) : (line % sets_);
+    uint32_t* sig = reinterpret_cast<uint32_t*>(base_ + i * block_bytes_);
+    return {sig, sig + padded_, i};
   }
+  uint64_t* TagsOf(const Set& s) const { return tags_.get() + s.index * padded_; }  // tagged_
+  // From now on the tags are kept: written from the signatures (every held way's tag is high_'s
+  // half and its signature).
+  void KeepTags();
   // The clock after one more use or install; stamps renumbered first at the limit.
   uint32_t Tick() {
     if (__builtin_expect(clock_ >= limit_, 0)) Renumber();
@@ -240,24 +255,27 @@ class SetAssociativeCache {
 #endif
     return m;
   }
-  // The way holding `tag`, or kNone: the ways whose signature matches, confirmed on the tag.
-  // G: the groups fixed at compile time (0: groups_, any count).
+  // The way holding `tag`, or kNone: the ways whose signature matches, confirmed on the tag
+  // where tags are kept (without them, a tag of high_'s half and a low half other than 0 is its
+  // signature). G: the groups fixed at compile time (0: groups_, any count).
   template <uint32_t G>
   uint32_t Find(Set s, uint64_t tag) const {
     const uint32_t groups = G ? G : groups_;
+    if (!tagged_ && ((tag >> 32) != high_ || static_cast<uint32_t>(tag) == 0)) return kNone;
+    const uint64_t* t = tagged_ ? TagsOf(s) : nullptr;
     for (uint32_t g = 0; g < groups; g += 8)
       for (uint32_t m =
                Matches(s.sig + 4 * g, std::min(8u, groups - g), static_cast<uint32_t>(tag));
            m; m &= m - 1) {
         const uint32_t w = 4 * g + static_cast<uint32_t>(__builtin_ctz(m));
-        if (s.tag[w] == tag) return w;
+        if (!t || t[w] == tag) return w;
       }
     return kNone;
   }
   template <uint32_t G>
   void Install(Set s, uint64_t tag);  // a miss: the victim chosen, the tag in its way
-  // kSig: a signature's match is the tag's for a line whose tag's high half is high_ and whose
-  // low half is not 0 (an empty way's signature); other lines end the run.
+  // kSig (no tags kept): a signature's match is the tag's for a line whose tag's high half is
+  // high_ and whose low half is not 0 (an empty way's signature); other lines end the run.
   template <uint32_t G, bool kPow2, bool kTick, bool kSig, class LineOf, class OnHit>
   size_t Run(size_t from, size_t n, LineOf& line_of, OnHit& on_hit) {
     // The level's fields in locals: a stamp's store could alias them, and they would be reloaded
@@ -266,7 +284,8 @@ class SetAssociativeCache {
     if (kTick) n = std::min<size_t>(n, from + (clock < limit_ ? limit_ - clock : 0));
     uint8_t* const block = base_;
     // With G fixed, a set's size and the offsets in it are constants.
-    const uint64_t sets = sets_, mask = mask_, bytes = G ? 64 * G : block_bytes_;
+    const uint64_t sets = sets_, mask = mask_, bytes = G ? 32 * G : block_bytes_;
+    const uint64_t* const tags = tags_.get();
     const uint32_t padded = G ? 4 * G : padded_, groups = G ? G : groups_;
     const uint64_t high_of_run = high_;
     // The line of the run's last hit: still held (nothing else touches this level during the
@@ -281,9 +300,8 @@ class SetAssociativeCache {
         on_hit(i, line);
         continue;
       }
-      uint32_t* const sig =
-          reinterpret_cast<uint32_t*>(block + (kPow2 ? (line & mask) : (line % sets)) * bytes);
-      const uint64_t* const tag = reinterpret_cast<const uint64_t*>(sig + 2 * padded);
+      const uint64_t set = kPow2 ? (line & mask) : (line % sets);
+      uint32_t* const sig = reinterpret_cast<uint32_t*>(block + set * bytes);
       uint32_t w = kNone;
       if (kSig) {
         const uint64_t t1 = line + 1;
@@ -298,7 +316,7 @@ class SetAssociativeCache {
                    Matches(sig + 4 * g, std::min(8u, groups - g), static_cast<uint32_t>(line + 1));
                m; m &= m - 1) {
             const uint32_t k = 4 * g + static_cast<uint32_t>(__builtin_ctz(m));
-            if (tag[k] == line + 1) {
+            if (tags[set * padded + k] == line + 1) {
               w = k;
               break;
             }
@@ -315,18 +333,18 @@ class SetAssociativeCache {
 
   uint64_t sets_, mask_;
   uint32_t ways_, padded_, groups_;  // padded_: ways rounded up to a multiple of 4, groups_ = /4
-  uint64_t block_bytes_;             // a set: padded_ signatures, stamps and tags
+  uint64_t block_bytes_;             // a set: padded_ signatures and stamps
   bool pow2_;
   Replacement policy_;
   uint32_t clock_ = 0;  // the last stamp given (LRU, FIFO)
   uint32_t limit_ = (uint32_t{1} << 31) - 2;
   uint64_t rng_ = 0x9E3779B97F4A7C15ull;
   uint64_t victim_ = ~uint64_t{0};
-  // The high half of the first tag installed (kNoHigh before), and whether a tag of another half
-  // has been installed since (then every match is confirmed on the tag).
+  // The high half of the first tag installed (kNoHigh before), and whether tags are kept (a tag
+  // of another half, or of a low half 0, has been installed since).
   static constexpr uint64_t kNoHigh = ~uint64_t{0};
   uint64_t high_ = kNoHigh;
-  bool mixed_ = false;
+  bool tagged_ = false;
   // The sets' blocks, from calloc, whose large blocks are fresh zero pages: a level costs memory
   // only for the sets a stream touches, so 256 streams of a few accesses each do not hold 256
   // copies of a 24 MiB L3's tags. All zero is a set of empty ways.
@@ -336,6 +354,11 @@ class SetAssociativeCache {
   std::unique_ptr<uint8_t[], Free> block_;
   uint8_t* base_ = nullptr;  // the first set: block_ rounded up to 64 B
   WritablePages pages_;
+  struct FreeTags {
+    void operator()(uint64_t* p) const { std::free(p); }
+  };
+  std::unique_ptr<uint64_t[], FreeTags> tags_;  // padded_ a set, where tagged_
+  WritablePages tag_pages_;
 };
 
 // HitRun's line_of over a stream's accesses, for both simulators: access i's line, when it is
