@@ -93,7 +93,8 @@ void SetAssociativeCache::KeepTags() {
     for (uint32_t w = 0; w < ways_; ++w)
       if (sig[w]) tags_[i * padded_ + w] = high_ << 32 | sig[w];
   }
-  if (n * sizeof(uint64_t) >= (uint64_t{64} << 10)) tag_pages_.Reset(tags_.get(), n * 8);
+  if (n * sizeof(uint64_t) >= (uint64_t{64} << 10))
+    tag_pages_.Reset(tags_.get(), n * sizeof(uint64_t));
   tagged_ = true;
 }
 
