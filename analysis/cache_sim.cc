@@ -65,6 +65,7 @@ SetAssociativeCache::SetAssociativeCache(uint64_t bytes, uint32_t ways, uint32_t
   if (!block_) throw std::bad_alloc();
   base_ = block_.get() + (64 - reinterpret_cast<uintptr_t>(block_.get()) % 64) % 64;
   if (sets_ * block_bytes_ >= (uint64_t{64} << 10)) pages_.Reset(base_, sets_ * block_bytes_);
+  for (uint32_t k = 1; k < 4; ++k) pad_lanes_[k] = k >= 4 - (padded_ - ways_) ? 0x7fffffff : 0;
 }
 
 void WritablePages::Reset(const void* block, uint64_t bytes) {
@@ -99,10 +100,13 @@ void SetAssociativeCache::KeepTags() {
 }
 
 template <uint32_t G>
-void SetAssociativeCache::Install(Set s, uint64_t tag) {
+void SetAssociativeCache::InstallSlow(Set s, uint64_t tag) {
   if (!tagged_ && (static_cast<uint32_t>(tag) == 0 || (high_ != kNoHigh && tag >> 32 != high_)))
     KeepTags();
   if (high_ == kNoHigh) high_ = tag >> 32;
+  // SigTag's range from now on: the signatures of high_'s half, while no tag is kept.
+  sig_lo_ = tagged_ ? 0 : (high_ << 32) + 1;
+  sig_span_ = tagged_ ? 0 : (uint64_t{1} << 32) - 1;
   uint64_t* const t = tagged_ ? TagsOf(s) : nullptr;
   uint32_t v = 0;
   if (policy_ == Replacement::kRandom) {
@@ -127,44 +131,13 @@ void SetAssociativeCache::Install(Set s, uint64_t tag) {
   s.sig[v] = static_cast<uint32_t>(tag);
 }
 
-template <uint32_t G>
-uint32_t SetAssociativeCache::Oldest(const uint32_t* stamp) const {
-  const uint32_t n = G ? G : groups_;
-#ifdef __SSE2__
-  // Stamps are below 2^31 - 1, so signed compares order them; the padding's lanes read as 2^31 - 1.
-  const uint32_t pad = padded_ - ways_;
-  const __m128i high = _mm_set_epi32(pad >= 1 ? 0x7fffffff : 0, pad >= 2 ? 0x7fffffff : 0,
-                                     pad >= 3 ? 0x7fffffff : 0, 0);
-  auto group = [&](uint32_t g) {
-    const __m128i v = _mm_loadu_si128(reinterpret_cast<const __m128i*>(stamp + 4 * g));
-    return g + 1 == n ? _mm_or_si128(v, high) : v;
-  };
-  auto min = [](__m128i a, __m128i b) {
-    const __m128i lt = _mm_cmplt_epi32(a, b);
-    return _mm_or_si128(_mm_and_si128(lt, a), _mm_andnot_si128(lt, b));
-  };
-  __m128i m = group(0);
-  for (uint32_t g = 1; g < n; ++g) m = min(m, group(g));
-  m = min(m, _mm_shuffle_epi32(m, _MM_SHUFFLE(1, 0, 3, 2)));
-  m = min(m, _mm_shuffle_epi32(m, _MM_SHUFFLE(2, 3, 0, 1)));  // every lane the minimum
-  for (uint32_t g = 0;; ++g)
-    if (const int eq = _mm_movemask_ps(_mm_castsi128_ps(_mm_cmpeq_epi32(group(g), m))))
-      return 4 * g + static_cast<uint32_t>(__builtin_ctz(static_cast<unsigned>(eq)));
-#else
-  uint32_t v = 0;
-  for (uint32_t i = 1; i < ways_; ++i) v = stamp[i] < stamp[v] ? i : v;
-  (void)n;
-  return v;
-#endif
-}
-
-template void SetAssociativeCache::Install<0>(Set, uint64_t);
-template void SetAssociativeCache::Install<1>(Set, uint64_t);
-template void SetAssociativeCache::Install<2>(Set, uint64_t);
-template void SetAssociativeCache::Install<3>(Set, uint64_t);
-template void SetAssociativeCache::Install<4>(Set, uint64_t);
-template void SetAssociativeCache::Install<6>(Set, uint64_t);
-template void SetAssociativeCache::Install<8>(Set, uint64_t);
+template void SetAssociativeCache::InstallSlow<0>(Set, uint64_t);
+template void SetAssociativeCache::InstallSlow<1>(Set, uint64_t);
+template void SetAssociativeCache::InstallSlow<2>(Set, uint64_t);
+template void SetAssociativeCache::InstallSlow<3>(Set, uint64_t);
+template void SetAssociativeCache::InstallSlow<4>(Set, uint64_t);
+template void SetAssociativeCache::InstallSlow<6>(Set, uint64_t);
+template void SetAssociativeCache::InstallSlow<8>(Set, uint64_t);
 
 void SetAssociativeCache::Renumber() {
   // Each set's stamps become 1..k in their order (0, empty, stays): every later comparison within

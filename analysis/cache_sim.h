@@ -184,6 +184,9 @@ class SetAssociativeCache {
     if (pow2_) return tagged_ ? run(Yes(), Yes()) : run(Yes(), No());
     return tagged_ ? run(No(), Yes()) : run(No(), No());
   }
+  // Whether the last HitRun stopped at a miss: at an access line_of took, whose line this level
+  // does not hold. Nothing changed, as after Hit's false: the caller need not look it up again.
+  bool run_missed() const { return run_missed_; }
   // What Access does after a miss, for a caller whose Hit just returned false.
   void InstallMissed(uint64_t line) {
     WithGroups(groups_, [&](auto g) { Install<decltype(g)::value>(SetOf(line), line + 1); });
@@ -237,9 +240,40 @@ class SetAssociativeCache {
   }
   void Renumber();
   // The way with the smallest stamp (the first of equals: the first empty way), padding excluded.
-  // G: groups(), or 0 (cache_sim.cc instantiates WithGroups' counts).
+  // G: groups(), or 0.
   template <uint32_t G>
-  uint32_t Oldest(const uint32_t* stamp) const;
+  uint32_t Oldest(const uint32_t* stamp) const {
+    const uint32_t n = G ? G : groups_;
+#ifdef __SSE2__
+    // Stamps are below 2^31 - 1, so signed compares order them; the padding's lanes read as
+    // 2^31 - 1 (pad_lanes_).
+    const __m128i high = _mm_load_si128(reinterpret_cast<const __m128i*>(pad_lanes_));
+    auto group = [&](uint32_t g) {
+      const __m128i v = _mm_loadu_si128(reinterpret_cast<const __m128i*>(stamp + 4 * g));
+      return g + 1 == n ? _mm_or_si128(v, high) : v;
+    };
+    auto min = [](__m128i a, __m128i b) {
+      const __m128i lt = _mm_cmplt_epi32(a, b);
+      return _mm_or_si128(_mm_and_si128(lt, a), _mm_andnot_si128(lt, b));
+    };
+    __m128i m = group(0);
+    for (uint32_t g = 1; g < n; ++g) m = min(m, group(g));
+    m = min(m, _mm_shuffle_epi32(m, _MM_SHUFFLE(1, 0, 3, 2)));
+    m = min(m, _mm_shuffle_epi32(m, _MM_SHUFFLE(2, 3, 0, 1)));  // every lane the minimum
+    for (uint32_t g = 0;; ++g)
+      if (const int eq = _mm_movemask_ps(_mm_castsi128_ps(_mm_cmpeq_epi32(group(g), m))))
+        return 4 * g + static_cast<uint32_t>(__builtin_ctz(static_cast<unsigned>(eq)));
+#else
+    uint32_t v = 0;
+    for (uint32_t i = 1; i < ways_; ++i) v = stamp[i] < stamp[v] ? i : v;
+    (void)n;
+    return v;
+#endif
+  }
+  // Whether, with no tags kept, `tag` is its signature: high_'s half and a low half other than 0
+  // (one subtraction and compare: sig_lo_ and sig_span_ follow high_ and tagged_; no tag passes
+  // before the first install or once tags are kept).
+  bool SigTag(uint64_t tag) const { return tag - sig_lo_ < sig_span_; }
   // Bit i set where x[i] == key, for 4 * n values (n <= 8).
   static uint32_t Matches(const uint32_t* x, uint32_t n, uint32_t key) {
     uint32_t m = 0;
@@ -261,7 +295,7 @@ class SetAssociativeCache {
   template <uint32_t G>
   uint32_t Find(Set s, uint64_t tag) const {
     const uint32_t groups = G ? G : groups_;
-    if (!tagged_ && ((tag >> 32) != high_ || static_cast<uint32_t>(tag) == 0)) return kNone;
+    if (!tagged_ && !SigTag(tag)) return kNone;
     const uint64_t* t = tagged_ ? TagsOf(s) : nullptr;
     for (uint32_t g = 0; g < groups; g += 8)
       for (uint32_t m =
@@ -272,8 +306,19 @@ class SetAssociativeCache {
       }
     return kNone;
   }
+  // A miss: the victim chosen, the tag in its way. Inline for the common case (LRU or FIFO, no
+  // tags kept, the tag its signature), InstallSlow otherwise (random, tags, a first tag).
   template <uint32_t G>
-  void Install(Set s, uint64_t tag);  // a miss: the victim chosen, the tag in its way
+  void Install(Set s, uint64_t tag) {
+    if (__builtin_expect(!SigTag(tag) || policy_ == Replacement::kRandom, 0))
+      return InstallSlow<G>(s, tag);
+    const uint32_t v = Oldest<G>(s.stamp);  // an empty way's stamp is 0
+    s.stamp[v] = Tick();
+    victim_ = s.sig[v] ? (high_ << 32 | s.sig[v]) - 1 : ~uint64_t{0};
+    s.sig[v] = static_cast<uint32_t>(tag);
+  }
+  template <uint32_t G>
+  void InstallSlow(Set s, uint64_t tag);
   // kSig (no tags kept): a signature's match is the tag's for a line whose tag's high half is
   // high_ and whose low half is not 0 (an empty way's signature); other lines end the run.
   template <uint32_t G, bool kPow2, bool kTick, bool kSig, class LineOf, class OnHit>
@@ -287,12 +332,13 @@ class SetAssociativeCache {
     const uint64_t sets = sets_, mask = mask_, bytes = G ? 32 * G : block_bytes_;
     const uint64_t* const tags = tags_.get();
     const uint32_t padded = G ? 4 * G : padded_, groups = G ? G : groups_;
-    const uint64_t high_of_run = high_;
+    const uint64_t sig_lo = sig_lo_, sig_span = sig_span_;
     // The line of the run's last hit: still held (nothing else touches this level during the
     // run), and its stamp is already the largest of its set, so another use of it changes no
     // order in any set: no lookup, no stamp (about half of a smoother's accesses).
     uint64_t last = ~uint64_t{0};
     size_t i = from;
+    bool missed = false;
     for (; i < n; ++i) {
       uint64_t line;
       if (!line_of(i, line)) break;
@@ -305,7 +351,10 @@ class SetAssociativeCache {
       uint32_t w = kNone;
       if (kSig) {
         const uint64_t t1 = line + 1;
-        if ((t1 >> 32) != high_of_run || static_cast<uint32_t>(t1) == 0) break;
+        if (t1 - sig_lo >= sig_span) {  // not SigTag: not held
+          missed = true;
+          break;
+        }
         for (uint32_t g = 0; g < groups && w == kNone; g += 8)
           if (const uint32_t m =
                   Matches(sig + 4 * g, std::min(8u, groups - g), static_cast<uint32_t>(t1)))
@@ -322,12 +371,16 @@ class SetAssociativeCache {
             }
           }
       }
-      if (w == kNone) break;
+      if (w == kNone) {
+        missed = true;
+        break;
+      }
       if (kTick) sig[padded + w] = ++clock;
       last = line;
       on_hit(i, line);
     }
     clock_ = clock;
+    run_missed_ = missed;
     return i;
   }
 
@@ -345,6 +398,9 @@ class SetAssociativeCache {
   static constexpr uint64_t kNoHigh = ~uint64_t{0};
   uint64_t high_ = kNoHigh;
   bool tagged_ = false;
+  bool run_missed_ = false;
+  uint64_t sig_lo_ = 0, sig_span_ = 0;     // SigTag's range: (high_ << 32) + 1 and 2^32 - 1, or 0
+  alignas(16) int32_t pad_lanes_[4] = {};  // Oldest: 2^31 - 1 in the last group's padding lanes
   // The sets' blocks, from calloc, whose large blocks are fresh zero pages: a level costs memory
   // only for the sets a stream touches, so 256 streams of a few accesses each do not hold 256
   // copies of a 24 MiB L3's tags. All zero is a set of empty ways.
@@ -416,6 +472,9 @@ class CacheHierarchy {
     stats_.front().accesses += end - from;
     return end;
   }
+  // Whether the last HitRun stopped at a first-level miss (of thread t's one-line access): what
+  // HitFirst would answer there, kMissed, without the lookup.
+  bool RunMissed() const { return fast_ && levels_.front().run_missed(); }
   // What Access(address, size, write, false, true) does after HitFirst's kMissed, with the levels
   // below the first looked up later, in order, by Flush: up to kPending first-level misses at once,
   // their sets asked of the host together (a level below is a host miss per lookup, and one after
@@ -552,7 +611,8 @@ class CacheSimulation : public AccessConsumer {
       while (i < n && a[i].thread == t) {
         i = h.HitRun<G>(a, i, n, t);
         if (i == n || a[i].thread != t) break;
-        if (const auto r = h.HitFirst<G>(a[i].address, a[i].size);
+        if (const auto r =
+                h.RunMissed() ? CacheHierarchy::kMissed : h.HitFirst<G>(a[i].address, a[i].size);
             r == CacheHierarchy::kMissed && a[i].kind != kFetchKind)
           h.MissFirst(a[i].address, a[i].write);
         else if (r != CacheHierarchy::kHit)

@@ -195,8 +195,12 @@ void MulticoreSimulation::Resize(int threads) {
   for (ThreadStats& s : stats_) s.levels.resize(m_.levels.size());
   for (auto& c : cores_) c.reset();
   first_of_thread_.assign(threads, FirstLevel());
+  path_of_thread_.assign(threads, Path());
   for (int t = 0; t < threads; ++t) {
     first_of_thread_[t].core = core_of_[t];
+    first_of_thread_[t].other_cores = ~(uint64_t{1} << core_of_[t]);
+    first_of_thread_[t].other_sockets =
+        static_cast<uint8_t>(~(1u << (core_of_[t] / m_.cores_per_socket)));
     first_of_thread_[t].prefetch = private_levels_ > 0 && m_.levels[0].prefetch;
     if (!m_.levels.empty()) first_of_thread_[t].accesses = &stats_[t].levels.front().accesses;
   }
@@ -274,7 +278,7 @@ int MulticoreSimulation::HomeSocket(uint64_t line) const {
   return static_cast<int>(((line << shift_) >> 12) % static_cast<uint64_t>(m_.sockets));
 }
 
-void MulticoreSimulation::WriteHit(int core, uint64_t line) {
+void MulticoreSimulation::WriteHitSlow(int core, uint64_t line) {
   ReserveSparse(1);  // (the line's record exists: it missed here before; this keeps Info's rule)
   LineInfo& e = Info(line);
   const int socket = core / m_.cores_per_socket;
@@ -469,6 +473,76 @@ void MulticoreSimulation::Access(int thread, uint64_t address, uint32_t size, bo
       LineInfo& e = info[l - first] ? *info[l - first] : Info(l);
       if ((e.cores & ~cbit) || (e.sockets & ~sbit)) InvalidateOthers(core, e, l);
     }
+}
+
+MulticoreSimulation::Path& MulticoreSimulation::PathOf(int thread) {
+  Path& p = path_of_thread_[thread];
+  if (p.core < 0) {
+    p.core = core_of_[thread];
+    p.socket = p.core / m_.cores_per_socket;
+    for (size_t i = 0; i < m_.levels.size(); ++i)
+      p.caches[i] = i < private_levels_ ? &CoreOwner(p.core).caches[i]
+                                        : &SocketOwner(p.socket).caches[i - private_levels_];
+  }
+  return p;
+}
+
+void MulticoreSimulation::MissPlain(int thread, uint64_t line, bool write) {
+  const Path& p = PathOf(thread);
+  const size_t n = m_.levels.size();
+  for (size_t i = 1; i < n; ++i) p.caches[i]->PrefetchSet(line);  // as PrefetchBelow, and why
+  LineInfo* e;
+  if (line - info_base_ < kDenseLines) {
+    e = dense_.get() + (line - info_base_);
+    info_pages_.Touch(e, sizeof(LineInfo));
+    __builtin_prefetch(e, 1);
+  } else {
+    ReserveSparse(1);
+    e = &Info(line);
+  }
+  // The levels first, down to the first that holds the line (`hit`; n: memory), then the record:
+  // no level reads it, so its host miss overlaps their lookups instead of stalling before them.
+  p.caches[0]->InstallMissed(line);
+  size_t hit = n;
+  for (size_t i = 1; i < n; ++i) {
+    SetAssociativeCache& c = *p.caches[i];
+    if (c.Access(line)) {
+      hit = i;
+      break;
+    }
+    if (i >= private_levels_ && m_.levels[i].inclusive && c.victim() != ~uint64_t{0})
+      BackInvalidate(p.socket, c.victim());
+  }
+  // Each level that missed counts a miss, cold and coherence as its owner's first level decides
+  // them (Access: the core's at the first private level, the socket's at the first shared one);
+  // the record of removals changes only after.
+  const uint64_t cbit = uint64_t{1} << p.core;
+  const uint8_t sbit = static_cast<uint8_t>(1u << p.socket);
+  ThreadStats& st = stats_[thread];
+  auto missed = [&](size_t from, size_t to, uint64_t cold, uint64_t coherence) {
+    for (size_t i = from; i < to; ++i) {
+      CoreLevelStats& s = st.levels[i];
+      ++s.accesses, ++s.misses, s.cold += cold, s.coherence += coherence;
+      ++(write ? s.write_misses : s.read_misses);
+    }
+  };
+  missed(0, std::min(hit, private_levels_), !(e->seen_cores & cbit),
+         (e->removed_cores & cbit) != 0);
+  e->seen_cores |= cbit;
+  e->cores |= cbit;
+  e->removed_cores &= ~cbit;
+  if (hit > private_levels_) {  // the socket's first level missed too
+    missed(private_levels_, hit, !(e->seen_sockets & sbit), (e->removed_sockets & sbit) != 0);
+    e->seen_sockets |= sbit;
+    e->sockets |= sbit;
+    e->removed_sockets = static_cast<uint8_t>(e->removed_sockets & ~sbit);
+  }
+  if (hit < n)
+    ++st.levels[hit].accesses;
+  else
+    ++(HomeSocket(line) == p.socket ? st.memory_local : st.memory_remote);
+  if (write && coherent_ && ((e->cores & ~cbit) || (e->sockets & ~sbit)))
+    InvalidateOthers(p.core, *e, line);
 }
 
 void MulticoreSimulation::BeginSweep(int) { marks_.push_back(stats_); }

@@ -422,41 +422,45 @@ TEST(SetAssociativeCache, MatchesTheMostRecentFirstArrayOnRandomStreams) {
   // renumber: the stamps renumbered every few uses (the clock's limit made small), or never.
   // tags_from: the step from which lines 2^32 apart come (the level keeps its tags from the first
   // of them on, written then from the signatures of the full level): at once, or half way.
-  for (const int tags_from : {0, 2000})
-    for (const bool renumber : {false, true})
-      for (const Replacement p : {Replacement::kLru, Replacement::kFifo, Replacement::kRandom})
-        for (const uint32_t ways : {1u, 2u, 3u, 4u, 7u, 8u, 12u, 24u, 33u, 40u})
-          for (const uint64_t sets : {uint64_t{1}, uint64_t{3}, uint64_t{4}}) {
-            SetAssociativeCache fast(sets * ways * 64, ways, 64, p);
-            if (renumber) fast.LimitClockForTest(ways + 1 + static_cast<uint32_t>(sets));
-            ArrayLevel ref(sets, ways, p);
-            std::mt19937_64 rng(ways * 131 + sets + static_cast<uint64_t>(p));
-            // Lines from a pool a little larger than the cache, some 2^32 lines apart (the same
-            // signature in one set: only the full tag tells them apart).
-            const uint64_t pool = sets * ways + ways / 2 + 2;
-            const std::string what = std::string(ReplacementName(p)) + " ways " +
-                                     std::to_string(ways) + " sets " + std::to_string(sets) +
-                                     (renumber ? " renumbered" : "") + " tags from " +
-                                     std::to_string(tags_from);
-            for (int i = 0; i < 4000; ++i) {
-              uint64_t line = rng() % pool;
-              if (i >= tags_from && rng() % 5 == 0) line += uint64_t{1} << 32;
-              const int op = static_cast<int>(rng() % 10);
-              if (op == 0) {
-                ASSERT_EQ(fast.Invalidate(line), ref.Invalidate(line)) << what << " step " << i;
-              } else if (op == 1) {
-                const bool held =
-                    std::count(ref.s[line % sets].begin(), ref.s[line % sets].end(), line + 1) > 0;
-                ASSERT_EQ(fast.Contains(line), held) << what << " step " << i;
-              } else {
-                const bool hit = fast.Access(line);
-                ASSERT_EQ(hit, ref.Access(line)) << what << " step " << i;
-                if (!hit) {
-                  ASSERT_EQ(fast.victim(), ref.victim) << what << " step " << i;
+  // base: the pool's first line; 2^32 - 20 puts the pool across a high half's end, so that among
+  // the tags of one half (no tag kept) come the next half's, and its tag of low half 0, 2^32 (an
+  // empty way's signature: it must make the level keep its tags).
+  for (const uint64_t base : {uint64_t{0}, (uint64_t{1} << 32) - 20})
+    for (const int tags_from : {0, 2000})
+      for (const bool renumber : {false, true})
+        for (const Replacement p : {Replacement::kLru, Replacement::kFifo, Replacement::kRandom})
+          for (const uint32_t ways : {1u, 2u, 3u, 4u, 7u, 8u, 12u, 24u, 33u, 40u})
+            for (const uint64_t sets : {uint64_t{1}, uint64_t{3}, uint64_t{4}}) {
+              SetAssociativeCache fast(sets * ways * 64, ways, 64, p);
+              if (renumber) fast.LimitClockForTest(ways + 1 + static_cast<uint32_t>(sets));
+              ArrayLevel ref(sets, ways, p);
+              std::mt19937_64 rng(ways * 131 + sets + static_cast<uint64_t>(p));
+              // Lines from a pool a little larger than the cache, some 2^32 lines apart (the same
+              // signature in one set: only the full tag tells them apart).
+              const uint64_t pool = sets * ways + ways / 2 + 2;
+              const std::string what = std::string(ReplacementName(p)) + " ways " +
+                                       std::to_string(ways) + " sets " + std::to_string(sets) +
+                                       (renumber ? " renumbered" : "") + " tags from " +
+                                       std::to_string(tags_from) + " base " + std::to_string(base);
+              for (int i = 0; i < 4000; ++i) {
+                uint64_t line = base + rng() % pool;
+                if (i >= tags_from && rng() % 5 == 0) line += uint64_t{1} << 32;
+                const int op = static_cast<int>(rng() % 10);
+                if (op == 0) {
+                  ASSERT_EQ(fast.Invalidate(line), ref.Invalidate(line)) << what << " step " << i;
+                } else if (op == 1) {
+                  const bool held = std::count(ref.s[line % sets].begin(), ref.s[line % sets].end(),
+                                               line + 1) > 0;
+                  ASSERT_EQ(fast.Contains(line), held) << what << " step " << i;
+                } else {
+                  const bool hit = fast.Access(line);
+                  ASSERT_EQ(hit, ref.Access(line)) << what << " step " << i;
+                  if (!hit) {
+                    ASSERT_EQ(fast.victim(), ref.victim) << what << " step " << i;
+                  }
                 }
               }
             }
-          }
 }
 
 // HitRun (the simulators' loop over first-level hits) against Access one line at a time: the
