@@ -195,12 +195,11 @@ void MulticoreSimulation::Resize(int threads) {
   for (ThreadStats& s : stats_) s.levels.resize(m_.levels.size());
   for (auto& c : cores_) c.reset();
   first_of_thread_.assign(threads, FirstLevel());
-  path_of_thread_.assign(threads, Path());
   for (int t = 0; t < threads; ++t) {
     first_of_thread_[t].core = core_of_[t];
     first_of_thread_[t].other_cores = ~(uint64_t{1} << core_of_[t]);
-    first_of_thread_[t].other_sockets =
-        static_cast<uint8_t>(~(1u << (core_of_[t] / m_.cores_per_socket)));
+    first_of_thread_[t].socket = core_of_[t] / m_.cores_per_socket;
+    first_of_thread_[t].other_sockets = static_cast<uint8_t>(~(1u << first_of_thread_[t].socket));
     first_of_thread_[t].prefetch = private_levels_ > 0 && m_.levels[0].prefetch;
     if (!m_.levels.empty()) first_of_thread_[t].accesses = &stats_[t].levels.front().accesses;
   }
@@ -350,11 +349,8 @@ void MulticoreSimulation::InvalidateOthers(int core, LineInfo& e, uint64_t line)
   e.sockets = static_cast<uint8_t>(e.sockets & (1u << socket));
 }
 
-void MulticoreSimulation::PrefetchBelow(int core, int socket, uint64_t line) {
-  Owner& c = CoreOwner(core);
-  for (size_t i = 1; i < m_.levels.size(); ++i)
-    (i < private_levels_ ? c.caches[i] : SocketOwner(socket).caches[i - private_levels_])
-        .PrefetchSet(line);
+void MulticoreSimulation::PrefetchBelow(const FirstLevel& f, uint64_t line) {
+  for (size_t i = 1; i < m_.levels.size(); ++i) f.levels[i]->PrefetchSet(line);
   if (line - info_base_ < kDenseLines) {
     const LineInfo* e = dense_.get() + (line - info_base_);
     info_pages_.Touch(e, sizeof(LineInfo));
@@ -373,8 +369,9 @@ void MulticoreSimulation::Access(int thread, uint64_t address, uint32_t size, bo
   const uint64_t last = (address + (size ? size - 1 : 0)) >> shift_;
   ReserveSparse(2 * (last - first + 1));
   if (first_missed) {  // the levels below will be looked up
-    PrefetchBelow(core, socket, first);
-    if (prefetching_) PrefetchBelow(core, socket, first + 1);  // a prefetcher's next line
+    const FirstLevel& f = LevelsOf(thread);
+    PrefetchBelow(f, first);
+    if (prefetching_) PrefetchBelow(f, first + 1);  // a prefetcher's next line
   }
   // Per line of the access (two when it straddles), its record, fetched at its first miss.
   LineInfo* info[2] = {nullptr, nullptr};
@@ -475,37 +472,34 @@ void MulticoreSimulation::Access(int thread, uint64_t address, uint32_t size, bo
     }
 }
 
-MulticoreSimulation::Path& MulticoreSimulation::PathOf(int thread) {
-  Path& p = path_of_thread_[thread];
-  if (p.core < 0) {
-    p.core = core_of_[thread];
-    p.socket = p.core / m_.cores_per_socket;
+const MulticoreSimulation::FirstLevel& MulticoreSimulation::LevelsOf(int thread) {
+  FirstLevel& f = first_of_thread_[thread];
+  if (!f.levels_made) {
     for (size_t i = 0; i < m_.levels.size(); ++i)
-      p.caches[i] = i < private_levels_ ? &CoreOwner(p.core).caches[i]
-                                        : &SocketOwner(p.socket).caches[i - private_levels_];
+      f.levels[i] = i < private_levels_ ? &CoreOwner(f.core).caches[i]
+                                        : &SocketOwner(f.socket).caches[i - private_levels_];
+    f.levels_made = true;
   }
-  return p;
+  return f;
 }
 
 void MulticoreSimulation::MissPlain(int thread, uint64_t line, bool write) {
-  const Path& p = PathOf(thread);
+  const FirstLevel& p = LevelsOf(thread);
   const size_t n = m_.levels.size();
-  for (size_t i = 1; i < n; ++i) p.caches[i]->PrefetchSet(line);  // as PrefetchBelow, and why
+  PrefetchBelow(p, line);
   LineInfo* e;
   if (line - info_base_ < kDenseLines) {
     e = dense_.get() + (line - info_base_);
-    info_pages_.Touch(e, sizeof(LineInfo));
-    __builtin_prefetch(e, 1);
   } else {
     ReserveSparse(1);
     e = &Info(line);
   }
   // The levels first, down to the first that holds the line (`hit`; n: memory), then the record:
   // no level reads it, so its host miss overlaps their lookups instead of stalling before them.
-  p.caches[0]->InstallMissed(line);
+  p.levels[0]->InstallMissed(line);
   size_t hit = n;
   for (size_t i = 1; i < n; ++i) {
-    SetAssociativeCache& c = *p.caches[i];
+    SetAssociativeCache& c = *p.levels[i];
     if (c.Access(line)) {
       hit = i;
       break;

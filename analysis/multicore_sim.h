@@ -175,17 +175,13 @@ class MulticoreSimulation : public AccessConsumer {
   void WriteHitSlow(int core, uint64_t line);
   // What Access(thread, address, size, write, true) does for a one-line access where no level
   // prefetches (the report's machine runs but the prefetcher's): the same counts and changes, in
-  // the same order, along the thread's levels found once (Path) instead of level by level through
-  // the general loop, which weighs each level's prefetcher, owner and the access's second line
-  // (by callgrind at 32 threads, 1,211 instructions a first-level miss there, 797 here).
+  // the same order, along the thread's levels found once (LevelsOf) instead of level by level
+  // through the general loop, which weighs each level's prefetcher, owner and the access's second
+  // line (by callgrind at 32 threads, 1,211 instructions a first-level miss there).
   void MissPlain(int thread, uint64_t line, bool write);
-  // Per thread: its core's and socket's levels in the machine's order (made at its first
-  // MissPlain, after Access has made them), its core and socket.
-  struct Path {
-    SetAssociativeCache* caches[8] = {};
-    int core = -1, socket = 0;
-  };
-  Path& PathOf(int thread);
+  // Thread `thread`'s FirstLevel with its levels (FirstLevel::levels) made.
+  struct FirstLevel;
+  const FirstLevel& LevelsOf(int thread);
   // A first-level hit where that level prefetches: if the line was prefetched and not demanded
   // since, a prefetch hit (as Access counts it). Touches the set of prefetched lines, not the
   // level. Called only where the set's filter (FirstLevel::filter) says it may hold the line.
@@ -193,11 +189,11 @@ class MulticoreSimulation : public AccessConsumer {
   // Level `level` (the machine's index) of `o` took `line` out (~0: nothing): out of that level's
   // prefetched lines too where held_only_ (see Owner in the .cc).
   void Removed(Owner& o, size_t level, uint64_t line);
-  // The sets of `line` at every level below the first (the core's and its socket's) and its
-  // record, asked of the host (no change to any level) as a first-level miss begins: the
-  // lookups that follow go one after another, each likely a host miss (a socket's 24 MiB level
-  // is 6 MiB of sets), and asked at once their misses overlap instead of adding up.
-  void PrefetchBelow(int core, int socket, uint64_t line);
+  // The sets of `line` at every level below the first (f's, from LevelsOf) and its record,
+  // asked of the host (no change to any level) as a first-level miss begins: the lookups that
+  // follow go one after another, each likely a host miss (a socket's 24 MiB level is 6 MiB of
+  // sets), and asked at once their misses overlap instead of adding up.
+  void PrefetchBelow(const FirstLevel& f, uint64_t line);
   void ReserveSparse(uint64_t more);
   void BackInvalidate(int socket, uint64_t line);
   void InvalidateOthers(int core, LineInfo& e, uint64_t line);
@@ -220,7 +216,9 @@ class MulticoreSimulation : public AccessConsumer {
   bool prefetching_ = false;     // some level has a prefetcher
   // Per thread, what HitFirst needs in one place: its core's first level (null until made), that
   // level's access count in the thread's stats, its core, whether that level prefetches, and then
-  // the filter of its set of prefetched lines (made with the level).
+  // the filter of its set of prefetched lines (made with the level); and for a first-level miss
+  // its socket and every level of its path in the machine's order (made by LevelsOf, at the
+  // thread's first miss that asks).
   struct FirstLevel {
     SetAssociativeCache* cache = nullptr;
     uint64_t* accesses = nullptr;
@@ -229,9 +227,11 @@ class MulticoreSimulation : public AccessConsumer {
     const uint32_t* filter = nullptr;
     uint64_t other_cores = 0;   // every core's bit but its core's (WriteHit)
     uint8_t other_sockets = 0;  // every socket's bit but its socket's
+    int socket = 0;
+    bool levels_made = false;
+    SetAssociativeCache* levels[8] = {};
   };
   std::vector<FirstLevel> first_of_thread_;
-  std::vector<Path> path_of_thread_;
   // Line records: a direct array for the 2^22 lines from the stream's base (the canonical arrays
   // of a mesh of a few million vertices; calloc'ed, so pages cost memory only once touched), a
   // hash table beyond.
