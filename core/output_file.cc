@@ -95,7 +95,29 @@ bool SameFile(const std::string& a, const std::string& b) {
          sa.st_ino == sb.st_ino && S_ISREG(sa.st_mode);
 }
 
+bool InPlace(const std::string& target) {
+  struct stat st {};
+  return ::stat(target.c_str(), &st) == 0 && (S_ISCHR(st.st_mode) || S_ISFIFO(st.st_mode));
+}
+
+// The temporary beside `target` (a rename never crosses file systems); a name that would be too
+// long with the suffix is shortened (the target's name is only a hint here).
+std::string TemporaryOf(const std::string& target) {
+  const std::string suffix = ".tmp." + std::to_string(::getpid());
+  std::string base = Base(target);
+  if (base.size() + suffix.size() > NAME_MAX) base = base.substr(0, NAME_MAX - suffix.size());
+  return Dir(target) + "/" + base + suffix;
+}
+
 }  // namespace
+
+std::string TemporaryPathFor(const std::string& path) {
+  if (path.empty()) throw UsageError("the output path is empty");
+  const std::string target = ResolveLinks(path);
+  const std::string why = Refusal(target);
+  if (!why.empty()) throw UsageError(path + ": cannot write: " + why);
+  return InPlace(target) ? std::string() : TemporaryOf(target);
+}
 
 int RegisterTemporary(const std::string& path) { return Register(path); }
 void UnregisterTemporary(int slot) { Unregister(slot); }
@@ -147,19 +169,13 @@ AtomicOutput::AtomicOutput(const std::string& path) : path_(path) {
   target_ = ResolveLinks(path);
   const std::string why = Refusal(target_);
   if (!why.empty()) throw UsageError(path + ": cannot write: " + why);
-  struct stat st {};
-  in_place_ = ::stat(target_.c_str(), &st) == 0 && (S_ISCHR(st.st_mode) || S_ISFIFO(st.st_mode));
+  in_place_ = InPlace(target_);
   if (in_place_) {
     f_ = std::fopen(target_.c_str(), "wb");
     if (!f_) throw EnvironmentError(path, std::string("cannot write: ") + std::strerror(errno));
     return;
   }
-  // The temporary beside the target (a rename never crosses file systems); a name that would be
-  // too long with the suffix is shortened (the target's name is only a hint here).
-  const std::string suffix = ".tmp." + std::to_string(::getpid());
-  std::string base = Base(target_);
-  if (base.size() + suffix.size() > NAME_MAX) base = base.substr(0, NAME_MAX - suffix.size());
-  tmp_ = Dir(target_) + "/" + base + suffix;
+  tmp_ = TemporaryOf(target_);
   slot_ = Register(tmp_);
   // O_EXCL: a leftover temporary of a killed process with our pid, or a link planted there, is
   // replaced, never written through.

@@ -58,6 +58,12 @@ class AtomicOutput {
   int slot_ = -1;  // in the signal handler's list of temporaries
 };
 
+// The temporary AtomicOutput(path) would write in this process, without making it (empty for a
+// device or FIFO, written in place); the same UsageError where the path cannot be an output. A
+// job whose ranks share one temporary announces it with this before it exists, so that a rank
+// killed the moment it appears leaves none (SharedMeshFileOutput).
+std::string TemporaryPathFor(const std::string& path);
+
 // Writes `path` through `body` (AtomicOutput). Throws EnvironmentError on failure; anything `body`
 // throws leaves the target untouched.
 void WriteAtomically(const std::string& path, const std::function<void(std::FILE*)>& body);

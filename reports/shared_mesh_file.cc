@@ -6,17 +6,29 @@
 #include <cstring>
 #include <vector>
 
+#include "core/error.h"
 #include "core/mesh_file.h"
 
 namespace meshreuse {
 
+// The temporary's name goes to every rank, and every rank registers it, before rank 0 makes it:
+// made first (the form before), a rank 0 killed (SIGKILL, the OOM killer) between making it and
+// the others' registering it left it behind, the one process that knew it gone (by hand, rank 0
+// killed as its temporary appeared: 8 runs in 10 at -np 3; the likely cause, not verified, of a
+// CI run's one temporary left by mpi_smooth.sh's SIGKILL to "the newest rank"). Two barriers:
+// all registered before it exists, it exists before any rank opens it.
 SharedMeshFileOutput::SharedMeshFileOutput(const std::string& path, Communicator& tx) : tx_(tx) {
+  if (tx.rank() == 0) tmp_ = TemporaryPathFor(path);
+  tmp_ = tx.AllGather(tmp_)[0];
+  if (tx.rank() != 0 && !tmp_.empty()) slot_ = RegisterTemporary(tmp_);
+  tx.Barrier();
   if (tx.rank() == 0) {
     out_ = std::make_unique<AtomicOutput>(path);
-    tmp_ = out_->temporary();
+    // The path changed between the two looks (a FIFO made or removed there): nothing to share.
+    if (out_->temporary() != tmp_)
+      throw EnvironmentError(path, "the output changed while the job opened it; run it again");
   }
-  tmp_ = tx.AllGather(tmp_)[0];
-  if (!out_ && !tmp_.empty()) slot_ = RegisterTemporary(tmp_);
+  tx.Barrier();
 }
 
 SharedMeshFileOutput::~SharedMeshFileOutput() {

@@ -1,10 +1,11 @@
 // A mesh file written by every rank of a job at once (core/mesh_file.h's writers in ranges; the
-// distributed smoother's -o FILE.mrm and meshreuse-mpi refine): rank 0 opens the output through
-// AtomicOutput (a temporary beside it) and every rank learns where the temporary is; once every
-// rank has written its part, Finish has each rank hash a share of the blocks anew and rank 0
-// write the tables and header and rename the temporary into place. Destroyed unfinished, the
-// temporary is removed and the target untouched; every rank registers it for removal on SIGINT,
-// SIGTERM and the abort path (core/output_file.h), so a cancelled or failed job leaves none.
+// distributed smoother's -o FILE.mrm and meshreuse-mpi refine): every rank learns where rank 0's
+// temporary will be (TemporaryPathFor) and registers it, then rank 0 opens the output through
+// AtomicOutput (the temporary beside it); once every rank has written its part, Finish has each
+// rank hash a share of the blocks anew and rank 0 write the tables and header and rename the
+// temporary into place. Destroyed unfinished, the temporary is removed and the target untouched;
+// every rank registers it for removal on SIGINT, SIGTERM and the abort path (core/output_file.h)
+// before it exists, so a cancelled or failed job leaves none, whichever rank dies first and when.
 #pragma once
 
 #include <cstdint>

@@ -1,8 +1,9 @@
 // Outputs (core/output_file.h): a regular file replaced only when complete; a FIFO and a device
 // written in place and never replaced (a device node made here with mknod, as root only: the
 // system's /dev is never touched); a symbolic link's target written, the link kept; a pair
-// written as a unit; temporaries removed on SIGTERM; paths that can never be written refused
-// before any work (empty, too long, a folder, an input of the same run).
+// written as a unit; temporaries removed on SIGTERM, and named before they exist as the one
+// written; paths that can never be written refused before any work (empty, too long, a folder, an
+// input of the same run).
 #include "core/output_file.h"
 
 #include <fcntl.h>
@@ -141,6 +142,31 @@ TEST(OutputFile, PathsThatCanNeverBeWrittenAreRefusedFirst) {
   refused(dir / "in.node", {dir / "in.node"}, "");
   refused(dir / "alias.node", {dir / "in.node"}, "");  // the same file through a link
   CheckOutputPath(dir / "new.txt", "-o", {dir / "in.node"});
+}
+
+// The temporary a job's ranks are told before it exists (TemporaryPathFor) is the one its output
+// then writes: beside a new file, beside an existing one, beside a link's target, shortened for a
+// long name; none for a FIFO (written in place); a folder refused; nothing made by asking.
+TEST(OutputFile, TheTemporaryNamedBeforeIsTheOneWritten) {
+  testing::TempDir dir;
+  WriteTextFile(dir / "old.txt", "old\n");
+  fs::create_symlink("old.txt", dir / "link.txt");
+  for (const std::string& name :
+       std::vector<std::string>{"new.txt", "old.txt", "link.txt", std::string(250, 'n')}) {
+    const std::string path = dir / name, told = TemporaryPathFor(path);
+    EXPECT_LE(told.size() - told.rfind('/') - 1, 255u) << told;
+    EXPECT_FALSE(fs::exists(told)) << told;
+    AtomicOutput out(path);
+    EXPECT_EQ(out.temporary(), told) << name;
+    EXPECT_TRUE(fs::exists(told)) << told;
+  }
+  EXPECT_EQ(TemporaryPathFor(dir / "link.txt"),
+            std::string(dir / "old.txt") + ".tmp." + std::to_string(::getpid()));
+  const std::string fifo = dir / "pipe";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  EXPECT_EQ(TemporaryPathFor(fifo), "");
+  EXPECT_THROW(TemporaryPathFor(dir.path().string()), UsageError);
+  EXPECT_THROW(TemporaryPathFor(""), UsageError);
 }
 
 // SIGTERM while an output is being written: the temporary is removed, the target untouched.

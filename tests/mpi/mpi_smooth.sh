@@ -352,6 +352,36 @@ done
 # Most of the 24 runs must have been signalled mid-write, or the loop tested nothing.
 echo "cancels that hit a write: $hit of 24"
 if ((hit >= 16)); then pass=$((pass + 1)); else fail=$((fail + 1)); echo "FAIL only $hit of 24 cancels hit a write"; fi
+# SIGKILL to rank 0, the process whose pid names the shared temporary, the moment it appears
+# (polled by a glob, no process started between the sight and the kill): the other ranks, told
+# its name before it was made, remove it when mpirun ends them. Made first and announced after
+# (the form before), it was left behind in 19 runs of these 40 (refine -np 3: 9 of 10), the
+# other ranks not yet told (the likely cause, not verified, of the one temporary a CI run's KILL
+# above, to "the newest rank", left behind).
+shopt -s nullglob
+for np in 2 3; do
+  for what in refine smooth; do
+    if [[ $what == refine ]]; then args=(refine "$plate" --levels 6); else
+      args=(smooth "$tmp/c5.mrm" --max-iters 5 --tol -1); fi
+    for rep in 1 2; do
+      timeout --foreground 60 "$mpiexec" --oversubscribe -np $np "$mpi" "${args[@]}" \
+        -o "$tmp/cancel.mrm" --quiet >/dev/null 2>&1 &
+      job=$!
+      SECONDS=0
+      while ((SECONDS < 10)); do
+        t=("$tmp"/cancel.mrm.tmp.*)
+        if ((${#t[@]})); then kill -KILL "${t[0]##*.tmp.}" 2>/dev/null; break; fi
+        kill -0 $job 2>/dev/null || break
+      done
+      wait $job
+      t=("$tmp"/*.tmp.*)
+      if ((${#t[@]})); then fail=$((fail + 1)); echo "FAIL $what -np $np, rank 0 killed as its temporary appeared: ${t[*]}"
+        rm -f "$tmp"/*.tmp.*; else pass=$((pass + 1)); fi
+      rm -f "$tmp/cancel.mrm"
+    done
+  done
+done
+shopt -u nullglob
 touch "$tmp/cancel.mrm.tmp.999999999"  # no such process
 check "stale temporary named" 0 run 2 "$mpi" refine "$plate" --levels 1 -o "$tmp/cancel.mrm"
 contains "stale temporary named" "$tmp/cancel.mrm.tmp.999999999: a temporary an earlier run left"
