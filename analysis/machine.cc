@@ -41,7 +41,8 @@ void Check(const Machine& m, const std::function<void(const std::string&)>& fail
     fail("a machine has 1..8 sockets and 1..64 cores (sockets x cores per socket)");
   if (m.line_bytes == 0 || (m.line_bytes & (m.line_bytes - 1)) || m.line_bytes > 4096)
     fail("the line size must be a power of two up to 4096");
-  if (m.levels.empty() || m.levels.size() > 8) fail("a machine has 1..8 cache levels");
+  if (m.levels.empty() || m.levels.size() > Machine::kMaxLevels)
+    fail("a machine has 1.." + std::to_string(Machine::kMaxLevels) + " cache levels");
   bool seen_shared = false;
   for (const MachineLevel& l : m.levels) {
     if (!l.shared && seen_shared)

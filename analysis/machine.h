@@ -27,6 +27,7 @@
 // 0's memory (a miss from another socket is remote); interleave deals pages round-robin.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -46,6 +47,7 @@ enum class Numa { kFirstTouch, kInterleave };
 enum class Placement { kCompact, kScatter };
 
 struct Machine {
+  static constexpr size_t kMaxLevels = 8;  // cache levels a machine may have (Check)
   std::string name;
   int sockets = 1, cores_per_socket = 1;
   uint32_t line_bytes = 64;

@@ -165,6 +165,9 @@ double ThreadStats::CyclesHigh(const Machine& m) const { return Cycles(*this, m,
 
 MulticoreSimulation::MulticoreSimulation(const Machine& m, Placement placement)
     : m_(m), placement_(placement), private_levels_(m.private_levels()) {
+  // Machines come checked (machine.h's Check); a thread's levels are a fixed array (FirstLevel).
+  if (m.levels.size() > Machine::kMaxLevels)
+    throw std::logic_error("MulticoreSimulation: more than Machine::kMaxLevels levels");
   shift_ = __builtin_ctz(m.line_bytes);
   fast_ = private_levels_ > 0;
   bool above = false;  // a prefetcher at a level above

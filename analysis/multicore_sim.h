@@ -180,7 +180,6 @@ class MulticoreSimulation : public AccessConsumer {
   // line (by callgrind at 32 threads, 1,211 instructions a first-level miss there).
   void MissPlain(int thread, uint64_t line, bool write);
   // Thread `thread`'s FirstLevel with its levels (FirstLevel::levels) made.
-  struct FirstLevel;
   const FirstLevel& LevelsOf(int thread);
   // A first-level hit where that level prefetches: if the line was prefetched and not demanded
   // since, a prefetch hit (as Access counts it). Touches the set of prefetched lines, not the
@@ -229,7 +228,7 @@ class MulticoreSimulation : public AccessConsumer {
     uint8_t other_sockets = 0;  // every socket's bit but its socket's
     int socket = 0;
     bool levels_made = false;
-    SetAssociativeCache* levels[8] = {};
+    SetAssociativeCache* levels[Machine::kMaxLevels] = {};
   };
   std::vector<FirstLevel> first_of_thread_;
   // Line records: a direct array for the 2^22 lines from the stream's base (the canonical arrays
