@@ -208,10 +208,18 @@ void MulticoreSimulation::Resize(int threads) {
   }
   for (auto& s : sockets_) s.reset();
   info_base_ = info_.canonical ? AddressCanonicalizer::kCanonicalBase >> shift_ : 0;
-  dense_.reset(static_cast<LineInfo*>(std::calloc(kDenseLines, sizeof(LineInfo))));
+  const int top = core_of_.empty() ? 0 : *std::max_element(core_of_.begin(), core_of_.end());
+  records_ = top < 8 ? Records::kByte : top < 32 ? Records::kNarrow : Records::kWide;
+  size_t record = 0;
+  sparse_ = decltype(sparse_)();
+  WithRecords([&](auto r) {
+    using R = decltype(r);
+    record = sizeof(R);
+    Sparse<R>().assign(1024, SparseEntry<R>());
+  });
+  dense_.reset(std::calloc(kDenseLines, record));
   if (!dense_) throw std::bad_alloc();
-  info_pages_.Reset(dense_.get(), kDenseLines * sizeof(LineInfo));
-  sparse_.assign(1024, SparseEntry());
+  info_pages_.Reset(dense_.get(), kDenseLines * record);
   sparse_used_ = 0;
   marks_.clear();
 }
@@ -248,29 +256,33 @@ MulticoreSimulation::Owner& MulticoreSimulation::SocketOwner(int socket) {
 // Room for `more` new sparse records without growing: Access takes references to records and
 // then looks more up (a straddling access's second line, prefetched lines: at most 4 new), so the
 // table grows before, never while a reference is held.
+template <class R>
 void MulticoreSimulation::ReserveSparse(uint64_t more) {
-  if (4 * (sparse_used_ + more) > 3 * sparse_.size()) {
-    std::vector<SparseEntry> old(2 * sparse_.size());
-    old.swap(sparse_);
-    const uint64_t m = sparse_.size() - 1;
-    for (const SparseEntry& e : old)
+  std::vector<SparseEntry<R>>& sparse = Sparse<R>();
+  if (4 * (sparse_used_ + more) > 3 * sparse.size()) {
+    std::vector<SparseEntry<R>> old(2 * sparse.size());
+    old.swap(sparse);
+    const uint64_t m = sparse.size() - 1;
+    for (const SparseEntry<R>& e : old)
       if (e.line != ~uint64_t{0}) {
         uint64_t i = Mix(e.line) & m;
-        while (sparse_[i].line != ~uint64_t{0}) i = (i + 1) & m;
-        sparse_[i] = e;
+        while (sparse[i].line != ~uint64_t{0}) i = (i + 1) & m;
+        sparse[i] = e;
       }
   }
 }
 
-MulticoreSimulation::LineInfo& MulticoreSimulation::Info(uint64_t line) {
-  if (line - info_base_ < kDenseLines) return dense_.get()[line - info_base_];
-  const uint64_t m = sparse_.size() - 1;
+template <class R>
+R& MulticoreSimulation::Info(uint64_t line) {
+  if (line - info_base_ < kDenseLines) return Dense<R>()[line - info_base_];
+  std::vector<SparseEntry<R>>& sparse = Sparse<R>();
+  const uint64_t m = sparse.size() - 1;
   for (uint64_t i = Mix(line) & m;; i = (i + 1) & m) {
-    if (sparse_[i].line == line) return sparse_[i].info;
-    if (sparse_[i].line == ~uint64_t{0}) {
-      sparse_[i].line = line;
+    if (sparse[i].line == line) return sparse[i].info;
+    if (sparse[i].line == ~uint64_t{0}) {
+      sparse[i].line = line;
       ++sparse_used_;
-      return sparse_[i].info;
+      return sparse[i].info;
     }
   }
 }
@@ -280,12 +292,13 @@ int MulticoreSimulation::HomeSocket(uint64_t line) const {
   return static_cast<int>(((line << shift_) >> 12) % static_cast<uint64_t>(m_.sockets));
 }
 
+template <class R>
 void MulticoreSimulation::WriteHitSlow(int core, uint64_t line) {
-  ReserveSparse(1);  // (the line's record exists: it missed here before; this keeps Info's rule)
-  LineInfo& e = Info(line);
+  ReserveSparse<R>(1);  // (the line's record exists: it missed here before; this keeps Info's rule)
+  R& e = Info<R>(line);
   const int socket = core / m_.cores_per_socket;
   if ((e.cores & ~(uint64_t{1} << core)) || (e.sockets & ~(1u << socket) & 0xFFu))
-    InvalidateOthers(core, e, line);
+    InvalidateOthers<R>(core, e, line);
 }
 
 void MulticoreSimulation::Removed(Owner& o, size_t level, uint64_t line) {
@@ -294,13 +307,14 @@ void MulticoreSimulation::Removed(Owner& o, size_t level, uint64_t line) {
   if (!set.empty()) set.Erase(line);
 }
 
+template <class R>
 void MulticoreSimulation::FirstPrefetchHit(int thread, uint64_t line) {
   const int core = core_of_[thread];
   LineSet& set = cores_[core]->prefetched.front();
   if (set.empty() || !set.Erase(line)) return;
   ++stats_[thread].levels.front().prefetch_hits;
-  ReserveSparse(1);
-  Info(line).seen_cores |= uint64_t{1} << core;  // its first demand touch: no longer new
+  ReserveSparse<R>(1);
+  Info<R>(line).seen_cores |= decltype(R::cores){1} << core;  // its first demand: not new
 }
 
 void MulticoreSimulation::BackInvalidate(int socket, uint64_t line) {
@@ -317,11 +331,13 @@ void MulticoreSimulation::BackInvalidate(int socket, uint64_t line) {
   }
 }
 
-void MulticoreSimulation::InvalidateOthers(int core, LineInfo& e, uint64_t line) {
+template <class R>
+void MulticoreSimulation::InvalidateOthers(int core, R& e, uint64_t line) {
+  using Bits = decltype(R::cores);
   const int socket = core / m_.cores_per_socket;
   const int t = thread_of_core_[core];
   for (uint64_t others = e.cores & ~(uint64_t{1} << core); others; others &= others - 1) {
-    const int d = __builtin_ctzll(others);
+    const int d = __builtin_ctzll(others);  // a thread's core: within Bits
     Owner& o = *cores_[d];
     bool held = false;
     for (size_t i = 0; i < private_levels_; ++i)
@@ -330,7 +346,7 @@ void MulticoreSimulation::InvalidateOthers(int core, LineInfo& e, uint64_t line)
         held = true;
       }
     if (held) {
-      e.removed_cores |= uint64_t{1} << d;
+      e.removed_cores |= Bits{1} << d;
       ++stats_[t].invalidations_sent;
     }
   }
@@ -348,36 +364,39 @@ void MulticoreSimulation::InvalidateOthers(int core, LineInfo& e, uint64_t line)
       ++stats_[t].invalidations_sent;
     }
   }
-  e.cores &= uint64_t{1} << core;
+  e.cores &= Bits{1} << core;
   e.sockets = static_cast<uint8_t>(e.sockets & (1u << socket));
 }
 
+template <class R>
 void MulticoreSimulation::PrefetchBelow(const FirstLevel& f, uint64_t line) {
   for (size_t i = 1; i < m_.levels.size(); ++i) f.levels[i]->PrefetchSet(line);
   if (line - info_base_ < kDenseLines) {
-    const LineInfo* e = dense_.get() + (line - info_base_);
-    info_pages_.Touch(e, sizeof(LineInfo));
+    const R* e = Dense<R>() + (line - info_base_);
+    info_pages_.Touch(e, sizeof(R));
     __builtin_prefetch(e, 1);
   }
 }
 
-void MulticoreSimulation::Access(int thread, uint64_t address, uint32_t size, bool write,
-                                 bool first_missed) {
+template <class R>
+void MulticoreSimulation::AccessAs(int thread, uint64_t address, uint32_t size, bool write,
+                                   bool first_missed) {
+  using Bits = decltype(R::cores);
   const int core = core_of_[thread];
   const int socket = core / m_.cores_per_socket;
-  const uint64_t cbit = uint64_t{1} << core;
+  const Bits cbit = Bits{1} << core;
   const uint8_t sbit = static_cast<uint8_t>(1u << socket);
   ThreadStats& st = stats_[thread];
   const uint64_t first = address >> shift_;
   const uint64_t last = (address + (size ? size - 1 : 0)) >> shift_;
-  ReserveSparse(2 * (last - first + 1));
+  ReserveSparse<R>(2 * (last - first + 1));
   if (first_missed) {  // the levels below will be looked up
     const FirstLevel& f = LevelsOf(thread);
-    PrefetchBelow(f, first);
-    if (prefetching_) PrefetchBelow(f, first + 1);  // a prefetcher's next line
+    PrefetchBelow<R>(f, first);
+    if (prefetching_) PrefetchBelow<R>(f, first + 1);  // a prefetcher's next line
   }
   // Per line of the access (two when it straddles), its record, fetched at its first miss.
-  LineInfo* info[2] = {nullptr, nullptr};
+  R* info[2] = {nullptr, nullptr};
   bool missed_private = false, missed_shared = false;
   Owner* owner = &CoreOwner(core);
   size_t base = 0;          // the owner's first level
@@ -398,7 +417,7 @@ void MulticoreSimulation::Access(int thread, uint64_t address, uint32_t size, bo
       } else if (cache.Access(l)) {
         if (ml.prefetch && owner->prefetched[i - base].Erase(l)) {
           ++s.prefetch_hits;
-          LineInfo& e = Info(l);  // its first demand touch: no longer new to the owner
+          R& e = Info<R>(l);  // its first demand touch: no longer new to the owner
           if (shared)
             e.seen_sockets |= sbit;
           else
@@ -408,9 +427,9 @@ void MulticoreSimulation::Access(int thread, uint64_t address, uint32_t size, bo
       }
       hit = false;
       if (ml.prefetch) Removed(*owner, i, cache.victim());
-      LineInfo*& slot = info[l - first];
-      if (!slot) slot = &Info(l);
-      LineInfo& e = *slot;
+      R*& slot = info[l - first];
+      if (!slot) slot = &Info<R>(l);
+      R& e = *slot;
       if (!shared) {
         missed_private = true;
         if (i == base) owner_cold = !(e.seen_cores & cbit) || owner_cold, e.seen_cores |= cbit;
@@ -430,7 +449,7 @@ void MulticoreSimulation::Access(int thread, uint64_t address, uint32_t size, bo
         // demand access anywhere, counted once, here.
         owner->prefetched[i - base].Insert(l + 1);
         ++s.prefetches;
-        LineInfo& n = Info(l + 1);  // held now: coherence must find it; not taken away
+        R& n = Info<R>(l + 1);  // held now: coherence must find it; not taken away
         for (size_t j = i; j < m_.levels.size(); ++j) {
           const bool sj = j >= private_levels_;
           Owner& oj = sj ? SocketOwner(socket) : CoreOwner(core);
@@ -459,7 +478,7 @@ void MulticoreSimulation::Access(int thread, uint64_t address, uint32_t size, bo
     if (coherence) ++s.coherence;
     ++(write ? s.write_misses : s.read_misses);
   }
-  for (LineInfo* e : info)  // the lines coherence took are back where this access missed
+  for (R* e : info)  // the lines coherence took are back where this access missed
     if (e) {
       if (missed_private) e->removed_cores &= ~cbit;
       if (missed_shared) e->removed_sockets = static_cast<uint8_t>(e->removed_sockets & ~sbit);
@@ -470,8 +489,8 @@ void MulticoreSimulation::Access(int thread, uint64_t address, uint32_t size, bo
   }
   if (write && coherent_)
     for (uint64_t l = first; l <= last; ++l) {
-      LineInfo& e = info[l - first] ? *info[l - first] : Info(l);
-      if ((e.cores & ~cbit) || (e.sockets & ~sbit)) InvalidateOthers(core, e, l);
+      R& e = info[l - first] ? *info[l - first] : Info<R>(l);
+      if ((e.cores & ~cbit) || (e.sockets & ~sbit)) InvalidateOthers<R>(core, e, l);
     }
 }
 
@@ -486,16 +505,18 @@ const MulticoreSimulation::FirstLevel& MulticoreSimulation::LevelsOf(int thread)
   return f;
 }
 
+template <class R>
 void MulticoreSimulation::MissPlain(int thread, uint64_t line, bool write) {
+  using Bits = decltype(R::cores);
   const FirstLevel& p = LevelsOf(thread);
   const size_t n = m_.levels.size();
-  PrefetchBelow(p, line);
-  LineInfo* e;
+  PrefetchBelow<R>(p, line);
+  R* e;
   if (line - info_base_ < kDenseLines) {
-    e = dense_.get() + (line - info_base_);
+    e = Dense<R>() + (line - info_base_);
   } else {
-    ReserveSparse(1);
-    e = &Info(line);
+    ReserveSparse<R>(1);
+    e = &Info<R>(line);
   }
   // The levels first, down to the first that holds the line (`hit`; n: memory), then the record:
   // no level reads it, so its host miss overlaps their lookups instead of stalling before them.
@@ -513,7 +534,7 @@ void MulticoreSimulation::MissPlain(int thread, uint64_t line, bool write) {
   // Each level that missed counts a miss, cold and coherence as its owner's first level decides
   // them (Access: the core's at the first private level, the socket's at the first shared one);
   // the record of removals changes only after.
-  const uint64_t cbit = uint64_t{1} << p.core;
+  const Bits cbit = Bits{1} << p.core;
   const uint8_t sbit = static_cast<uint8_t>(1u << p.socket);
   ThreadStats& st = stats_[thread];
   auto missed = [&](size_t from, size_t to, uint64_t cold, uint64_t coherence) {
@@ -539,8 +560,20 @@ void MulticoreSimulation::MissPlain(int thread, uint64_t line, bool write) {
   else
     ++(HomeSocket(line) == p.socket ? st.memory_local : st.memory_remote);
   if (write && coherent_ && ((e->cores & ~cbit) || (e->sockets & ~sbit)))
-    InvalidateOthers(p.core, *e, line);
+    InvalidateOthers<R>(p.core, *e, line);
 }
+
+// The record-bound paths, for both widths (the header's inline code calls them).
+#define MESHREUSE_RECORDS(R)                                                                   \
+  template void MulticoreSimulation::AccessAs<MulticoreSimulation::R>(int, uint64_t, uint32_t, \
+                                                                      bool, bool);             \
+  template void MulticoreSimulation::MissPlain<MulticoreSimulation::R>(int, uint64_t, bool);   \
+  template void MulticoreSimulation::WriteHitSlow<MulticoreSimulation::R>(int, uint64_t);      \
+  template void MulticoreSimulation::FirstPrefetchHit<MulticoreSimulation::R>(int, uint64_t);
+MESHREUSE_RECORDS(Byte)
+MESHREUSE_RECORDS(Narrow)
+MESHREUSE_RECORDS(Wide)
+#undef MESHREUSE_RECORDS
 
 void MulticoreSimulation::BeginSweep(int) { marks_.push_back(stats_); }
 

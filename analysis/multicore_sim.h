@@ -28,6 +28,7 @@
 #include <cstdlib>
 #include <memory>
 #include <string>
+#include <tuple>
 #include <type_traits>
 #include <vector>
 
@@ -69,32 +70,12 @@ class MulticoreSimulation : public AccessConsumer {
   void Begin(const StreamInfo& info) override;  // the threads: placed on cores
   void BeginSweep(int sweep) override;
   void Consume(const meshreuse::Access* a, size_t n) override {
-    if (!fast_) {
-      for (size_t i = 0; i < n; ++i) Access(a[i].thread, a[i].address, a[i].size, a[i].write);
-      return;
-    }
-    SetAssociativeCache::WithGroups(l1_groups_, [&](auto g) {
-      constexpr uint32_t G = decltype(g)::value;
-      for (size_t i = 0; i < n;) {  // a thread's first-level hits in runs, the rest one by one
-        const uint8_t t = a[i].thread;
-        i = HitRun<G>(a, i, n, t);
-        if (i == n || a[i].thread != t) continue;
-        // A run stopped by a first-level miss: HitFirst's answer, known (SetAssociativeCache::
-        // run_missed; the run's cache is the thread's first level, made).
-        const FirstLevel& f = first_of_thread_[t];
-        const auto r = f.cache && f.cache->run_missed()
-                           ? CacheHierarchy::kMissed
-                           : HitFirst<G>(t, a[i].address, a[i].size, a[i].write);
-        if (r == CacheHierarchy::kMissed && !prefetching_)
-          MissPlain(t, a[i].address >> shift_, a[i].write);
-        else if (r != CacheHierarchy::kHit)
-          Access(t, a[i].address, a[i].size, a[i].write, r == CacheHierarchy::kMissed);
-        ++i;
-      }
-    });
+    WithRecords([&](auto r) { ConsumeAs<decltype(r)>(a, n); });
   }
   // By hand (tests), after Begin or Resize. first_missed: HitFirst has just missed it.
-  void Access(int thread, uint64_t address, uint32_t size, bool write, bool first_missed = false);
+  void Access(int thread, uint64_t address, uint32_t size, bool write, bool first_missed = false) {
+    WithRecords([&](auto r) { AccessAs<decltype(r)>(thread, address, size, write, first_missed); });
+  }
   void Resize(int threads);
 
   int threads() const { return static_cast<int>(core_of_.size()); }
@@ -119,18 +100,72 @@ class MulticoreSimulation : public AccessConsumer {
   Owner& SocketOwner(int socket);
   // Per line: the cores and sockets that may hold it (a superset: the directory coherence
   // consults), those that have missed on it (first touches: cold misses), and those coherence
-  // took it from (their next miss on it is a coherence miss).
-  struct LineInfo {
-    uint64_t cores = 0, seen_cores = 0, removed_cores = 0;
+  // took it from (their next miss on it is a coherence miss). Only the cores of threads ever
+  // have a bit, so Bits is as wide as the highest such core needs: 8 bits (8 B a record, padded
+  // so that none straddles two host lines), 32 (16 B) or 64 (32 B). A first-level miss reads and
+  // writes its line's record, and at 32 B the records of carabiner's 712,810 lines (21.8 MiB)
+  // outweighed the sets of every simulated level at 32 threads (13.1 MiB) in the host's caches
+  // (issue 40: at 16 B, the 32-thread command 0.90x the time; reports/docs/many-cores.md).
+  template <class Bits>
+  struct alignas(alignof(Bits) < 8 ? 8 : alignof(Bits)) LineInfo {
+    Bits cores = 0, seen_cores = 0, removed_cores = 0;
     uint8_t sockets = 0, seen_sockets = 0, removed_sockets = 0;
   };
-  LineInfo& Info(uint64_t line);  // never grows the table: ReserveSparse first
+  using Byte = LineInfo<uint8_t>;
+  using Narrow = LineInfo<uint32_t>;
+  using Wide = LineInfo<uint64_t>;
+  enum class Records { kByte, kNarrow, kWide };
+  // f(R()) with the records of this run (Resize chooses them).
+  template <class F>
+  void WithRecords(F&& f) {
+    if (records_ == Records::kByte)
+      f(Byte());
+    else if (records_ == Records::kNarrow)
+      f(Narrow());
+    else
+      f(Wide());
+  }
+  // Everything that touches records, for records R (WithRecords).
+  template <class R>
+  void ConsumeAs(const meshreuse::Access* a, size_t n) {
+    if (!fast_) {
+      for (size_t i = 0; i < n; ++i) AccessAs<R>(a[i].thread, a[i].address, a[i].size, a[i].write);
+      return;
+    }
+    SetAssociativeCache::WithGroups(l1_groups_, [&](auto g) {
+      constexpr uint32_t G = decltype(g)::value;
+      for (size_t i = 0; i < n;) {  // a thread's first-level hits in runs, the rest one by one
+        const uint8_t t = a[i].thread;
+        i = HitRun<G, R>(a, i, n, t);
+        if (i == n || a[i].thread != t) continue;
+        // A run stopped by a first-level miss: HitFirst's answer, known (SetAssociativeCache::
+        // run_missed; the run's cache is the thread's first level, made).
+        const FirstLevel& f = first_of_thread_[t];
+        const auto r = f.cache && f.cache->run_missed()
+                           ? CacheHierarchy::kMissed
+                           : HitFirst<G, R>(t, a[i].address, a[i].size, a[i].write);
+        if (r == CacheHierarchy::kMissed && !prefetching_)
+          MissPlain<R>(t, a[i].address >> shift_, a[i].write);
+        else if (r != CacheHierarchy::kHit)
+          AccessAs<R>(t, a[i].address, a[i].size, a[i].write, r == CacheHierarchy::kMissed);
+        ++i;
+      }
+    });
+  }
+  template <class R>
+  void AccessAs(int thread, uint64_t address, uint32_t size, bool write, bool first_missed = false);
+  template <class R>
+  R& Info(uint64_t line);  // never grows the table: ReserveSparse first
+  template <class R>
+  R* Dense() const {  // the direct array's records
+    return static_cast<R*>(dense_.get());
+  }
   // The core's first (private) level looked up, when that is all an access may do there (one
   // line): a hit counted as Access counts it (a prefetched line's first demand a prefetch hit)
   // and a write's coherence done (kHit), or a miss with nothing changed (kMissed); otherwise
   // kNotLookedUp (as CacheHierarchy::HitFirst). G: that level's groups (WithGroups).
   // (Consume calls it only where fast_.)
-  template <uint32_t G>
+  template <uint32_t G, class R>
   CacheHierarchy::Lookup HitFirst(int thread, uint64_t address, uint32_t size, bool write) {
     const FirstLevel& f = first_of_thread_[thread];
     if (!f.cache) return CacheHierarchy::kNotLookedUp;
@@ -138,14 +173,14 @@ class MulticoreSimulation : public AccessConsumer {
     if (((address + (size ? size - 1 : 0)) >> shift_) != first) return CacheHierarchy::kNotLookedUp;
     if (!f.cache->Hit<G>(first)) return CacheHierarchy::kMissed;
     ++*f.accesses;
-    if (f.prefetch && f.filter[first & kFilterMask]) FirstPrefetchHit(thread, first);
-    if (write && coherent_) WriteHit(f, first);
+    if (f.prefetch && f.filter[first & kFilterMask]) FirstPrefetchHit<R>(thread, first);
+    if (write && coherent_) WriteHit<R>(f, first);
     return CacheHierarchy::kHit;
   }
   // HitFirst's hits over a[from..n) while they are thread t's (SetAssociativeCache::HitRun): the
   // index of the first access not taken, all before it counted and their writes' coherence done
   // (which touches other cores' and sockets' levels, never this core's).
-  template <uint32_t G>
+  template <uint32_t G, class R>
   size_t HitRun(const meshreuse::Access* a, size_t from, size_t n, uint8_t t) {
     const FirstLevel& f = first_of_thread_[t];
     if (!f.cache) return from;
@@ -154,8 +189,8 @@ class MulticoreSimulation : public AccessConsumer {
       return f.cache->HitRun<G>(from, n, OneLineOf{a, t, shift_},
                                 [this, a, coherent, t, &f](size_t i, uint64_t line) {
                                   if constexpr (decltype(prefetch)::value)
-                                    if (f.filter[line & kFilterMask]) FirstPrefetchHit(t, line);
-                                  if (coherent && a[i].write) WriteHit(f, line);
+                                    if (f.filter[line & kFilterMask]) FirstPrefetchHit<R>(t, line);
+                                  if (coherent && a[i].write) WriteHit<R>(f, line);
                                 });
     };
     const size_t end = f.prefetch ? run(std::true_type()) : run(std::false_type());
@@ -165,37 +200,44 @@ class MulticoreSimulation : public AccessConsumer {
   // Coherence of a write hit by f's thread: the line held elsewhere is taken away. Inline the
   // common case, a record in the direct array that names no other core or socket (one load).
   struct FirstLevel;
+  template <class R>
   void WriteHit(const FirstLevel& f, uint64_t line) {
     if (line - info_base_ < kDenseLines) {
-      const LineInfo& e = dense_.get()[line - info_base_];
+      const R& e = Dense<R>()[line - info_base_];
       if (!(e.cores & f.other_cores) && !(e.sockets & f.other_sockets)) return;
     }
-    WriteHitSlow(f.core, line);
+    WriteHitSlow<R>(f.core, line);
   }
+  template <class R>
   void WriteHitSlow(int core, uint64_t line);
   // What Access(thread, address, size, write, true) does for a one-line access where no level
   // prefetches (the report's machine runs but the prefetcher's): the same counts and changes, in
   // the same order, along the thread's levels found once (LevelsOf) instead of level by level
   // through the general loop, which weighs each level's prefetcher, owner and the access's second
   // line (by callgrind at 32 threads, 1,211 instructions a first-level miss there).
+  template <class R>
   void MissPlain(int thread, uint64_t line, bool write);
   // Thread `thread`'s FirstLevel with its levels (FirstLevel::levels) made.
   const FirstLevel& LevelsOf(int thread);
   // A first-level hit where that level prefetches: if the line was prefetched and not demanded
   // since, a prefetch hit (as Access counts it). Touches the set of prefetched lines, not the
   // level. Called only where the set's filter (FirstLevel::filter) says it may hold the line.
+  template <class R>
   void FirstPrefetchHit(int thread, uint64_t line);
   // Level `level` (the machine's index) of `o` took `line` out (~0: nothing): out of that level's
   // prefetched lines too where held_only_ (see Owner in the .cc).
   void Removed(Owner& o, size_t level, uint64_t line);
   // The sets of `line` at every level below the first (f's, from LevelsOf) and its record,
   // asked of the host (no change to any level) as a first-level miss begins: the lookups that
-  // follow go one after another, each likely a host miss (a socket's 24 MiB level is 6 MiB of
+  // follow go one after another, each likely a host miss (a socket's 24 MiB level is 3 MiB of
   // sets), and asked at once their misses overlap instead of adding up.
+  template <class R>
   void PrefetchBelow(const FirstLevel& f, uint64_t line);
+  template <class R>
   void ReserveSparse(uint64_t more);
   void BackInvalidate(int socket, uint64_t line);
-  void InvalidateOthers(int core, LineInfo& e, uint64_t line);
+  template <class R>
+  void InvalidateOthers(int core, R& e, uint64_t line);
   int HomeSocket(uint64_t line) const;
 
   Machine m_;
@@ -208,11 +250,12 @@ class MulticoreSimulation : public AccessConsumer {
   std::vector<ThreadStats> stats_;                       // per thread
   std::vector<std::unique_ptr<Owner>> cores_, sockets_;  // made at first use
   bool coherent_ = false;                                // coherence on and more than one thread
-  bool fast_ = false;            // HitFirst may answer: a private first level
-  uint32_t l1_groups_ = 0;       // the first level's groups of ways
-  std::vector<bool> held_only_;  // per level: its prefetched lines are lines it holds
-  bool drop_any_ = false;        // some level's are
-  bool prefetching_ = false;     // some level has a prefetcher
+  bool fast_ = false;                 // HitFirst may answer: a private first level
+  uint32_t l1_groups_ = 0;            // the first level's groups of ways
+  std::vector<bool> held_only_;       // per level: its prefetched lines are lines it holds
+  bool drop_any_ = false;             // some level's are
+  bool prefetching_ = false;          // some level has a prefetcher
+  Records records_ = Records::kWide;  // by the highest core a thread is on (Resize)
   // Per thread, what HitFirst needs in one place: its core's first level (null until made), that
   // level's access count in the thread's stats, its core, whether that level prefetches, and then
   // the filter of its set of prefetched lines (made with the level); and for a first-level miss
@@ -238,14 +281,22 @@ class MulticoreSimulation : public AccessConsumer {
   struct Free {
     void operator()(void* p) const { std::free(p); }
   };
-  std::unique_ptr<LineInfo, Free> dense_;
+  std::unique_ptr<void, Free> dense_;
   WritablePages info_pages_;  // dense_'s pages, made writable at a line's first miss
   uint64_t info_base_ = 0;
+  template <class R>
   struct SparseEntry {
     uint64_t line = ~uint64_t{0};
-    LineInfo info;
+    R info;
   };
-  std::vector<SparseEntry> sparse_;
+  // One of them in use, by records_.
+  std::tuple<std::vector<SparseEntry<Byte>>, std::vector<SparseEntry<Narrow>>,
+             std::vector<SparseEntry<Wide>>>
+      sparse_;
+  template <class R>
+  std::vector<SparseEntry<R>>& Sparse() {
+    return std::get<std::vector<SparseEntry<R>>>(sparse_);
+  }
   uint64_t sparse_used_ = 0;
   std::vector<std::vector<ThreadStats>> marks_;  // [sweep][thread] at its start
 };

@@ -418,59 +418,66 @@ std::vector<Machine> SmallMachines() {
   return out;
 }
 
-// far: every 4 KiB page of the stream 2^34 bytes from the next, so the line records live in the
-// simulator's hash table (beyond its dense range) and it grows while accesses straddle and
-// prefetch.
+// Random streams of p threads on m through Access and through Consume, both against Naive;
+// returns the threads' counts summed. far: every 4 KiB page of the stream 2^34 bytes from the
+// next, so the line records live in the simulator's hash table (beyond its dense range) and it
+// grows while accesses straddle and prefetch.
+ThreadStats CheckRandomStream(const Machine& m, Placement pl, int p, bool far, int accesses,
+                              std::mt19937_64& rng) {
+  MulticoreSimulation sim(m, pl), batched(m, pl);
+  sim.Resize(p);
+  batched.Resize(p);
+  Naive ref(m, p, pl);
+  std::vector<uint64_t> at(p, 0);
+  std::vector<Access> all;
+  for (int i = 0; i < accesses; ++i) {
+    const int t = static_cast<int>(rng() % p);
+    // Each thread walks its own region with jumps, and sometimes the shared one.
+    at[t] = rng() % 5 == 0 ? (rng() % 8192) * 8 : at[t] + 8 * (rng() % 9);
+    uint64_t a = rng() % 3 == 0 ? (rng() % 512) * 8 : at[t] + (uint64_t(t) << 16);
+    if (far) a = (a & 4095) | ((a >> 12) << 34);
+    const uint32_t size = std::array<uint32_t, 4>{8, 8, 16, 4}[rng() % 4];
+    const bool write = rng() % 4 == 0;
+    sim.Access(t, a, size, write);
+    ref.Access(t, a, size, write);
+    Access x{};
+    x.thread = static_cast<uint8_t>(t), x.address = a, x.size = size, x.write = write;
+    // Runs of one thread (as a traced run delivers them), so the batched first-level hit runs
+    // take several accesses at once.
+    all.push_back(x);
+    if (rng() % 3) {
+      x.address = a + 8 * (rng() % 4);
+      x.write = rng() % 6 == 0;
+      sim.Access(t, x.address, size, x.write);
+      ref.Access(t, x.address, size, x.write);
+      all.push_back(x);
+    }
+  }
+  // The same accesses through Consume, in batches of varied length (its first-level hit runs and
+  // HitFirst, the path a traced run takes).
+  for (size_t i = 0; i < all.size();) {
+    const size_t n = std::min(all.size() - i, size_t{1} + rng() % 700);
+    batched.Consume(all.data() + i, n);
+    i += n;
+  }
+  ThreadStats total;
+  for (int t = 0; t < p; ++t) {
+    const std::string what = std::string(PlacementName(pl)) + " p " + std::to_string(p) +
+                             " thread " + std::to_string(t) + (far ? " far" : "");
+    ExpectSame(sim.Stats(t), ref.stats[t], what);
+    ExpectSame(batched.Stats(t), ref.stats[t], what + ", batched");
+    total += sim.Stats(t);
+  }
+  return total;
+}
+
 TEST(Multicore, MatchesANaiveReferenceOnRandomStreams) {
   std::mt19937_64 rng(11);
   for (const bool far : {false, true})
     for (const Machine& m : SmallMachines())
       for (Placement pl : {Placement::kCompact, Placement::kScatter}) {
         const int p = 1 + static_cast<int>(rng() % 4);
-        MulticoreSimulation sim(m, pl), batched(m, pl);
-        sim.Resize(p);
-        batched.Resize(p);
-        Naive ref(m, p, pl);
-        std::vector<uint64_t> at(p, 0);
-        std::vector<Access> all;
-        for (int i = 0; i < 30000; ++i) {
-          const int t = static_cast<int>(rng() % p);
-          // Each thread walks its own region with jumps, and sometimes the shared one.
-          at[t] = rng() % 5 == 0 ? (rng() % 8192) * 8 : at[t] + 8 * (rng() % 9);
-          uint64_t a = rng() % 3 == 0 ? (rng() % 512) * 8 : at[t] + (uint64_t(t) << 16);
-          if (far) a = (a & 4095) | ((a >> 12) << 34);
-          const uint32_t size = std::array<uint32_t, 4>{8, 8, 16, 4}[rng() % 4];
-          const bool write = rng() % 4 == 0;
-          sim.Access(t, a, size, write);
-          ref.Access(t, a, size, write);
-          Access x{};
-          x.thread = static_cast<uint8_t>(t), x.address = a, x.size = size, x.write = write;
-          // Runs of one thread (as a traced run delivers them), so the batched first-level
-          // hit runs take several accesses at once.
-          all.push_back(x);
-          if (rng() % 3) {
-            x.address = a + 8 * (rng() % 4);
-            x.write = rng() % 6 == 0;
-            sim.Access(t, x.address, size, x.write);
-            ref.Access(t, x.address, size, x.write);
-            all.push_back(x);
-          }
-        }
-        // The same accesses through Consume, in batches of varied length (its first-level hit
-        // runs and HitFirst, the path a traced run takes).
-        for (size_t i = 0; i < all.size();) {
-          const size_t n = std::min(all.size() - i, size_t{1} + rng() % 700);
-          batched.Consume(all.data() + i, n);
-          i += n;
-        }
-        ThreadStats total;
-        for (int t = 0; t < p; ++t) {
-          ExpectSame(sim.Stats(t), ref.stats[t],
-                     std::string(PlacementName(pl)) + " thread " + std::to_string(t));
-          ExpectSame(batched.Stats(t), ref.stats[t],
-                     std::string(PlacementName(pl)) + " thread " + std::to_string(t) + ", batched");
-          total += sim.Stats(t);
-        }
+        const ThreadStats total = CheckRandomStream(m, pl, p, far, 30000, rng);
         // The rules under test did act: coherence with several threads, inclusion, the prefetcher.
         uint64_t coherence = 0, victims = 0, hidden = 0;
         for (const CoreLevelStats& l : total.levels)
@@ -485,6 +492,41 @@ TEST(Multicore, MatchesANaiveReferenceOnRandomStreams) {
           EXPECT_GT(hidden, 0u);
         }
       }
+}
+
+// A line's record keeps a bit per core in as few bits as the highest core with a thread needs
+// (8, 32 or 64; the small machines above have 8 cores): on 64 cores, threads on cores up to 19
+// (32 bits), 39 and 63 (64 bits), writing and reading each other's lines, follow the same rules.
+TEST(Multicore, MatchesANaiveReferenceOnManyCores) {
+  std::mt19937_64 rng(12);
+  for (int variant = 0; variant < 4; ++variant) {
+    Machine m = SmallMachines()[variant];
+    m.sockets = 8, m.cores_per_socket = 8;  // 64 cores
+    for (const bool far : {false, true})
+      for (Placement pl : {Placement::kCompact, Placement::kScatter})
+        for (int p : {20, 40, 64}) {
+          const ThreadStats total = CheckRandomStream(m, pl, p, far, 12000, rng);
+          uint64_t coherence = 0;
+          for (const CoreLevelStats& l : total.levels) coherence += l.coherence;
+          EXPECT_GT(coherence, 0u);
+        }
+  }
+  // The cores beyond 31 took part: a thread there had lines taken away by another's write.
+  const Machine m = [] {
+    Machine x = SmallMachines()[1];
+    x.sockets = 8, x.cores_per_socket = 8;
+    return x;
+  }();
+  MulticoreSimulation sim(m, Placement::kCompact);
+  sim.Resize(64);
+  for (int round = 0; round < 2; ++round)
+    for (int t = 0; t < 64; ++t) sim.Access(t, 4096, 8, true);  // one line, written by all
+  // Each write takes the line from the core before (and, first on its socket, from the socket
+  // before), in both rounds; each thread's second write misses on its copy so taken.
+  for (int t = 32; t < 64; ++t) {
+    EXPECT_EQ(sim.Stats(t).levels[0].coherence, 1u) << t;
+    EXPECT_EQ(sim.Stats(t).invalidations_sent, t % 8 == 0 ? 4u : 2u) << t;
+  }
 }
 
 // The mesh's streams, recorded once per (p, interleaving), through both.
