@@ -563,7 +563,7 @@ void MulticoreSimulation::MissPlain(int thread, uint64_t line, bool write) {
     InvalidateOthers<R>(p.core, *e, line);
 }
 
-// The record-bound paths, for both widths (the header's inline code calls them).
+// The record-bound paths, for each width (the header's inline code calls them).
 #define MESHREUSE_RECORDS(R)                                                                   \
   template void MulticoreSimulation::AccessAs<MulticoreSimulation::R>(int, uint64_t, uint32_t, \
                                                                       bool, bool);             \
