@@ -314,7 +314,7 @@ void MulticoreSimulation::FirstPrefetchHit(int thread, uint64_t line) {
   if (set.empty() || !set.Erase(line)) return;
   ++stats_[thread].levels.front().prefetch_hits;
   ReserveSparse<R>(1);
-  Info<R>(line).seen_cores |= decltype(R::cores){1} << core;  // its first demand: not new
+  Info<R>(line).seen_cores |= typename R::Bits{1} << core;  // its first demand: not new
 }
 
 void MulticoreSimulation::BackInvalidate(int socket, uint64_t line) {
@@ -333,7 +333,7 @@ void MulticoreSimulation::BackInvalidate(int socket, uint64_t line) {
 
 template <class R>
 void MulticoreSimulation::InvalidateOthers(int core, R& e, uint64_t line) {
-  using Bits = decltype(R::cores);
+  using Bits = typename R::Bits;
   const int socket = core / m_.cores_per_socket;
   const int t = thread_of_core_[core];
   for (uint64_t others = e.cores & ~(uint64_t{1} << core); others; others &= others - 1) {
@@ -381,7 +381,7 @@ void MulticoreSimulation::PrefetchBelow(const FirstLevel& f, uint64_t line) {
 template <class R>
 void MulticoreSimulation::AccessAs(int thread, uint64_t address, uint32_t size, bool write,
                                    bool first_missed) {
-  using Bits = decltype(R::cores);
+  using Bits = typename R::Bits;
   const int core = core_of_[thread];
   const int socket = core / m_.cores_per_socket;
   const Bits cbit = Bits{1} << core;
@@ -507,7 +507,7 @@ const MulticoreSimulation::FirstLevel& MulticoreSimulation::LevelsOf(int thread)
 
 template <class R>
 void MulticoreSimulation::MissPlain(int thread, uint64_t line, bool write) {
-  using Bits = decltype(R::cores);
+  using Bits = typename R::Bits;
   const FirstLevel& p = LevelsOf(thread);
   const size_t n = m_.levels.size();
   PrefetchBelow<R>(p, line);

@@ -106,8 +106,9 @@ class MulticoreSimulation : public AccessConsumer {
   // writes its line's record, and at 32 B the records of carabiner's 712,810 lines (21.8 MiB)
   // outweighed the sets of every simulated level at 32 threads (13.1 MiB) in the host's caches
   // (issue 40: at 16 B, the 32-thread command 0.90x the time; reports/docs/many-cores.md).
-  template <class Bits>
-  struct alignas(alignof(Bits) < 8 ? 8 : alignof(Bits)) LineInfo {
+  template <class B>
+  struct alignas(alignof(B) < 8 ? 8 : alignof(B)) LineInfo {
+    using Bits = B;
     Bits cores = 0, seen_cores = 0, removed_cores = 0;
     uint8_t sockets = 0, seen_sockets = 0, removed_sockets = 0;
   };
