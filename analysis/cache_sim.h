@@ -65,6 +65,10 @@ class WritablePages {
  public:
   void Reset(const void* block, uint64_t bytes);  // a block to follow (none: bytes 0)
   void Touch(const void* p, uint64_t bytes) {     // [p, p + bytes), inside the block
+    // Nothing to ask once every page has been (a level's sets, full after the first sweep; a
+    // level too small to follow): one test instead of the pages' (issue 40: with the pages' a
+    // level's prefetch was a tenth of a one-thread many-core run's instructions).
+    if (left_ == 0) return;
     const uint64_t first = (reinterpret_cast<uintptr_t>(p) >> kShift) - first_page_;
     const uint64_t last = ((reinterpret_cast<uintptr_t>(p) + bytes - 1) >> kShift) - first_page_;
     for (uint64_t k = first; k <= last && k < pages_; ++k)
@@ -75,6 +79,7 @@ class WritablePages {
   static constexpr int kShift = 12;  // 4 KiB pages
   void Populate(uint64_t page);
   uint64_t first_page_ = 0, pages_ = 0;
+  uint64_t left_ = 0;           // pages not asked yet
   std::vector<uint64_t> done_;  // a bit per page: asked already
 };
 
@@ -155,7 +160,7 @@ class SetAssociativeCache {
   }
   // A hit does what Access does; a miss changes nothing and returns false. G: groups(), or 0.
   template <uint32_t G>
-  bool Hit(uint64_t line) {
+  [[gnu::always_inline]] bool Hit(uint64_t line) {
     const Set s = SetOf(line);  // a set never touched: its signatures 0, never confirmed
     const uint32_t w = Find<G>(s, line + 1);
     if (w == kNone) return false;
@@ -198,7 +203,8 @@ class SetAssociativeCache {
     const uint64_t set = pow2_ ? (line & mask_) : (line % sets_);
     const uint8_t* b = base_ + set * block_bytes_;
     pages_.Touch(b, block_bytes_);
-    for (uint64_t o = 0; o < block_bytes_; o += 64) __builtin_prefetch(b + o, 1);
+    __builtin_prefetch(b, 1);  // (a set of up to eight ways is one host line)
+    for (uint64_t o = 64; o < block_bytes_; o += 64) __builtin_prefetch(b + o, 1);
     if (tagged_) {
       const uint64_t* t = tags_.get() + set * padded_;
       tag_pages_.Touch(t, 8 * uint64_t{padded_});
@@ -309,7 +315,7 @@ class SetAssociativeCache {
   // A miss: the victim chosen, the tag in its way. Inline for the common case (LRU or FIFO, no
   // tags kept, the tag its signature), InstallSlow otherwise (random, tags, a first tag).
   template <uint32_t G>
-  void Install(Set s, uint64_t tag) {
+  [[gnu::always_inline]] void Install(Set s, uint64_t tag) {
     if (__builtin_expect(!SigTag(tag) || policy_ == Replacement::kRandom, 0))
       return InstallSlow<G>(s, tag);
     const uint32_t v = Oldest<G>(s.stamp);  // an empty way's stamp is 0

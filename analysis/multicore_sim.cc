@@ -164,13 +164,18 @@ double ThreadStats::CyclesLow(const Machine& m) const { return Cycles(*this, m, 
 double ThreadStats::CyclesHigh(const Machine& m) const { return Cycles(*this, m, true); }
 
 MulticoreSimulation::MulticoreSimulation(const Machine& m, Placement placement)
-    : m_(m), placement_(placement), private_levels_(m.private_levels()) {
+    : m_(m),
+      placement_(placement),
+      private_levels_(m.private_levels()),
+      levels_n_(m.levels.size()) {
   // Machines come checked (machine.h's Check); a thread's levels are a fixed array (FirstLevel).
   if (m.levels.size() > Machine::kMaxLevels)
     throw std::logic_error("MulticoreSimulation: more than Machine::kMaxLevels levels");
   shift_ = __builtin_ctz(m.line_bytes);
   fast_ = private_levels_ > 0;
   bool above = false;  // a prefetcher at a level above
+  for (size_t i = private_levels_; i < m.levels.size(); ++i)
+    if (m.levels[i].inclusive) reach_back_ |= uint32_t{1} << i;
   for (const MachineLevel& l : m.levels) {
     held_only_.push_back(l.prefetch && !above);
     above = above || l.prefetch;
@@ -194,6 +199,9 @@ void MulticoreSimulation::Resize(int threads) {
   coherent_ = m_.coherence && threads > 1;  // one core has no one to invalidate
   thread_of_core_.assign(m_.cores(), -1);
   for (int t = 0; t < threads; ++t) thread_of_core_[core_of_[t]] = t;
+  socket_cores_.assign(m_.sockets, {});
+  for (int core = 0; core < m_.cores(); ++core)  // in core order, as the loop over all was
+    if (thread_of_core_[core] >= 0) socket_cores_[core / m_.cores_per_socket].push_back(core);
   stats_.assign(threads, ThreadStats());
   for (ThreadStats& s : stats_) s.levels.resize(m_.levels.size());
   for (auto& c : cores_) c.reset();
@@ -318,8 +326,7 @@ void MulticoreSimulation::FirstPrefetchHit(int thread, uint64_t line) {
 }
 
 void MulticoreSimulation::BackInvalidate(int socket, uint64_t line) {
-  for (int k = 0; k < m_.cores_per_socket; ++k) {
-    const int core = socket * m_.cores_per_socket + k;
+  for (const int core : socket_cores_[socket]) {
     if (!cores_[core]) continue;
     Owner& o = *cores_[core];
     const int t = thread_of_core_[core];
@@ -370,7 +377,7 @@ void MulticoreSimulation::InvalidateOthers(int core, R& e, uint64_t line) {
 
 template <class R>
 void MulticoreSimulation::PrefetchBelow(const FirstLevel& f, uint64_t line) {
-  for (size_t i = 1; i < m_.levels.size(); ++i) f.levels[i]->PrefetchSet(line);
+  for (size_t i = 1; i < levels_n_; ++i) f.levels[i]->PrefetchSet(line);
   if (line - info_base_ < kDenseLines) {
     const R* e = Dense<R>() + (line - info_base_);
     info_pages_.Touch(e, sizeof(R));
@@ -494,14 +501,12 @@ void MulticoreSimulation::AccessAs(int thread, uint64_t address, uint32_t size, 
     }
 }
 
-const MulticoreSimulation::FirstLevel& MulticoreSimulation::LevelsOf(int thread) {
+const MulticoreSimulation::FirstLevel& MulticoreSimulation::MakeLevels(int thread) {
   FirstLevel& f = first_of_thread_[thread];
-  if (!f.levels_made) {
-    for (size_t i = 0; i < m_.levels.size(); ++i)
-      f.levels[i] = i < private_levels_ ? &CoreOwner(f.core).caches[i]
-                                        : &SocketOwner(f.socket).caches[i - private_levels_];
-    f.levels_made = true;
-  }
+  for (size_t i = 0; i < m_.levels.size(); ++i)
+    f.levels[i] = i < private_levels_ ? &CoreOwner(f.core).caches[i]
+                                      : &SocketOwner(f.socket).caches[i - private_levels_];
+  f.levels_made = true;
   return f;
 }
 
@@ -509,7 +514,7 @@ template <class R>
 void MulticoreSimulation::MissPlain(int thread, uint64_t line, bool write) {
   using Bits = typename R::Bits;
   const FirstLevel& p = LevelsOf(thread);
-  const size_t n = m_.levels.size();
+  const size_t n = levels_n_;
   PrefetchBelow<R>(p, line);
   R* e;
   if (line - info_base_ < kDenseLines) {
@@ -528,7 +533,7 @@ void MulticoreSimulation::MissPlain(int thread, uint64_t line, bool write) {
       hit = i;
       break;
     }
-    if (i >= private_levels_ && m_.levels[i].inclusive && c.victim() != ~uint64_t{0})
+    if ((reach_back_ >> i & 1) && c.victim() != ~uint64_t{0})
       BackInvalidate(p.socket, c.victim());
   }
   // Each level that missed counts a miss, cold and coherence as its owner's first level decides

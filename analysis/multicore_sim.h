@@ -185,16 +185,21 @@ class MulticoreSimulation : public AccessConsumer {
   size_t HitRun(const meshreuse::Access* a, size_t from, size_t n, uint8_t t) {
     const FirstLevel& f = first_of_thread_[t];
     if (!f.cache) return from;
-    const bool coherent = coherent_;
-    auto run = [&](auto prefetch) {  // the level's prefetcher fixed at compile time
+    // The level's prefetcher and coherence fixed at compile time (one thread has no coherence:
+    // its hits then test nothing).
+    auto run = [&](auto prefetch, auto coherent) {
       return f.cache->HitRun<G>(from, n, OneLineOf{a, t, shift_},
-                                [this, a, coherent, t, &f](size_t i, uint64_t line) {
+                                [this, a, t, &f](size_t i, uint64_t line) {
                                   if constexpr (decltype(prefetch)::value)
                                     if (f.filter[line & kFilterMask]) FirstPrefetchHit<R>(t, line);
-                                  if (coherent && a[i].write) WriteHit<R>(f, line);
+                                  if constexpr (decltype(coherent)::value)
+                                    if (a[i].write) WriteHit<R>(f, line);
                                 });
     };
-    const size_t end = f.prefetch ? run(std::true_type()) : run(std::false_type());
+    using Yes = std::true_type;
+    using No = std::false_type;
+    const size_t end = f.prefetch ? (coherent_ ? run(Yes(), Yes()) : run(Yes(), No()))
+                                  : (coherent_ ? run(No(), Yes()) : run(No(), No()));
     *f.accesses += end - from;
     return end;
   }
@@ -218,8 +223,13 @@ class MulticoreSimulation : public AccessConsumer {
   // line (by callgrind at 32 threads, 1,211 instructions a first-level miss there).
   template <class R>
   void MissPlain(int thread, uint64_t line, bool write);
-  // Thread `thread`'s FirstLevel with its levels (FirstLevel::levels) made.
-  const FirstLevel& LevelsOf(int thread);
+  // Thread `thread`'s FirstLevel with its levels (FirstLevel::levels) made (at every miss: the
+  // made case inline).
+  const FirstLevel& LevelsOf(int thread) {
+    const FirstLevel& f = first_of_thread_[thread];
+    return f.levels_made ? f : MakeLevels(thread);
+  }
+  const FirstLevel& MakeLevels(int thread);
   // A first-level hit where that level prefetches: if the line was prefetched and not demanded
   // since, a prefetch hit (as Access counts it). Touches the set of prefetched lines, not the
   // level. Called only where the set's filter (FirstLevel::filter) says it may hold the line.
@@ -236,6 +246,8 @@ class MulticoreSimulation : public AccessConsumer {
   void PrefetchBelow(const FirstLevel& f, uint64_t line);
   template <class R>
   void ReserveSparse(uint64_t more);
+  // The line out of the private levels of the socket's cores (those with a thread: no other
+  // core has levels, socket_cores_).
   void BackInvalidate(int socket, uint64_t line);
   template <class R>
   void InvalidateOthers(int core, R& e, uint64_t line);
@@ -246,8 +258,11 @@ class MulticoreSimulation : public AccessConsumer {
   StreamInfo info_;
   int shift_;
   size_t private_levels_;
+  size_t levels_n_;         // m_.levels.size(), at every miss
+  uint32_t reach_back_ = 0;  // bit i: level i's evictions reach the private levels (inclusive, shared)
   std::vector<int> core_of_;                             // per thread
   std::vector<int> thread_of_core_;                      // -1: idle core
+  std::vector<std::vector<int>> socket_cores_;           // per socket, its cores with a thread
   std::vector<ThreadStats> stats_;                       // per thread
   std::vector<std::unique_ptr<Owner>> cores_, sockets_;  // made at first use
   bool coherent_ = false;                                // coherence on and more than one thread
