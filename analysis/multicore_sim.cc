@@ -533,8 +533,7 @@ void MulticoreSimulation::MissPlain(int thread, uint64_t line, bool write) {
       hit = i;
       break;
     }
-    if ((reach_back_ >> i & 1) && c.victim() != ~uint64_t{0})
-      BackInvalidate(p.socket, c.victim());
+    if ((reach_back_ >> i & 1) && c.victim() != ~uint64_t{0}) BackInvalidate(p.socket, c.victim());
   }
   // Each level that missed counts a miss, cold and coherence as its owner's first level decides
   // them (Access: the core's at the first private level, the socket's at the first shared one);

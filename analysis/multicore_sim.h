@@ -258,9 +258,9 @@ class MulticoreSimulation : public AccessConsumer {
   StreamInfo info_;
   int shift_;
   size_t private_levels_;
-  size_t levels_n_;         // m_.levels.size(), at every miss
-  uint32_t reach_back_ = 0;  // bit i: level i's evictions reach the private levels (inclusive, shared)
-  std::vector<int> core_of_;                             // per thread
+  size_t levels_n_;           // m_.levels.size(), at every miss
+  uint32_t reach_back_ = 0;   // bit i: level i is shared and inclusive (its evictions reach back)
+  std::vector<int> core_of_;  // per thread
   std::vector<int> thread_of_core_;                      // -1: idle core
   std::vector<std::vector<int>> socket_cores_;           // per socket, its cores with a thread
   std::vector<ThreadStats> stats_;                       // per thread
