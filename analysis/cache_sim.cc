@@ -358,6 +358,12 @@ void CacheSimulation::Resize(int threads) {
   per_array_.assign(by_array_ ? threads : 0, {});
 }
 
+void CacheSimulation::Consume(const meshreuse::Access* a, size_t n) {
+  if (by_array_) return ConsumeByArray(a, n);
+  SetAssociativeCache::WithFirstGroups(first_groups_,
+                                       [&](auto g) { ConsumeIn<decltype(g)::value>(a, n); });
+}
+
 void CacheSimulation::ConsumeByArray(const meshreuse::Access* a, size_t n) {
   const size_t levels = spec_.levels.size();
   std::vector<uint64_t> before(2 * levels);

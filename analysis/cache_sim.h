@@ -149,6 +149,25 @@ class SetAssociativeCache {
         return f(std::integral_constant<U, 0>());
     }
   }
+  // WithGroups for a simulator's hit loop on its first level (HitRun's eight variants, times
+  // the many-core simulator's records, prefetch and coherence): the counts of the first levels
+  // there are (up to 16 ways) fixed, any other at run time (0), to compile fewer copies of it.
+  template <class F>
+  static decltype(auto) WithFirstGroups(uint32_t groups, F&& f) {
+    using U = uint32_t;
+    switch (groups) {
+      case 1:
+        return f(std::integral_constant<U, 1>());
+      case 2:
+        return f(std::integral_constant<U, 2>());
+      case 3:
+        return f(std::integral_constant<U, 3>());
+      case 4:
+        return f(std::integral_constant<U, 4>());
+      default:
+        return f(std::integral_constant<U, 0>());
+    }
+  }
   // Looks `line` up; on a hit moves it to the front of its set, on a miss installs it there
   // (evicting the least recently used). Returns true on a hit.
   bool Access(uint64_t line) {
@@ -549,11 +568,8 @@ class CacheSimulation : public AccessConsumer {
   CacheSimulation(const CacheSpec& spec, uint32_t line_bytes);
   void Begin(const StreamInfo& info) override;  // the streams (threads) and the input's names
   void BeginSweep(int sweep) override;
-  void Consume(const meshreuse::Access* a, size_t n) override {
-    if (by_array_) return ConsumeByArray(a, n);
-    SetAssociativeCache::WithGroups(first_groups_,
-                                    [&](auto g) { ConsumeIn<decltype(g)::value>(a, n); });
-  }
+  // Out of line, as MulticoreSimulation's: its hit loop's variants are compiled once.
+  void Consume(const meshreuse::Access* a, size_t n) override;
   // Counts each level's lookups and misses per array too (Access::array: the smoother's arrays,
   // core/access.h, or kForeignArray): which data misses. From the next access on.
   void CountByArray() {

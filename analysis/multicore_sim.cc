@@ -567,6 +567,10 @@ void MulticoreSimulation::MissPlain(int thread, uint64_t line, bool write) {
     InvalidateOthers<R>(p.core, *e, line);
 }
 
+void MulticoreSimulation::Consume(const meshreuse::Access* a, size_t n) {
+  WithRecords([&](auto r) { ConsumeAs<decltype(r)>(a, n); });
+}
+
 // The record-bound paths, for each width (the header's inline code calls them).
 #define MESHREUSE_RECORDS(R)                                                                   \
   template void MulticoreSimulation::AccessAs<MulticoreSimulation::R>(int, uint64_t, uint32_t, \

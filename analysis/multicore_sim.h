@@ -69,9 +69,9 @@ class MulticoreSimulation : public AccessConsumer {
   ~MulticoreSimulation() override;
   void Begin(const StreamInfo& info) override;  // the threads: placed on cores
   void BeginSweep(int sweep) override;
-  void Consume(const meshreuse::Access* a, size_t n) override {
-    WithRecords([&](auto r) { ConsumeAs<decltype(r)>(a, n); });
-  }
+  // Out of line: its loop's variants (records, groups, prefetch, coherence, the level's set
+  // indexing, replacement and tags) are compiled once, here, not in every file that calls it.
+  void Consume(const meshreuse::Access* a, size_t n) override;
   // By hand (tests), after Begin or Resize. first_missed: HitFirst has just missed it.
   void Access(int thread, uint64_t address, uint32_t size, bool write, bool first_missed = false) {
     WithRecords([&](auto r) { AccessAs<decltype(r)>(thread, address, size, write, first_missed); });
@@ -133,7 +133,7 @@ class MulticoreSimulation : public AccessConsumer {
       for (size_t i = 0; i < n; ++i) AccessAs<R>(a[i].thread, a[i].address, a[i].size, a[i].write);
       return;
     }
-    SetAssociativeCache::WithGroups(l1_groups_, [&](auto g) {
+    SetAssociativeCache::WithFirstGroups(l1_groups_, [&](auto g) {
       constexpr uint32_t G = decltype(g)::value;
       for (size_t i = 0; i < n;) {  // a thread's first-level hits in runs, the rest one by one
         const uint8_t t = a[i].thread;
