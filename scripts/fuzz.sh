@@ -8,14 +8,16 @@
 # Limits: 10 s per input, 512 MB of RSS (ASan's quarantine at 32 MB), no single allocation above
 # 64 MB (a header's count must never be trusted for memory). Fails (exit 1) on any finding;
 # reproducers go to build/fuzz/artifacts/.
-# Usage: scripts/fuzz.sh [SECONDS]   (per harness, default 60; two harnesses run at a time)
+# Usage: scripts/fuzz.sh [SECONDS] [--build-only]   (per harness, default 60; two harnesses run at
+#   a time. --build-only: install, configure and build build/fuzz, then stop; scripts/test.sh
+#   builds so in the background while its tests run)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 source scripts/lib.sh
 usage() { lib_usage 2 11; }
 LIB_USAGE=usage
-secs=60
-lib_options @=secs -- "$@"
+secs=60 build_only=0
+lib_options @=secs --build-only=build_only! -- "$@"
 [[ $secs =~ ^[0-9]+$ ]] || lib_die "SECONDS must be a number"
 bash scripts/setup.sh --with-fuzz
 mkdir -p build  # its logs go there, on a fresh clone too
@@ -28,6 +30,7 @@ CC=clang CXX=clang++ cmake "${gen[@]}" -S . -B build/fuzz -DCMAKE_BUILD_TYPE=Rel
   -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O2 -g1" -DMESHREUSE_FUZZ=ON -DMESHREUSE_PAPI=OFF >build/fuzz.configure.log 2>&1 || { cat build/fuzz.configure.log; exit 1; }
 cmake --build build/fuzz -j"$(nproc 2>/dev/null || echo 2)" >build/fuzz.build.log 2>&1 ||
   { tail -n 40 build/fuzz.build.log; exit 1; }
+((build_only)) && exit 0
 
 harnesses=(triangle gmsh trace external permutation poly summary visit_order mesh_file)
 c=build/fuzz/corpus
