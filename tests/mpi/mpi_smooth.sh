@@ -315,7 +315,8 @@ contains "partition file for 3 ranks at 2" "$tmp/p3.part:4: part 2 of vertex 2 i
 # those cases check only that a late signal leaves nothing behind.
 check "mrm for cancelling" 0 run 2 "$mpi" refine "$plate" --levels 5 -o "$tmp/c5.mrm" --quiet
 # A builtin glob, no process: cancel_at polls it every 10 ms while the ranks it waits for start on
-# the same cores (ls and grep there took about 20 s of the run's CPU under ASan).
+# the same cores (with ls and grep, the polling's lines other than its sleeps came to about 40 s
+# of a run's wall under ASan, timestamped by xtrace).
 left() { compgen -G "$tmp/*.tmp.*" >/dev/null; }
 hit=0  # runs signalled while their temporary existed (the cases that test something)
 cancel_at() {  # DELAY HOW JOB PATTERN: signal JOB (KILL: the newest process matching PATTERN)
