@@ -360,8 +360,8 @@ void CacheSimulation::Resize(int threads) {
 
 void CacheSimulation::Consume(const meshreuse::Access* a, size_t n) {
   if (by_array_) return ConsumeByArray(a, n);
-  SetAssociativeCache::WithFirstGroups(first_groups_,
-                                       [&](auto g) { ConsumeIn<decltype(g)::value>(a, n); });
+  SetAssociativeCache::WithGroups<4>(first_groups_,
+                                     [&](auto g) { ConsumeIn<decltype(g)::value>(a, n); });
 }
 
 void CacheSimulation::ConsumeByArray(const meshreuse::Access* a, size_t n) {

@@ -129,7 +129,10 @@ class SetAssociativeCache {
   static uint32_t GroupsOf(uint32_t ways) {
     return static_cast<uint32_t>((uint64_t{ways} + 3) / 4);
   }
-  template <class F>
+  // kMax: the most groups fixed. A simulator's hit loop on its first level (HitRun's eight
+  // variants, times the many-core simulator's records, prefetch and coherence) fixes only 4 (16
+  // ways, the first levels there are), to compile fewer copies of it.
+  template <uint32_t kMax = 8, class F>
   static decltype(auto) WithGroups(uint32_t groups, F&& f) {
     using U = uint32_t;
     switch (groups) {
@@ -142,31 +145,15 @@ class SetAssociativeCache {
       case 4:
         return f(std::integral_constant<U, 4>());  // 16
       case 6:
-        return f(std::integral_constant<U, 6>());  // 24
+        if constexpr (kMax >= 6) return f(std::integral_constant<U, 6>());  // 24
+        break;
       case 8:
-        return f(std::integral_constant<U, 8>());  // 32
+        if constexpr (kMax >= 8) return f(std::integral_constant<U, 8>());  // 32
+        break;
       default:
-        return f(std::integral_constant<U, 0>());
+        break;
     }
-  }
-  // WithGroups for a simulator's hit loop on its first level (HitRun's eight variants, times
-  // the many-core simulator's records, prefetch and coherence): the counts of the first levels
-  // there are (up to 16 ways) fixed, any other at run time (0), to compile fewer copies of it.
-  template <class F>
-  static decltype(auto) WithFirstGroups(uint32_t groups, F&& f) {
-    using U = uint32_t;
-    switch (groups) {
-      case 1:
-        return f(std::integral_constant<U, 1>());
-      case 2:
-        return f(std::integral_constant<U, 2>());
-      case 3:
-        return f(std::integral_constant<U, 3>());
-      case 4:
-        return f(std::integral_constant<U, 4>());
-      default:
-        return f(std::integral_constant<U, 0>());
-    }
+    return f(std::integral_constant<U, 0>());
   }
   // Looks `line` up; on a hit moves it to the front of its set, on a miss installs it there
   // (evicting the least recently used). Returns true on a hit.

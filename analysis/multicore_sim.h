@@ -133,7 +133,7 @@ class MulticoreSimulation : public AccessConsumer {
       for (size_t i = 0; i < n; ++i) AccessAs<R>(a[i].thread, a[i].address, a[i].size, a[i].write);
       return;
     }
-    SetAssociativeCache::WithFirstGroups(l1_groups_, [&](auto g) {
+    SetAssociativeCache::WithGroups<4>(l1_groups_, [&](auto g) {
       constexpr uint32_t G = decltype(g)::value;
       for (size_t i = 0; i < n;) {  // a thread's first-level hits in runs, the rest one by one
         const uint8_t t = a[i].thread;
