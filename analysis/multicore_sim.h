@@ -105,7 +105,8 @@ class MulticoreSimulation : public AccessConsumer {
   // so that none straddles two host lines), 32 (16 B) or 64 (32 B). A first-level miss reads and
   // writes its line's record, and at 32 B the records of carabiner's 712,810 lines (21.8 MiB)
   // outweighed the sets of every simulated level at 32 threads (13.1 MiB) in the host's caches
-  // (issue 40: at 16 B, the 32-thread command 0.90x the time; reports/docs/many-cores.md).
+  // (issue 40: at 16 B, the 32-thread command 0.90x the time;
+  // reports/docs/simulator-performance.md).
   template <class B>
   struct alignas(alignof(B) < 8 ? 8 : alignof(B)) LineInfo {
     using Bits = B;
