@@ -224,6 +224,35 @@ class SetAssociativeCache {
   // Removes `line` if held (the ways after it move up in the recency list): coherence and
   // inclusion. Returns whether it was held.
   bool Invalidate(uint64_t line);
+  // Where `line` is held: its set's index times the padded ways, plus its way (< slots()); ~0 if
+  // not held. A line keeps its slot while held, except under kRandom, whose invalidation moves the
+  // ways after it up (a caller keeping data per slot uses LRU or FIFO levels).
+  uint64_t SlotOf(uint64_t line) const {
+    return WithGroups(groups_, [&](auto g) {
+      const Set s = SetOf(line);
+      const uint32_t w = Find<decltype(g)::value>(s, line + 1);
+      return w == kNone ? ~uint64_t{0} : s.index * padded_ + w;
+    });
+  }
+  uint64_t slots() const { return sets_ * padded_; }
+  // The first slot of `line`'s set (its ways' slots follow).
+  uint64_t FirstSlotOf(uint64_t line) const {
+    return (pow2_ ? (line & mask_) : (line % sets_)) * padded_;
+  }
+  // f(line) for every line held, in no particular order.
+  template <class F>
+  void ForEachLine(F&& f) const {
+    for (uint64_t i = 0; i < sets_; ++i) {
+      const uint32_t* sig = reinterpret_cast<const uint32_t*>(base_ + i * block_bytes_);
+      for (uint32_t w = 0; w < ways_; ++w) {
+        if (tagged_) {
+          if (const uint64_t t = tags_[i * padded_ + w]) f(t - 1);
+        } else if (sig[w]) {
+          f((high_ << 32 | sig[w]) - 1);
+        }
+      }
+    }
+  }
   uint64_t sets() const { return sets_; }
   uint32_t ways() const { return ways_; }
   // Tests: renumber the stamps when the clock reaches `limit` (>= ways + 1) instead of 2^31 - 2.

@@ -530,6 +530,58 @@ TEST(SetAssociativeCache, HitRunEqualsAccessOnRandomStreams) {
           }
 }
 
+// SlotOf and ForEachLine (the many-core simulator's back-invalidation filter keeps a byte per
+// slot): the lines ForEachLine lists are exactly those Contains finds, each with a slot of its
+// own below slots() inside its set's, which stays the line's while it is held (hits, other
+// installs and invalidations in its set); a line not held has none. Within one high half, and
+// across halves (tags kept); LRU and FIFO (random moves ways: no slot kept there).
+TEST(SetAssociativeCache, SlotsStayWhileHeldAndLinesListAsHeld) {
+  for (const Replacement p : {Replacement::kLru, Replacement::kFifo})
+    for (const uint32_t ways : {2u, 8u, 24u})
+      for (const uint64_t sets : {uint64_t{4}, uint64_t{3}})
+        for (const bool mixed : {false, true}) {
+          SetAssociativeCache c(sets * ways * 64, ways, 64, p);
+          std::mt19937_64 rng(ways * 11 + sets + static_cast<uint64_t>(p) + 5 * mixed);
+          const uint64_t base = (uint64_t{5} << 32) - 40;
+          const uint64_t pool = sets * ways * 2 + 5;
+          const std::string what = std::string(ReplacementName(p)) + " ways " +
+                                   std::to_string(ways) + " sets " + std::to_string(sets) +
+                                   (mixed ? " mixed" : "");
+          std::vector<uint64_t> universe;
+          for (uint64_t k = 0; k < pool; ++k) {
+            universe.push_back(base + k);
+            if (mixed) universe.push_back(base + k + (uint64_t{3} << 32));
+          }
+          std::map<uint64_t, uint64_t> slot;  // of each line held, as first seen
+          for (int step = 0; step < 4000; ++step) {
+            const uint64_t line = universe[rng() % universe.size()];
+            if (rng() % 5 == 0)
+              c.Invalidate(line);
+            else
+              c.Access(line);
+            std::set<uint64_t> listed;
+            c.ForEachLine([&](uint64_t l) { EXPECT_TRUE(listed.insert(l).second) << what; });
+            std::set<uint64_t> slots;
+            for (const uint64_t l : universe) {
+              const uint64_t k = c.SlotOf(l);
+              ASSERT_EQ(c.Contains(l), listed.count(l) == 1) << what << " step " << step;
+              if (!c.Contains(l)) {
+                ASSERT_EQ(k, ~uint64_t{0}) << what;
+                slot.erase(l);
+                continue;
+              }
+              ASSERT_LT(k, c.slots()) << what;
+              ASSERT_GE(k, c.FirstSlotOf(l)) << what;
+              ASSERT_LT(k, c.FirstSlotOf(l) + ways) << what;
+              ASSERT_TRUE(slots.insert(k).second) << what << ": two lines in one slot";
+              const auto it = slot.emplace(l, k).first;
+              ASSERT_EQ(it->second, k) << what << " step " << step << ": a held line moved";
+            }
+            ASSERT_EQ(listed.size(), slot.size()) << what;
+          }
+        }
+}
+
 // A 30 x 24 synthetic mesh with a hole, and `sweeps` exact sweeps on two threads.
 Mesh SmallMesh(uint64_t seed) {
   SyntheticOptions so;
