@@ -73,11 +73,11 @@ void WritablePages::Reset(const void* block, uint64_t bytes) {
   first_page_ = a >> kShift;
   pages_ = bytes ? ((a + bytes - 1) >> kShift) - first_page_ + 1 : 0;
   left_ = pages_;
-  done_.assign((pages_ + 63) / 64, 0);
+  done_.assign(pages_, 0);
 }
 
 void WritablePages::Populate(uint64_t page) {
-  done_[page >> 6] |= uint64_t{1} << (page & 63);
+  done_[page] = 1;
   --left_;
 #ifdef MADV_POPULATE_WRITE
   // A page shared with the block's neighbours (its first and last) is theirs too: populating it

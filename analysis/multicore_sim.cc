@@ -362,18 +362,26 @@ void MulticoreSimulation::InvalidateOthers(int core, R& e, uint64_t line) {
   e.sockets = static_cast<uint8_t>(e.sockets & (1u << socket));
 }
 
-template <class R>
-void MulticoreSimulation::PrefetchBelow(const FirstLevel& f, uint64_t line) {
-  for (size_t i = 1; i < levels_n_; ++i) f.levels[i]->PrefetchSet(line);
+template <bool kNext, class R>
+[[gnu::always_inline]] inline void MulticoreSimulation::PrefetchBelow(const FirstLevel& f,
+                                                                    uint64_t line) {
+  const size_t n = levels_n_;  // (a local: a page's populating call would make it a reload)
+  for (size_t i = 1; i < n; ++i)
+    kNext ? f.levels[i]->PrefetchSetAndNext(line) : f.levels[i]->PrefetchSet(line);
   if (const Holders& h = holders_[f.socket]; h.active) {  // the set's bits, to be read and written
-    const uint8_t* b = h.cores.data() + f.levels[levels_n_ - 1]->FirstSlotOf(line);
-    __builtin_prefetch(b, 1);
-    __builtin_prefetch(b + f.levels[levels_n_ - 1]->ways() - 1, 1);
+    const SetAssociativeCache& c = *f.levels[n - 1];
+    for (uint64_t l = line; l <= line + kNext; ++l) {
+      const uint8_t* b = h.cores.data() + c.FirstSlotOf(l);
+      __builtin_prefetch(b, 1);
+      __builtin_prefetch(b + c.ways() - 1, 1);
+    }
   }
-  if (line - info_base_ < kDenseLines) {
-    const R* e = Dense<R>() + (line - info_base_);
-    info_pages_.Touch(e, sizeof(R));
+  if (const uint64_t k = line - info_base_; k < kDenseLines) {
+    const R* e = Dense<R>() + k;
+    const bool both = kNext && k + 1 < kDenseLines;
+    info_pages_.Touch(e, (1 + both) * sizeof(R));
     __builtin_prefetch(e, 1);
+    if (both) __builtin_prefetch(e + 1, 1);  // (most often the same host line)
   }
 }
 
@@ -391,8 +399,10 @@ void MulticoreSimulation::AccessAs(int thread, uint64_t address, uint32_t size, 
   ReserveSparse<R>(2 * (last - first + 1));
   if (first_missed) {  // the levels below will be looked up
     const FirstLevel& f = LevelsOf(thread);
-    PrefetchBelow<R>(f, first);
-    if (prefetching_) PrefetchBelow<R>(f, first + 1);  // a prefetcher's next line
+    if (prefetching_)  // and a prefetcher's next line
+      PrefetchBelow<true, R>(f, first);
+    else
+      PrefetchBelow<false, R>(f, first);
   }
   // Per line of the access (two when it straddles), its record, fetched at its first miss.
   R* info[2] = {nullptr, nullptr};
@@ -512,13 +522,13 @@ void MulticoreSimulation::MissPlain(int thread, uint64_t line, bool write) {
   using Bits = typename R::Bits;
   const FirstLevel& p = LevelsOf(thread);
   const size_t n = levels_n_;
-  PrefetchBelow<R>(p, line);
-  // And the next line's, asked now for a miss that has not happened: a thread's first-level
-  // misses run along its arrays (the interior list, the offsets, the triangles in order), so its
-  // next is often line + 1, whose sets and record are then in the host's caches. A prefetch
-  // changes nothing simulated. (Issue 40: at 32 threads the lookups below stalled on the sets'
-  // first host line, 55% of their samples, the prefetch above too late to hide it.)
-  PrefetchBelow<R>(p, line + 1);
+  // The sets and records of the line and of the next line, asked now for a miss that has not
+  // happened: a thread's first-level misses run along its arrays (the interior list, the offsets,
+  // the triangles in order), so its next is often line + 1, whose sets and record are then in the
+  // host's caches. A prefetch changes nothing simulated. (Issue 40: at 32 threads the lookups
+  // below stalled on the sets' first host line, 55% of their samples, the line's own prefetch
+  // too late to hide it.)
+  PrefetchBelow<true, R>(p, line);
   R* e;
   if (line - info_base_ < kDenseLines) {
     e = Dense<R>() + (line - info_base_);
@@ -528,11 +538,11 @@ void MulticoreSimulation::MissPlain(int thread, uint64_t line, bool write) {
   }
   // The levels first, down to the first that holds the line (`hit`; n: memory), then the record:
   // no level reads it, so its host miss overlaps their lookups instead of stalling before them.
-  p.levels[0]->InstallMissed(line);
+  p.levels[0]->InstallMissedInline(line);
   size_t hit = n;
   for (size_t i = 1; i < n; ++i) {
     SetAssociativeCache& c = *p.levels[i];
-    const bool took = c.Access(line);
+    const bool took = c.AccessInline(line);
     if (reach_back_ >> i & 1) SharedTook(p.socket, c, line, took, p.core, true);
     if (took) {
       hit = i;

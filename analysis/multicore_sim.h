@@ -242,8 +242,9 @@ class MulticoreSimulation : public AccessConsumer {
   // The sets of `line` at every level below the first (f's, from LevelsOf) and its record,
   // asked of the host (no change to any level) as a first-level miss begins: the lookups that
   // follow go one after another, each likely a host miss (a socket's 24 MiB level is 3 MiB of
-  // sets), and asked at once their misses overlap instead of adding up.
-  template <class R>
+  // sets), and asked at once their misses overlap instead of adding up. kNext: line + 1's too,
+  // in the same pass (SetAssociativeCache::PrefetchSetAndNext).
+  template <bool kNext, class R>
   void PrefetchBelow(const FirstLevel& f, uint64_t line);
   template <class R>
   void ReserveSparse(uint64_t more);
