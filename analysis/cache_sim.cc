@@ -1,8 +1,6 @@
 // Set-associative cache simulation; see cache_sim.h.
 #include "analysis/cache_sim.h"
 
-#include <sys/mman.h>
-
 #include <algorithm>
 #include <iterator>
 #include <new>
@@ -66,25 +64,6 @@ SetAssociativeCache::SetAssociativeCache(uint64_t bytes, uint32_t ways, uint32_t
   base_ = block_.get() + (64 - reinterpret_cast<uintptr_t>(block_.get()) % 64) % 64;
   if (sets_ * block_bytes_ >= (uint64_t{64} << 10)) pages_.Reset(base_, sets_ * block_bytes_);
   for (uint32_t k = 1; k < 4; ++k) pad_lanes_[k] = k >= 4 - (padded_ - ways_) ? 0x7fffffff : 0;
-}
-
-void WritablePages::Reset(const void* block, uint64_t bytes) {
-  const uintptr_t a = reinterpret_cast<uintptr_t>(block);
-  first_page_ = a >> kShift;
-  pages_ = bytes ? ((a + bytes - 1) >> kShift) - first_page_ + 1 : 0;
-  left_ = pages_;
-  done_.assign(pages_, 0);
-}
-
-void WritablePages::Populate(uint64_t page) {
-  done_[page] = 1;
-  --left_;
-#ifdef MADV_POPULATE_WRITE
-  // A page shared with the block's neighbours (its first and last) is theirs too: populating it
-  // writes nothing, so it is harmless; a refusal (an older kernel) leaves the page as it was.
-  (void)madvise(reinterpret_cast<void*>((first_page_ + page) << kShift), uint64_t{1} << kShift,
-                MADV_POPULATE_WRITE);
-#endif
 }
 
 void SetAssociativeCache::KeepTags() {
