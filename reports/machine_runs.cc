@@ -22,7 +22,7 @@ MachineRun CollectMachineRun(const MulticoreSimulation& sim, const std::string& 
   r.threads = sim.threads();
   for (const MachineLevel& l : sim.machine().levels) r.level_names.push_back(l.cache.name);
   for (int t = 0; t < sim.threads(); ++t) {
-    const ThreadStats s = sim.SweepStats(t, sim.sweeps() - 1);
+    const ThreadStats s = sim.sweeps() ? sim.SweepStats(t, sim.sweeps() - 1) : sim.Stats(t);
     r.total += s;
     r.cycles_low = std::max(r.cycles_low, s.CyclesLow(sim.machine()));
     r.cycles_high = std::max(r.cycles_high, s.CyclesHigh(sim.machine()));

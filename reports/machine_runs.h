@@ -24,7 +24,8 @@ struct MachineRun {
   std::vector<std::string> level_names;
 };
 
-// The warm (last) sweep of `sim` as a run.
+// The warm (last) sweep of `sim` as a run; the whole run where the stream has no sweeps (another
+// tool's trace).
 MachineRun CollectMachineRun(const MulticoreSimulation& sim, const std::string& mesh,
                              const std::string& ordering, bool prefetch);
 

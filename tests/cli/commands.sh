@@ -354,6 +354,12 @@ check "simulate lackey I1" 0 "$bin" simulate "$tmp/t.lackey" --format lackey --i
 contains "simulate lackey I1" ",I1,1024,2,8,lru,1,0,1,1,0,1,0,0,1"
 contains "simulate lackey I1" ",D1,1024,2,8,lru,4,2,2,2,0,0.5,2,0,0"  # L miss; S hit; M: L miss (straddles), S hit
 contains "simulate lackey I1" ",LL,4096,4,16,lru,3,0,3,3,0,1,2,0,1"
+# On a machine: another tool's trace has no sweeps, so its run is the whole trace (it stopped at
+# an internal error once). L1: L miss (cold), S hit, M's read misses line 0x41 (cold), its write
+# hits; cycles 4 x 4 + 2 x 10 (L2) + 2 x 38 (L3) + 2 x 175 (local memory) at the low end.
+check "simulate lackey machine" 0 "$bin" simulate "$tmp/t.lackey" --format lackey --machine westmere-ex --csv --quiet
+contains "simulate lackey machine" ",westmere-ex,compact,1,0,0,0,all,L1,4,2,2,2,0,0,0,0,2,0,,"
+contains "simulate lackey machine" ",all,total,4,,,,,,,,,,462,"
 check "analyze refuses I1" 2 "$bin" analyze "$tmp/t.lackey" --format lackey --cache I1=1K,L2=4K
 contains "analyze refuses I1" "I1 is simulate's instruction cache"
 check "analyze oracle" 2 "$bin" analyze "$data/broken/oracle_reserved.oracle" --format oracle --quiet
