@@ -140,7 +140,7 @@ class SetAssociativeCache {
   // below at every first-level miss (issue 40: the call and its dispatch were a fifth of such a
   // lookup's instructions by callgrind).
   [[gnu::always_inline]] bool AccessInline(uint64_t line) {
-    auto go = [&](auto g) [[gnu::always_inline]] {
+    auto go = [&](auto g) __attribute__((always_inline)) {
       if (Hit<decltype(g)::value>(line)) return true;
       Install<decltype(g)::value>(SetOf(line), line + 1);
       return false;
@@ -169,23 +169,32 @@ class SetAssociativeCache {
   // + 1, ... below n, line_of(i, line) sets access i's one line and returns true (false: not one
   // this loop may take), and each that hits is done as Hit does it (but the run's last line again
   // takes no new stamp: no order in any set changes, and only that order is ever compared), then
-  // on_hit(i, line) is called (it must not touch this level). Returns the first i not taken
-  // (line_of's false, a miss, or the clock at its limit); nothing of it has changed. G: groups(),
-  // or 0.
-  template <uint32_t G, class LineOf, class OnHit>
-  size_t HitRun(size_t from, size_t n, LineOf&& line_of, OnHit&& on_hit) {
+  // on_hit(i, line) is called (it must not touch this level). At a miss, on_miss(i, line) is
+  // called with nothing changed: it returns false to end the run there, or true once it has done
+  // the whole access, the line installed here (by InstallMissed, so with the newest stamp), and
+  // the run goes on. Returns the first i not taken (line_of's false, a miss on_miss declined, the
+  // clock near its limit, or the level's tags changed by a miss); nothing of it has changed. G:
+  // groups(), or 0. (Inline in the caller with its loop, so that the caller's functions' fields,
+  // such as the stream, stay in registers, which a stamp's store would make the loop reload.)
+  template <uint32_t G, class LineOf, class OnHit, class OnMiss>
+  [[gnu::always_inline]] size_t HitRun(size_t from, size_t n, LineOf&& line_of, OnHit&& on_hit,
+                                       OnMiss&& on_miss) {
     // The loop's variants fixed at compile time (set by mask or remainder; a hit's stamp or not;
     // the tags kept or not), so that a hit is a few dozen instructions.
     const bool tick = policy_ == Replacement::kLru;
-    auto run = [&](auto pow2, auto tagged) {
+    auto run = [&](auto pow2, auto tagged) __attribute__((always_inline)) {
       constexpr bool kPow2 = decltype(pow2)::value, kSig = !decltype(tagged)::value;
-      return tick ? Run<G, kPow2, true, kSig>(from, n, line_of, on_hit)
-                  : Run<G, kPow2, false, kSig>(from, n, line_of, on_hit);
+      return tick ? Run<G, kPow2, true, kSig>(from, n, line_of, on_hit, on_miss)
+                  : Run<G, kPow2, false, kSig>(from, n, line_of, on_hit, on_miss);
     };
     using Yes = std::true_type;
     using No = std::false_type;
     if (pow2_) return tagged_ ? run(Yes(), Yes()) : run(Yes(), No());
     return tagged_ ? run(No(), Yes()) : run(No(), No());
+  }
+  template <uint32_t G, class LineOf, class OnHit>
+  size_t HitRun(size_t from, size_t n, LineOf&& line_of, OnHit&& on_hit) {
+    return HitRun<G>(from, n, line_of, on_hit, [](size_t, uint64_t) { return false; });
   }
   // Whether the last HitRun stopped at a miss: at an access line_of took, whose line this level
   // does not hold. Nothing changed, as after Hit's false: the caller need not look it up again.
@@ -196,7 +205,7 @@ class SetAssociativeCache {
   }
   // InstallMissed with the install in the caller, for a simulator's miss path (as AccessInline).
   [[gnu::always_inline]] void InstallMissedInline(uint64_t line) {
-    auto go = [&](auto g) [[gnu::always_inline]] {
+    auto go = [&](auto g) __attribute__((always_inline)) {
       Install<decltype(g)::value>(SetOf(line), line + 1);
     };
     if (groups_ == 2)  // 8 ways: the report's machines' first levels
@@ -385,10 +394,11 @@ class SetAssociativeCache {
   void InstallSlow(Set s, uint64_t tag);
   // kSig (no tags kept): a signature's match is the tag's for a line whose tag's high half is
   // high_ and whose low half is not 0 (an empty way's signature); other lines end the run.
-  template <uint32_t G, bool kPow2, bool kTick, bool kSig, class LineOf, class OnHit>
-  size_t Run(size_t from, size_t n, LineOf& line_of, OnHit& on_hit) {
+  template <uint32_t G, bool kPow2, bool kTick, bool kSig, class LineOf, class OnHit, class OnMiss>
+  [[gnu::always_inline]] size_t Run(size_t from, size_t n, LineOf& line_of, OnHit& on_hit,
+                                    OnMiss& on_miss) {
     // The level's fields in locals: a stamp's store could alias them, and they would be reloaded
-    // at every access. With kTick, at most limit_ - clock_ hits (then Tick renumbers).
+    // at every access. With kTick, at most limit_ - clock_ stamps (then Tick renumbers).
     uint32_t clock = clock_;
     if (kTick) n = std::min<size_t>(n, from + (clock < limit_ ? limit_ - clock : 0));
     uint8_t* const block = base_;
@@ -415,14 +425,11 @@ class SetAssociativeCache {
       uint32_t w = kNone;
       if (kSig) {
         const uint64_t t1 = line + 1;
-        if (t1 - sig_lo >= sig_span) {  // not SigTag: not held
-          missed = true;
-          break;
-        }
-        for (uint32_t g = 0; g < groups && w == kNone; g += 8)
-          if (const uint32_t m =
-                  Matches(sig + 4 * g, std::min(8u, groups - g), static_cast<uint32_t>(t1)))
-            w = 4 * g + static_cast<uint32_t>(__builtin_ctz(m));
+        if (t1 - sig_lo < sig_span)  // else not SigTag: not held
+          for (uint32_t g = 0; g < groups && w == kNone; g += 8)
+            if (const uint32_t m =
+                    Matches(sig + 4 * g, std::min(8u, groups - g), static_cast<uint32_t>(t1)))
+              w = 4 * g + static_cast<uint32_t>(__builtin_ctz(m));
       } else {
         for (uint32_t g = 0; g < groups && w == kNone; g += 8)
           for (uint32_t m =
@@ -435,9 +442,23 @@ class SetAssociativeCache {
             }
           }
       }
-      if (w == kNone) {
-        missed = true;
-        break;
+      if (__builtin_expect(w == kNone, 0)) {
+        // The miss done by the caller, on the level as it is (its clock stored, then taken back).
+        clock_ = clock;
+        if (!on_miss(i, line)) {
+          missed = true;
+          break;
+        }
+        clock = clock_;
+        // A first tag of another high half, or tags kept from now on, change what this loop
+        // assumed; and the rest of the run's stamps, n - i - 1 at most, must stay below the limit.
+        if (sig_lo_ != sig_lo || sig_span_ != sig_span || tagged_ == kSig ||
+            (kTick && limit_ - clock <= n - i)) {
+          ++i;
+          break;
+        }
+        last = line;  // installed with the newest stamp
+        continue;
       }
       if (kTick) sig[padded + w] = ++clock;
       last = line;

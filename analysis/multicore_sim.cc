@@ -364,7 +364,7 @@ void MulticoreSimulation::InvalidateOthers(int core, R& e, uint64_t line) {
 
 template <bool kNext, class R>
 [[gnu::always_inline]] inline void MulticoreSimulation::PrefetchBelow(const FirstLevel& f,
-                                                                    uint64_t line) {
+                                                                      uint64_t line) {
   const size_t n = levels_n_;  // (a local: a page's populating call would make it a reload)
   for (size_t i = 1; i < n; ++i)
     kNext ? f.levels[i]->PrefetchSetAndNext(line) : f.levels[i]->PrefetchSet(line);

@@ -183,25 +183,36 @@ class MulticoreSimulation : public AccessConsumer {
   // index of the first access not taken, all before it counted and their writes' coherence done
   // (which touches other cores' and sockets' levels, never this core's).
   template <uint32_t G, class R>
-  size_t HitRun(const meshreuse::Access* a, size_t from, size_t n, uint8_t t) {
+  [[gnu::always_inline]] size_t HitRun(const meshreuse::Access* a, size_t from, size_t n,
+                                       uint8_t t) {
     const FirstLevel& f = first_of_thread_[t];
     if (!f.cache) return from;
     // The level's prefetcher and coherence fixed at compile time (one thread has no coherence:
-    // its hits then test nothing).
-    auto run = [&](auto prefetch, auto coherent) {
-      return f.cache->HitRun<G>(from, n, OneLineOf{a, t, shift_},
-                                [this, a, t, &f](size_t i, uint64_t line) {
-                                  if constexpr (decltype(prefetch)::value)
-                                    if (f.filter[line & kFilterMask]) FirstPrefetchHit<R>(t, line);
-                                  if constexpr (decltype(coherent)::value)
-                                    if (a[i].write) WriteHit<R>(f, line);
-                                });
+    // its hits then test nothing). A miss where no level prefetches is done in the run
+    // (MissPlain, which counts its first-level access), and the run goes on after it (issue 40:
+    // ending the run and starting the next at every miss was about 100 instructions a miss).
+    size_t misses = 0;
+    auto run = [&](auto prefetch, auto coherent) __attribute__((always_inline)) {
+      return f.cache->HitRun<G>(
+          from, n, OneLineOf{a, t, shift_},
+          [ this, a, t, &f ](size_t i, uint64_t line) __attribute__((always_inline)) {
+            if constexpr (decltype(prefetch)::value)
+              if (f.filter[line & kFilterMask]) FirstPrefetchHit<R>(t, line);
+            if constexpr (decltype(coherent)::value)
+              if (a[i].write) WriteHit<R>(f, line);
+          },
+          [ this, a, t, &misses ](size_t i, uint64_t line) __attribute__((always_inline)) {
+            if (decltype(prefetch)::value || prefetching_) return false;
+            MissPlain<R>(t, line, a[i].write);
+            ++misses;
+            return true;
+          });
     };
     using Yes = std::true_type;
     using No = std::false_type;
     const size_t end = f.prefetch ? (coherent_ ? run(Yes(), Yes()) : run(Yes(), No()))
                                   : (coherent_ ? run(No(), Yes()) : run(No(), No()));
-    *f.accesses += end - from;
+    *f.accesses += end - from - misses;
     return end;
   }
   // Coherence of a write hit by f's thread: the line held elsewhere is taken away. Inline the

@@ -466,66 +466,79 @@ TEST(SetAssociativeCache, MatchesTheMostRecentFirstArrayOnRandomStreams) {
 // thread). Pools within one high half of the tag (HitRun reads no tag there), with the lines whose
 // tag's low half is 0 (an empty way's signature; invalidations keep ways empty), and mixed halves
 // (confirmed on the tag); the clock's limit small or not; a line often repeated (a run takes its
-// last line again without a lookup or a stamp).
+// last line again without a lookup or a stamp); and misses done in the run (on_miss installs
+// the line and the run goes on, as the many-core simulator's MissPlain does) or not.
 TEST(SetAssociativeCache, HitRunEqualsAccessOnRandomStreams) {
   for (const Replacement p : {Replacement::kLru, Replacement::kFifo, Replacement::kRandom})
     for (const uint32_t ways : {2u, 8u, 24u, 40u})
       for (const uint64_t sets : {uint64_t{4}, uint64_t{3}})
         for (const bool mixed : {false, true})
-          for (const bool renumber : {false, true}) {
-            SetAssociativeCache run(sets * ways * 64, ways, 64, p),
-                one(sets * ways * 64, ways, 64, p);
-            if (renumber) run.LimitClockForTest(ways + 5), one.LimitClockForTest(ways + 5);
-            std::mt19937_64 rng(ways * 7 + sets + 2 * static_cast<uint64_t>(p) + mixed);
-            const uint64_t base =
-                (uint64_t{5} << 32) - 40;  // tags 2^32 * 5 - 39 ...: low half 0 among them
-            const uint64_t pool = sets * ways + ways + 3;
-            const std::string what = std::string(ReplacementName(p)) + " ways " +
-                                     std::to_string(ways) + " sets " + std::to_string(sets) +
-                                     (mixed ? " mixed" : "") + (renumber ? " renumbered" : "");
-            std::vector<uint64_t> lines(64);
-            std::vector<uint8_t> thread(64);
-            std::vector<char> hit_run(64), hit_one(64);  // access by access
-            uint64_t hits = 0;
-            for (int batch = 0; batch < 300; ++batch) {
-              for (int k = 0; k < 6; ++k) {  // empty ways again (signature 0)
-                const uint64_t line = base + rng() % pool;
-                ASSERT_EQ(run.Invalidate(line), one.Invalidate(line)) << what;
-              }
-              for (size_t k = 0; k < lines.size(); ++k) {
-                lines[k] = base + rng() % pool;
-                if (mixed && rng() % 7 == 0) lines[k] += uint64_t{3} << 32;
-                if (k > 0 && rng() % 3 == 0) lines[k] = lines[k - 1];  // a run's last line again
-                thread[k] = rng() % 9 == 0;  // thread 1's accesses are not this level's
-              }
-              std::fill(hit_run.begin(), hit_run.end(), 0);
-              std::fill(hit_one.begin(), hit_one.end(), 0);
-              for (size_t i = 0; i < lines.size();) {
-                i = SetAssociativeCache::WithGroups(run.groups(), [&](auto g) {
-                  return run.HitRun<decltype(g)::value>(
-                      i, lines.size(),
-                      [&](size_t k, uint64_t& line) {
-                        line = lines[k];
-                        return thread[k] == 0;
-                      },
-                      [&](size_t k, uint64_t) { hit_run[k] = 1; });
-                });
-                if (i == lines.size()) break;
-                if (thread[i] == 0) {  // a miss, or a hit with the clock at its limit
-                  const bool hit = run.Access(lines[i]);
-                  hit_run[i] = hit;
-                  ASSERT_TRUE(!hit || renumber)
-                      << what << " batch " << batch << " at " << i << ": HitRun stopped at a hit";
+          for (const bool renumber : {false, true})
+            for (const bool in_run : {false, true}) {
+              SetAssociativeCache run(sets * ways * 64, ways, 64, p),
+                  one(sets * ways * 64, ways, 64, p);
+              if (renumber) run.LimitClockForTest(ways + 5), one.LimitClockForTest(ways + 5);
+              std::mt19937_64 rng(ways * 7 + sets + 2 * static_cast<uint64_t>(p) + mixed);
+              const uint64_t base =
+                  (uint64_t{5} << 32) - 40;  // tags 2^32 * 5 - 39 ...: low half 0 among them
+              const uint64_t pool = sets * ways + ways + 3;
+              const std::string what = std::string(ReplacementName(p)) + " ways " +
+                                       std::to_string(ways) + " sets " + std::to_string(sets) +
+                                       (mixed ? " mixed" : "") + (renumber ? " renumbered" : "") +
+                                       (in_run ? " misses in the run" : "");
+              std::vector<uint64_t> lines(64);
+              std::vector<uint8_t> thread(64);
+              std::vector<char> hit_run(64), hit_one(64);  // access by access
+              std::vector<char> done(64);                  // a miss on_miss did
+              uint64_t hits = 0;
+              for (int batch = 0; batch < 300; ++batch) {
+                for (int k = 0; k < 6; ++k) {  // empty ways again (signature 0)
+                  const uint64_t line = base + rng() % pool;
+                  ASSERT_EQ(run.Invalidate(line), one.Invalidate(line)) << what;
                 }
-                ++i;
+                for (size_t k = 0; k < lines.size(); ++k) {
+                  lines[k] = base + rng() % pool;
+                  if (mixed && rng() % 7 == 0) lines[k] += uint64_t{3} << 32;
+                  if (k > 0 && rng() % 3 == 0) lines[k] = lines[k - 1];  // a run's last line again
+                  thread[k] = rng() % 9 == 0;  // thread 1's accesses are not this level's
+                }
+                std::fill(hit_run.begin(), hit_run.end(), 0);
+                std::fill(hit_one.begin(), hit_one.end(), 0);
+                std::fill(done.begin(), done.end(), 0);
+                for (size_t i = 0; i < lines.size();) {
+                  i = SetAssociativeCache::WithGroups(run.groups(), [&](auto g) {
+                    return run.HitRun<decltype(g)::value>(
+                        i, lines.size(),
+                        [&](size_t k, uint64_t& line) {
+                          line = lines[k];
+                          return thread[k] == 0;
+                        },
+                        [&](size_t k, uint64_t) { hit_run[k] = 1; },
+                        [&](size_t k, uint64_t line) {
+                          if (!in_run || rng() % 4 == 0) return false;  // the loop below does it
+                          run.InstallMissed(line);
+                          done[k] = 1;
+                          return true;
+                        });
+                  });
+                  if (i == lines.size()) break;
+                  // A miss, a hit with the clock at its limit, or any access after a miss done
+                  // in the run that changed the level's tags or left the clock near its limit.
+                  if (thread[i] == 0) {
+                    const bool hit = run.Access(lines[i]);
+                    hit_run[i] = hit;
+                    ASSERT_TRUE(!hit || renumber || (i > 0 && done[i - 1]))
+                        << what << " batch " << batch << " at " << i << ": HitRun stopped at a hit";
+                  }
+                  ++i;
+                }
+                for (size_t k = 0; k < lines.size(); ++k)
+                  if (thread[k] == 0) hit_one[k] = one.Access(lines[k]);
+                ASSERT_EQ(hit_run, hit_one) << what << " batch " << batch;
+                hits += static_cast<uint64_t>(std::count(hit_one.begin(), hit_one.end(), 1));
               }
-              for (size_t k = 0; k < lines.size(); ++k)
-                if (thread[k] == 0) hit_one[k] = one.Access(lines[k]);
-              ASSERT_EQ(hit_run, hit_one) << what << " batch " << batch;
-              hits += static_cast<uint64_t>(std::count(hit_one.begin(), hit_one.end(), 1));
+              EXPECT_GT(hits, 1000u) << what;  // the runs had hits to take
             }
-            EXPECT_GT(hits, 1000u) << what;  // the runs had hits to take
-          }
 }
 
 // SlotOf and ForEachLine (the many-core simulator's back-invalidation filter keeps a byte per
