@@ -34,6 +34,8 @@
 
 #include "analysis/cache_sim.h"
 #include "analysis/machine.h"
+#include "analysis/set_associative_cache.h"
+#include "analysis/writable_pages.h"
 #include "core/table.h"
 #include "tracer/access_stream.h"
 
