@@ -37,7 +37,6 @@
 #include <type_traits>
 #include <vector>
 
-
 #include "analysis/cache_model.h"
 #include "analysis/set_associative_cache.h"
 #include "core/table.h"

@@ -1,9 +1,9 @@
-// One level of the set-associative simulators (cache_sim.h's per-stream hierarchy, multicore_sim.h's
-// machine): `sets` sets of `ways` lines under LRU (valgrind's rules, cache_sim.h), FIFO or seeded
-// random replacement, its sets laid out for SIMD lookups, with the hit loop both simulators run
-// on their first level (HitRun) and the prefetches their misses ask (PrefetchSet). Issue 40 made
-// it three times faster than the most-recent-first array it replaced, every choice the same
-// (reports/docs/simulator-performance.md).
+// One level of the set-associative simulators (cache_sim.h's per-stream hierarchy,
+// multicore_sim.h's machine): `sets` sets of `ways` lines under LRU (valgrind's rules,
+// cache_sim.h), FIFO or seeded random replacement, its sets laid out for SIMD lookups, with the hit
+// loop both simulators run on their first level (HitRun) and the prefetches their misses ask
+// (PrefetchSet). Issue 40 made it three times faster than the most-recent-first array it replaced,
+// every choice the same (reports/docs/simulator-performance.md).
 #pragma once
 
 #include <algorithm>

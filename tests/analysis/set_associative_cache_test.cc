@@ -1,7 +1,8 @@
 // SetAssociativeCache, one level on its own: FIFO and random replacement by hand, every policy
 // against the most-recent-first array it replaced (victims, invalidations and renumbering
 // included), the hit loop against one access at a time, and the slots the many-core simulator's
-// back-invalidation filter keeps. (Its counts against models and naive hierarchies: cache_sim_test.)
+// back-invalidation filter keeps. (Its counts against models and naive hierarchies:
+// cache_sim_test.)
 #include "analysis/set_associative_cache.h"
 
 #include <gtest/gtest.h>
