@@ -181,9 +181,10 @@ class MulticoreSimulation : public AccessConsumer {
     if (write && coherent_) WriteHit<R>(f, first);
     return CacheHierarchy::kHit;
   }
-  // HitFirst's hits over a[from..n) while they are thread t's (SetAssociativeCache::HitRun): the
-  // index of the first access not taken, all before it counted and their writes' coherence done
-  // (which touches other cores' and sockets' levels, never this core's).
+  // HitFirst's hits over a[from..n) while they are thread t's (SetAssociativeCache::HitRun), and
+  // where no level prefetches its one-line first-level misses too (MissPlain): the index of the
+  // first access not taken, every one before it done and counted (a hit's write coherence touches
+  // other cores' and sockets' levels, never this core's).
   template <uint32_t G, class R>
   [[gnu::always_inline]] size_t HitRun(const meshreuse::Access* a, size_t from, size_t n,
                                        uint8_t t) {
